@@ -1,0 +1,52 @@
+// Contact kinematics of rigid disks: where two bodies touch, along which normal, with which gap.
+#pragma once
+
+namespace cd {
+
+// Index of the static world body (walls): zero inverse mass, zero velocity, never updated.
+inline constexpr int world_body = 0;
+
+// Velocity of a rigid disk in the plane.
+struct BodyVelocity {
+  double vx = 0.0;    // m/s
+  double vy = 0.0;    // m/s
+  double spin = 0.0;  // rad/s, counter-clockwise
+};
+
+// Inverse inertia of a body; zero for immobile obstacles and the world.
+struct BodyInertia {
+  double inv_mass = 0.0;     // 1/kg
+  double inv_inertia = 0.0;  // 1/(kg m^2)
+};
+
+// A disk at the predicted configuration of the step.
+struct Disk {
+  double x = 0.0;
+  double y = 0.0;
+  double radius = 0.0;
+};
+
+// Where and how two bodies meet, before any mechanics.
+struct ContactGeometry {
+  int body_a = 0;
+  int body_b = 0;          // world_body for walls
+  double normal_x = 0.0;   // unit normal pointing from b to a
+  double normal_y = 0.0;
+  double gap = 0.0;        // signed distance between surfaces, negative when overlapping (m)
+  double lever_a = 0.0;    // distance from the centre of a to the contact point (m)
+  double lever_b = 0.0;    // same for b; 0 for a wall point
+  double point_x = 0.0;    // contact point, midway across the gap (m)
+  double point_y = 0.0;
+};
+
+// Geometry between disk a and disk b (b given at the periodic image nearest to a).
+// Coincident centres have no defined normal: the caller must not pass them.
+ContactGeometry disk_disk_geometry(int body_a, const Disk& a, int body_b, const Disk& b);
+
+// Geometry between a disk and a fixed point of the world (the nearest point of a wall),
+// given the vector (dx, dy) from that point to the disk centre, already reduced to the nearest
+// periodic image, and the unit normal to use if the centre lies on the wall (dx = dy = 0).
+ContactGeometry disk_world_geometry(int body_a, const Disk& a, double dx, double dy,
+                                    double fallback_nx, double fallback_ny);
+
+}  // namespace cd

@@ -1,0 +1,31 @@
+// Convergence measures of the Gauss–Seidel sweep, kept apart from the sweep: they are physics.
+#pragma once
+
+#include "cd/coulomb_local.h"
+
+namespace cd {
+
+// Both norms compare the local velocity change W·dp made by one sweep with the velocity
+// scale W·p carried by the impulses (LMGC90's Quad and Maxm): they are dimensionless and do
+// not depend on grain size, mass or time step, so one tolerance serves every scene.
+enum class ConvergenceNorm {
+  quadratic,  // sqrt(sum |W dp|^2 / sum |W p|^2): an average over contacts
+  maximum     // max |W dp| / mean |W p|: the worst contact
+};
+
+// Sums over the contacts of one sweep; plain fields so that ranks can reduce them.
+struct SweepChange {
+  double sum_change_sq = 0.0;  // sum |W dp|^2
+  double sum_scale_sq = 0.0;   // sum |W p|^2
+  double max_change = 0.0;     // max |W dp|
+  double sum_scale = 0.0;      // sum |W p|
+  double contacts = 0.0;       // number of contacts visited
+
+  void add(Local2 velocity_change, Local2 velocity_scale);
+  void merge(const SweepChange& other);
+
+  // The chosen norm; 0 when nothing changed, infinite when impulses changed but all vanished.
+  double residual(ConvergenceNorm norm) const;
+};
+
+}  // namespace cd

@@ -1,0 +1,133 @@
+#include "cd/gauss_seidel.h"
+
+#include <algorithm>
+
+namespace cd {
+
+void BodySet::reset(int body_count)
+{
+  inertia.assign(body_count, BodyInertia{});
+  start_velocity.assign(body_count, BodyVelocity{});
+  velocity.assign(body_count, BodyVelocity{});
+}
+
+Local2 relative_velocity(const Contact& c, const BodyVelocity& a, const BodyVelocity& b)
+{
+  const double dvx = a.vx - b.vx;
+  const double dvy = a.vy - b.vy;
+  return {dvx * c.normal_x + dvy * c.normal_y,
+          -dvx * c.normal_y + dvy * c.normal_x - c.lever_a * a.spin - c.lever_b * b.spin};
+}
+
+namespace {
+
+// Adds the impulse dp (on a; -dp on b) to both bodies. A tangential impulse spins both disks
+// the same way: its lever arms are -r_a n on a and +r_b n on b, with opposite forces.
+inline void apply_impulse(const Contact& c, Local2 dp, BodyVelocity& a, BodyVelocity& b)
+{
+  const double px = dp.n * c.normal_x - dp.t * c.normal_y;
+  const double py = dp.n * c.normal_y + dp.t * c.normal_x;
+  a.vx += c.inv_mass_a * px;
+  a.vy += c.inv_mass_a * py;
+  a.spin -= c.spin_gain_a * dp.t;
+  b.vx -= c.inv_mass_b * px;
+  b.vy -= c.inv_mass_b * py;
+  b.spin -= c.spin_gain_b * dp.t;
+}
+
+// Exact local solve of one contact with every other impulse frozen; returns W dp and W p
+// for the convergence norm.
+inline void update_contact(Contact& c, std::vector<BodyVelocity>& velocity, double relaxation,
+                           SweepChange& change)
+{
+  BodyVelocity& a = velocity[c.body_a];
+  BodyVelocity& b = velocity[c.body_b];
+  const Local2 u = relative_velocity(c, a, b);
+  const Local2 own = c.delassus.times(c.impulse);
+  const Local2 u_free{u.n + c.restitution_bias - own.n, u.t - own.t};
+
+  Local2 p = solve_coulomb_local(c.delassus, u_free, c.mu).impulse;
+  p.n = relaxation * p.n + (1.0 - relaxation) * c.impulse.n;
+  p.t = relaxation * p.t + (1.0 - relaxation) * c.impulse.t;
+  const Local2 dp{p.n - c.impulse.n, p.t - c.impulse.t};
+  c.impulse = p;
+  apply_impulse(c, dp, a, b);
+  change.add(c.delassus.times(dp), c.delassus.times(p));
+}
+
+}  // namespace
+
+Contact contact_frame(const ContactGeometry& g)
+{
+  Contact c;
+  c.body_a = g.body_a;
+  c.body_b = g.body_b;
+  c.normal_x = g.normal_x;
+  c.normal_y = g.normal_y;
+  c.lever_a = g.lever_a;
+  c.lever_b = g.lever_b;
+  c.gap = g.gap;
+  return c;
+}
+
+bool closes_within_step(const Contact& frame, const BodySet& bodies, const StepParameters& step)
+{
+  const Local2 u_free =
+      relative_velocity(frame, bodies.velocity[frame.body_a], bodies.velocity[frame.body_b]);
+  return frame.gap + step.theta * step.dt * u_free.n <= 0.0;
+}
+
+void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies)
+{
+  const BodyInertia& a = bodies.inertia[c.body_a];
+  const BodyInertia& b = bodies.inertia[c.body_b];
+  c.inv_mass_a = a.inv_mass;
+  c.inv_mass_b = b.inv_mass;
+  c.spin_gain_a = c.lever_a * a.inv_inertia;
+  c.spin_gain_b = c.lever_b * b.inv_inertia;
+  const double translation = a.inv_mass + b.inv_mass;
+  // For disks the normal passes through both centres: no normal-tangential coupling.
+  c.delassus = {translation, 0.0,
+                translation + c.lever_a * c.spin_gain_a + c.lever_b * c.spin_gain_b};
+  c.mu = law.mu;
+  const Local2 u_start =
+      relative_velocity(c, bodies.start_velocity[c.body_a], bodies.start_velocity[c.body_b]);
+  c.restitution_bias = law.restitution * std::min(u_start.n, 0.0);
+  c.impulse = {};
+}
+
+void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity)
+{
+  for (const Contact& c : contacts) apply_impulse(c, c.impulse, velocity[c.body_a], velocity[c.body_b]);
+}
+
+SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                  double relaxation)
+{
+  SweepChange change;
+  for (Contact& c : contacts) update_contact(c, velocity, relaxation, change);
+  return change;
+}
+
+SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                               const SolverSettings& settings, SweepExchange* exchange)
+{
+  SolveReport report;
+  if (contacts.empty()) return report;
+  while (report.iterations < settings.max_iterations) {
+    SweepChange change = sweep(contacts, velocity, settings.relaxation);
+    if (exchange) exchange->after_sweep(change);
+    ++report.iterations;
+    report.residual = change.residual(settings.norm);
+    if (report.residual <= settings.tolerance) return report;
+  }
+  report.converged = report.residual <= settings.tolerance;
+  return report;
+}
+
+double end_of_step_gap(double gap, double normal_velocity, const StepParameters& step)
+{
+  return gap + step.theta * step.dt * normal_velocity;
+}
+
+}  // namespace cd

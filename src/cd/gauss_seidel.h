@@ -1,0 +1,108 @@
+// Moreau–Jean contact impulses by nonlinear Gauss–Seidel over contacts.
+//
+// One step, in the order the driver runs it:
+//   prepare      contact frames, activation, Delassus blocks, restitution bias
+//   warm start   apply the impulses carried over from the previous step (apply_impulses)
+//   solve        sweeps of exact local Coulomb solves until the convergence norm is met
+//   store        the caller keeps contact.impulse for the next step's warm start
+// Restitution needs no stage of its own: Newton's law is imposed on u_n^+ + e u_n^-, so the
+// pre-impact velocity enters once, as a bias, when the contact is prepared.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "cd/contact_geometry.h"
+#include "cd/convergence.h"
+#include "cd/coulomb_local.h"
+#include "cd/walls.h"
+
+namespace cd {
+
+struct StepParameters {
+  double dt = 0.0;     // time step (s)
+  double theta = 0.5;  // Moreau–Jean theta: x_{n+1} = x_n + dt((1-theta) v_n + theta v_{n+1})
+};
+
+// State of every body for one step. Index 0 is the world (walls): zero inverse mass and zero
+// velocity, so wall contacts run through the same code as grain contacts.
+struct BodySet {
+  std::vector<BodyInertia> inertia;
+  std::vector<BodyVelocity> start_velocity;  // v_n
+  std::vector<BodyVelocity> velocity;        // free velocity before the solve, v_{n+1} after
+
+  void reset(int body_count);  // world body included in the count
+};
+
+// One active contact, holding everything the sweep needs so that it never looks up a body.
+struct Contact {
+  int body_a = 0;
+  int body_b = 0;
+  double normal_x = 0.0;          // unit normal from b to a; tangent t = (-n_y, n_x)
+  double normal_y = 0.0;
+  double lever_a = 0.0;           // centre-to-contact distances (m)
+  double lever_b = 0.0;
+  double inv_mass_a = 0.0;        // 1/kg
+  double inv_mass_b = 0.0;
+  double spin_gain_a = 0.0;       // lever * inverse inertia: spin change per tangential impulse
+  double spin_gain_b = 0.0;
+  Delassus2 delassus;             // local W (m/s per N s)
+  double mu = 0.0;
+  double restitution_bias = 0.0;  // e * min(u_n^-, 0) (m/s): the law acts on u_n + bias
+  double gap = 0.0;               // at the predicted configuration (m)
+  Local2 impulse;                 // accumulated over the step (N s)
+};
+
+// Relative velocity of a with respect to b at the contact point, in the local frame.
+Local2 relative_velocity(const Contact& c, const BodyVelocity& a, const BodyVelocity& b);
+
+// The frame of a candidate contact: bodies, normal, levers and gap; no mechanics yet.
+Contact contact_frame(const ContactGeometry& geometry);
+
+// Activation: the pair would close its gap by the end of the step under the free motion,
+// gap + theta dt u_n^free <= 0. Inactive pairs carry no impulse. Contacts that close early are
+// caught one step ahead, so a collision starts at a gap of at most theta dt |u_n| instead of
+// ending with that overlap.
+bool closes_within_step(const Contact& frame, const BodySet& bodies, const StepParameters& step);
+
+// Completes an active contact: inverse masses, Delassus block, friction, and the restitution
+// bias from the pre-impact velocity v_n.
+void prepare_mechanics(Contact& contact, const ContactLaw& law, const BodySet& bodies);
+
+// Adds the contacts' impulses (e.g. the warm start) to the body velocities.
+void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity);
+
+struct SolverSettings {
+  double tolerance = 1.0e-4;
+  int max_iterations = 1000;
+  double relaxation = 1.0;  // p <- w p_local + (1 - w) p_previous
+  ConvergenceNorm norm = ConvergenceNorm::quadratic;
+};
+
+struct SolveReport {
+  int iterations = 0;
+  double residual = 0.0;
+  bool converged = true;
+};
+
+// Called after every sweep: a domain-decomposed run exchanges ghost velocities and impulses
+// and reduces `change` over ranks here; one rank needs nothing.
+class SweepExchange {
+ public:
+  virtual ~SweepExchange() = default;
+  virtual void after_sweep(SweepChange& change) = 0;
+};
+
+// One sweep over the contacts in their stored order.
+SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                  double relaxation);
+
+// Sweeps until the norm falls to the tolerance or the iteration cap is reached. The contacts'
+// impulses must already be applied to `velocity` (apply_impulses).
+SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                               const SolverSettings& settings, SweepExchange* exchange = nullptr);
+
+// Linearised gap at the end of the step: gap + theta dt u_n^+ (m).
+double end_of_step_gap(double gap, double normal_velocity, const StepParameters& step);
+
+}  // namespace cd

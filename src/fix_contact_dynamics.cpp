@@ -1,0 +1,813 @@
+#include "fix_contact_dynamics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "math_const.h"
+#include "group.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neigh_request.h"
+#include "neighbor.h"
+#include "update.h"
+#include "utils.h"
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+using MathConst::MY_PI;
+
+namespace {
+
+constexpr int output_columns = 7;
+constexpr double disk_inertia_factor = 0.5;  // I = m r^2 / 2 for a uniform disk
+// Relative spread below which a mass/radius^k ratio counts as uniform over the group.
+constexpr double uniform_ratio_tolerance = 1.0e-6;
+
+// Keys of wall contacts in the per-atom store are negative, atom IDs positive.
+double wall_key(int wall_index, cd::WallPart part)
+{
+  return -(3.0 * wall_index + static_cast<int>(part) + 1.0);
+}
+
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+FixContactDynamics::FixContactDynamics(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), theta(0.5), order(ContactOrder::fixed), warm_start(true),
+    max_contacts(12), disc_density(0.0), list(nullptr), covered_radius(0.0), mean_diameter(0.0),
+    natoms_checked(-1), max_overlap(0.0), mean_overlap(0.0), loaded_contacts(0),
+    total_iterations(0.0), total_unconverged_steps(0.0), total_steps(0.0), history(nullptr),
+    local_rows_allocated(0)
+{
+  if (domain->dimension != 2) error->all(FLERR, "Fix contact/dynamics requires dimension 2");
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
+    error->all(FLERR, "Fix contact/dynamics requires atom_style sphere (per-atom radius, rmass, omega)");
+  if (comm->nprocs > 1)
+    error->all(FLERR, "Fix contact/dynamics runs on one MPI rank only in this version (got {})",
+               comm->nprocs);
+
+  parse_arguments(narg, arg);
+
+  time_integrate = 1;
+  vector_flag = 1;
+  size_vector = 10;
+  global_freq = 1;
+  extvector = 0;
+  local_flag = 1;
+  size_local_cols = output_columns;
+  local_freq = 1;
+  restart_global = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+
+  history_width = 1 + 3 * max_contacts;
+  maxexchange = history_width;
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nlocal; i++) history[i][0] = 0.0;
+}
+
+FixContactDynamics::~FixContactDynamics()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(history);
+  memory->destroy(array_local);
+}
+
+int FixContactDynamics::setmask()
+{
+  int mask = INITIAL_INTEGRATE | FINAL_INTEGRATE;
+  if (disc_density > 0.0) mask |= PRE_FORCE;
+  return mask;
+}
+
+/* ----------------------------------------------------------------------
+   command line: fix ID group contact/dynamics mu e keyword value ...
+------------------------------------------------------------------------- */
+
+namespace {
+
+double number_for(const char *keyword, const char *text, Error *error)
+{
+  if (!utils::is_double(text))
+    error->all(FLERR, "Fix contact/dynamics: {} expects a number, got '{}'", keyword, text);
+  const double value = std::stod(text);
+  if (!std::isfinite(value))
+    error->all(FLERR, "Fix contact/dynamics: {} must be finite, got '{}'", keyword, text);
+  return value;
+}
+
+int integer_for(const char *keyword, const char *text, Error *error)
+{
+  if (!utils::is_integer(text))
+    error->all(FLERR, "Fix contact/dynamics: {} expects an integer, got '{}'", keyword, text);
+  return std::stoi(text);
+}
+
+void require_values(const char *keyword, int iarg, int count, int narg, Error *error)
+{
+  if (iarg + count >= narg)
+    error->all(FLERR, "Fix contact/dynamics: {} needs {} value(s)", keyword, count);
+}
+
+void check_friction(const char *keyword, double mu, Error *error)
+{
+  if (mu < 0.0) error->all(FLERR, "Fix contact/dynamics: {} must be >= 0, got {}", keyword, mu);
+}
+
+void check_restitution(const char *keyword, double e, Error *error)
+{
+  if (e < 0.0 || e > 1.0)
+    error->all(FLERR, "Fix contact/dynamics: {} must be in [0,1], got {}", keyword, e);
+}
+
+}    // namespace
+
+void FixContactDynamics::parse_arguments(int narg, char **arg)
+{
+  if (narg < 5) error->all(FLERR, "Fix contact/dynamics needs mu and e: fix ID group contact/dynamics mu e [keyword value ...]");
+  const double mu = number_for("mu", arg[3], error);
+  const double e = number_for("e", arg[4], error);
+  check_friction("mu", mu, error);
+  check_restitution("e", e, error);
+  const int ntypes = atom->ntypes;
+  type_laws.assign((ntypes + 1) * (ntypes + 1), cd::ContactLaw{mu, e});
+
+  int iarg = 5;
+  while (iarg < narg) {
+    const std::string keyword = arg[iarg];
+    if (keyword == "wall") {
+      iarg = parse_wall(iarg, narg, arg);
+      continue;
+    }
+    if (keyword == "mu/types" || keyword == "e/types") {
+      parse_type_law(arg[iarg], iarg, narg, arg, keyword == "mu/types");
+      iarg += 4;
+      continue;
+    }
+    if (keyword == "order") {
+      require_values("order", iarg, 1, narg, error);
+      const std::string value = arg[iarg + 1];
+      if (value == "fixed") {
+        order = ContactOrder::fixed;
+        iarg += 2;
+      } else if (value == "shuffle") {
+        require_values("order shuffle", iarg + 1, 1, narg, error);
+        const int seed = integer_for("order shuffle seed", arg[iarg + 2], error);
+        if (seed <= 0) error->all(FLERR, "Fix contact/dynamics: order shuffle seed must be > 0, got {}", seed);
+        order = ContactOrder::shuffled;
+        shuffle_rng.seed(seed);
+        iarg += 3;
+      } else {
+        error->all(FLERR, "Fix contact/dynamics: order must be fixed or shuffle, got '{}'", value);
+      }
+      continue;
+    }
+
+    require_values(arg[iarg], iarg, 1, narg, error);
+    const char *value = arg[iarg + 1];
+    if (keyword == "theta") {
+      theta = number_for("theta", value, error);
+      if (theta < 0.5 || theta > 1.0)
+        error->all(FLERR, "Fix contact/dynamics: theta must be in [0.5,1], got {}", theta);
+    } else if (keyword == "tolerance") {
+      solver_settings.tolerance = number_for("tolerance", value, error);
+      if (solver_settings.tolerance <= 0.0)
+        error->all(FLERR, "Fix contact/dynamics: tolerance must be > 0, got {}", solver_settings.tolerance);
+    } else if (keyword == "max_iterations") {
+      solver_settings.max_iterations = integer_for("max_iterations", value, error);
+      if (solver_settings.max_iterations < 1)
+        error->all(FLERR, "Fix contact/dynamics: max_iterations must be >= 1, got {}", solver_settings.max_iterations);
+    } else if (keyword == "relaxation") {
+      solver_settings.relaxation = number_for("relaxation", value, error);
+      if (solver_settings.relaxation <= 0.0 || solver_settings.relaxation > 1.0)
+        error->all(FLERR, "Fix contact/dynamics: relaxation must be in (0,1], got {}", solver_settings.relaxation);
+    } else if (keyword == "norm") {
+      const std::string norm = value;
+      if (norm == "quadratic") solver_settings.norm = cd::ConvergenceNorm::quadratic;
+      else if (norm == "maximum") solver_settings.norm = cd::ConvergenceNorm::maximum;
+      else error->all(FLERR, "Fix contact/dynamics: norm must be quadratic or maximum, got '{}'", norm);
+    } else if (keyword == "warm_start") {
+      const std::string flag = value;
+      if (flag != "yes" && flag != "no")
+        error->all(FLERR, "Fix contact/dynamics: warm_start must be yes or no, got '{}'", flag);
+      warm_start = flag == "yes";
+    } else if (keyword == "max_contacts") {
+      max_contacts = integer_for("max_contacts", value, error);
+      if (max_contacts < 1)
+        error->all(FLERR, "Fix contact/dynamics: max_contacts must be >= 1, got {}", max_contacts);
+    } else if (keyword == "density") {
+      disc_density = number_for("density", value, error);
+      if (disc_density <= 0.0)
+        error->all(FLERR, "Fix contact/dynamics: density must be > 0, got {}", disc_density);
+    } else {
+      error->all(FLERR, "Fix contact/dynamics: unknown keyword '{}'", keyword);
+    }
+    iarg += 2;
+  }
+}
+
+void FixContactDynamics::parse_type_law(const char *keyword, int iarg, int narg, char **arg, bool friction)
+{
+  require_values(keyword, iarg, 3, narg, error);
+  int ilo, ihi, jlo, jhi;
+  const int ntypes = atom->ntypes;
+  utils::bounds(FLERR, arg[iarg + 1], 1, ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[iarg + 2], 1, ntypes, jlo, jhi, error);
+  const double value = number_for(keyword, arg[iarg + 3], error);
+  if (friction) check_friction(keyword, value, error);
+  else check_restitution(keyword, value, error);
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = jlo; j <= jhi; j++) {
+      cd::ContactLaw &ij = type_laws[i * (ntypes + 1) + j];
+      cd::ContactLaw &ji = type_laws[j * (ntypes + 1) + i];
+      (friction ? ij.mu : ij.restitution) = value;
+      (friction ? ji.mu : ji.restitution) = value;
+    }
+}
+
+// wall xplane X mu e | wall yplane Y mu e | wall segment x1 y1 x2 y2 mu e
+int FixContactDynamics::parse_wall(int iarg, int narg, char **arg)
+{
+  require_values("wall", iarg, 1, narg, error);
+  const std::string shape = arg[iarg + 1];
+  cd::Wall wall;
+  const double *lo = domain->boxlo;
+  const double *hi = domain->boxhi;
+  int next;
+  if (shape == "xplane" || shape == "yplane") {
+    require_values(("wall " + shape).c_str(), iarg + 1, 3, narg, error);
+    const int axis = shape == "xplane" ? 0 : 1;
+    const double position = number_for(("wall " + shape).c_str(), arg[iarg + 2], error);
+    if (position < lo[axis] || position > hi[axis])
+      error->all(FLERR, "Fix contact/dynamics: wall {} at {} is outside the box [{}, {}]", shape,
+                 position, lo[axis], hi[axis]);
+    wall.shape = cd::Wall::Shape::line;
+    if (axis == 0) wall.ax = wall.bx = position, wall.ay = lo[1], wall.by = hi[1];
+    else wall.ay = wall.by = position, wall.ax = lo[0], wall.bx = hi[0];
+    next = iarg + 3;
+  } else if (shape == "segment") {
+    require_values("wall segment", iarg + 1, 6, narg, error);
+    wall.shape = cd::Wall::Shape::segment;
+    wall.ax = number_for("wall segment", arg[iarg + 2], error);
+    wall.ay = number_for("wall segment", arg[iarg + 3], error);
+    wall.bx = number_for("wall segment", arg[iarg + 4], error);
+    wall.by = number_for("wall segment", arg[iarg + 5], error);
+    const double xs[2] = {wall.ax, wall.bx}, ys[2] = {wall.ay, wall.by};
+    for (int k = 0; k < 2; k++)
+      if (xs[k] < lo[0] || xs[k] > hi[0] || ys[k] < lo[1] || ys[k] > hi[1])
+        error->all(FLERR, "Fix contact/dynamics: wall segment end ({}, {}) is outside the box", xs[k], ys[k]);
+    if (wall.ax == wall.bx && wall.ay == wall.by)
+      error->all(FLERR, "Fix contact/dynamics: wall segment has zero length");
+    next = iarg + 6;
+  } else {
+    error->all(FLERR, "Fix contact/dynamics: wall must be xplane, yplane or segment, got '{}'", shape);
+  }
+  wall.law.mu = number_for("wall mu", arg[next], error);
+  wall.law.restitution = number_for("wall e", arg[next + 1], error);
+  check_friction("wall mu", wall.law.mu, error);
+  check_restitution("wall e", wall.law.restitution, error);
+  walls.push_back(wall);
+  return next + 2;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixContactDynamics::init()
+{
+  if (comm->nprocs > 1)
+    error->all(FLERR, "Fix contact/dynamics runs on one MPI rank only in this version (got {})", comm->nprocs);
+  if (!comm->ghost_velocity)
+    error->all(FLERR, "Fix contact/dynamics requires ghost velocities: use comm_modify vel yes");
+  if (atom->map_style == Atom::MAP_NONE)
+    error->all(FLERR, "Fix contact/dynamics requires an atom map: use atom_modify map array");
+  if (utils::strmatch(update->integrate_style, "^respa"))
+    error->all(FLERR, "Fix contact/dynamics does not support run_style respa");
+  if (atom->ntypes + 1 != static_cast<int>(std::sqrt(static_cast<double>(type_laws.size()))))
+    error->all(FLERR, "Fix contact/dynamics: the number of atom types changed since the fix was defined");
+  check_integrators();
+
+  // Largest radius now or announced by an insertion fix (fix pour, fix deposit).
+  double rmax_local = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) rmax_local = std::max(rmax_local, atom->radius[i]);
+  double rmax = 0.0;
+  MPI_Allreduce(&rmax_local, &rmax, 1, MPI_DOUBLE, MPI_MAX, world);
+  for (int f = 0; f < modify->nfix; f++)
+    for (int itype = 1; itype <= atom->ntypes; itype++) {
+      int query_type = itype;
+      auto *radius = static_cast<double *>(modify->fix[f]->extract("radius", query_type));
+      if (radius && query_type == 0) rmax = std::max(rmax, *radius);
+    }
+  if (rmax <= 0.0)
+    error->all(FLERR, "Fix contact/dynamics: no grain radius known (no atoms and no fix pour or deposit)");
+  covered_radius = rmax;
+  const double cutoff = 2.0 * covered_radius + neighbor->skin;
+  comm->cutghostuser = std::max(comm->cutghostuser, cutoff);
+  request_neighbor_list();
+}
+
+void FixContactDynamics::request_neighbor_list()
+{
+  const int irequest = neighbor->request(this, instance_me);
+  NeighRequest *request = neighbor->requests[irequest];
+  request->pair = 0;
+  request->fix = 1;
+  request->half = 1;
+  request->size = 1;
+  // Newton off: a pair across a periodic or processor boundary is listed from both sides and
+  // kept once by atom ID, independent of the user's newton setting.
+  request->newton = 2;
+  request->cut = 1;
+  request->cutoff = 2.0 * covered_radius + neighbor->skin;
+}
+
+void FixContactDynamics::init_list(int, NeighList *ptr)
+{
+  list = ptr;
+}
+
+void FixContactDynamics::check_integrators()
+{
+  const int *mask = atom->mask;
+  for (int f = 0; f < modify->nfix; f++) {
+    Fix *other = modify->fix[f];
+    if (other == this || !other->time_integrate) continue;
+    int shared_local = (other->igroup == igroup || other->igroup == 0 || igroup == 0) ? 1 : 0;
+    for (int i = 0; i < atom->nlocal && !shared_local; i++)
+      if ((mask[i] & groupbit) && (mask[i] & other->groupbit)) shared_local = 1;
+    int shared = 0;
+    MPI_Allreduce(&shared_local, &shared, 1, MPI_INT, MPI_MAX, world);
+    if (shared)
+      error->all(FLERR, "Fix contact/dynamics: fix {} ({}) also integrates atoms of group {}",
+                 other->id, other->style, group->names[igroup]);
+  }
+}
+
+// Disks need m = pi r^2 rho. Sphere masses (4/3 pi r^3 rho, as fix pour and set density give)
+// show in a polydisperse group as a uniform mass/r^3 with a non-uniform mass/r^2.
+void FixContactDynamics::check_disk_masses()
+{
+  double local[4] = {0.0, 0.0, 0.0, 0.0};    // max m/r^2, max -m/r^2, max m/r^3, max -m/r^3
+  double diameter_sum_local[2] = {0.0, 0.0};
+  for (int i = 0; i < 4; i++) local[i] = -HUGE_VAL;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(atom->mask[i] & groupbit)) continue;
+    const double r = atom->radius[i];
+    if (r <= 0.0 || atom->rmass[i] <= 0.0)
+      error->one(FLERR, "Fix contact/dynamics: atom {} has radius {} and mass {}; both must be > 0",
+                 atom->tag[i], r, atom->rmass[i]);
+    const double per_area = atom->rmass[i] / (r * r);
+    const double per_volume = per_area / r;
+    local[0] = std::max(local[0], per_area);
+    local[1] = std::max(local[1], -per_area);
+    local[2] = std::max(local[2], per_volume);
+    local[3] = std::max(local[3], -per_volume);
+    diameter_sum_local[0] += 2.0 * r;
+    diameter_sum_local[1] += 1.0;
+  }
+  double global[4], diameter_sum[2];
+  MPI_Allreduce(local, global, 4, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(diameter_sum_local, diameter_sum, 2, MPI_DOUBLE, MPI_SUM, world);
+  natoms_checked = atom->natoms;
+  if (diameter_sum[1] == 0.0) return;
+  mean_diameter = diameter_sum[0] / diameter_sum[1];
+  if (disc_density > 0.0) return;
+  const bool area_uniform = global[0] <= -global[1] * (1.0 + uniform_ratio_tolerance);
+  const bool volume_uniform = global[2] <= -global[3] * (1.0 + uniform_ratio_tolerance);
+  if (!area_uniform && volume_uniform)
+    error->all(FLERR, "Fix contact/dynamics: group {} has sphere masses (4/3 pi r^3 rho); use set "
+               "density/disc or the density keyword", group->names[igroup]);
+}
+
+void FixContactDynamics::assign_disc_masses()
+{
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->mask[i] & groupbit)
+      atom->rmass[i] = MY_PI * atom->radius[i] * atom->radius[i] * disc_density;
+}
+
+void FixContactDynamics::setup(int)
+{
+  if (disc_density > 0.0) assign_disc_masses();
+  check_disk_masses();
+}
+
+void FixContactDynamics::pre_force(int)
+{
+  assign_disc_masses();
+}
+
+/* ----------------------------------------------------------------------
+   Moreau–Jean step. initial_integrate moves the group to the predicted configuration
+   x_m = x_n + (1-theta) dt v_n, where LAMMPS then finds neighbours and computes forces;
+   final_integrate solves for v_{n+1} at x_m and completes x_{n+1} = x_m + theta dt v_{n+1}.
+------------------------------------------------------------------------- */
+
+void FixContactDynamics::initial_integrate(int)
+{
+  const double shift = (1.0 - theta) * update->dt;
+  double **x = atom->x;
+  double **v = atom->v;
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & groupbit) {
+      x[i][0] += shift * v[i][0];
+      x[i][1] += shift * v[i][1];
+    }
+}
+
+void FixContactDynamics::final_integrate()
+{
+  if (atom->natoms != natoms_checked) {
+    if (disc_density > 0.0) assign_disc_masses();
+    check_disk_masses();
+  }
+  gather_bodies();
+  contacts.clear();
+  records.clear();
+  inactive.clear();
+  collect_pair_contacts();
+  collect_wall_contacts();
+  if (order == ContactOrder::shuffled) shuffle_contacts();
+  if (warm_start) load_warm_start();
+
+  cd::apply_impulses(contacts, bodies.velocity);
+  last_report = cd::solve_gauss_seidel(contacts, bodies.velocity, solver_settings);
+
+  store_warm_start();
+  write_back_motion();
+  measure_overlaps();
+  fill_local_output();
+
+  total_iterations += last_report.iterations;
+  total_steps += 1.0;
+  if (!last_report.converged) {
+    total_unconverged_steps += 1.0;
+    const double count = total_unconverged_steps;
+    // Warn on the 1st, 10th, 100th ... unconverged step.
+    if (comm->me == 0 && std::fabs(std::log10(count) - std::round(std::log10(count))) < 1e-12)
+      error->warning(FLERR, "Fix contact/dynamics: iteration cap {} reached at step {} (residual {:.3g}); "
+                     "{} step(s) unconverged so far", solver_settings.max_iterations,
+                     update->ntimestep, last_report.residual, count);
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+const cd::ContactLaw &FixContactDynamics::law(int itype, int jtype) const
+{
+  return type_laws[itype * (atom->ntypes + 1) + jtype];
+}
+
+// Body of an atom: owned atoms are bodies 1..nlocal; a periodic ghost is its owner's body.
+int FixContactDynamics::body_of(int j) const
+{
+  if (j < atom->nlocal) return 1 + j;
+  const int owner = atom->map(atom->tag[j]);
+  if (owner < 0 || owner >= atom->nlocal)
+    error->one(FLERR, "Fix contact/dynamics: ghost atom {} has no owner on this rank", atom->tag[j]);
+  return 1 + owner;
+}
+
+void FixContactDynamics::gather_bodies()
+{
+  const int nlocal = atom->nlocal;
+  const double dt = update->dt;
+  double **v = atom->v;
+  double **f = atom->f;
+  double **omega = atom->omega;
+  double **torque = atom->torque_flag ? atom->torque : nullptr;
+  const double *radius = atom->radius;
+  const double *rmass = atom->rmass;
+  const int *mask = atom->mask;
+
+  bodies.reset(1 + nlocal);
+  for (int i = 0; i < nlocal; i++) {
+    if (radius[i] > covered_radius)
+      error->one(FLERR, "Fix contact/dynamics: atom {} has radius {}, larger than the {} the "
+                 "neighbour cutoff was set for; start a new run", atom->tag[i], radius[i], covered_radius);
+    const cd::BodyVelocity start{v[i][0], v[i][1], omega[i][2]};
+    bodies.start_velocity[1 + i] = start;
+    bodies.velocity[1 + i] = start;
+    if (!(mask[i] & groupbit)) continue;    // obstacle: infinite mass, keeps its velocity
+    cd::BodyInertia &inertia = bodies.inertia[1 + i];
+    inertia.inv_mass = 1.0 / rmass[i];
+    inertia.inv_inertia = 1.0 / (disk_inertia_factor * rmass[i] * radius[i] * radius[i]);
+    cd::BodyVelocity &free = bodies.velocity[1 + i];
+    free.vx += dt * f[i][0] * inertia.inv_mass;
+    free.vy += dt * f[i][1] * inertia.inv_mass;
+    if (torque) free.spin += dt * torque[i][2] * inertia.inv_inertia;
+  }
+}
+
+void FixContactDynamics::add_candidate(const cd::ContactGeometry &geometry, const cd::ContactLaw &contact_law,
+                                       const ContactRecord &record)
+{
+  cd::Contact contact = cd::contact_frame(geometry);
+  const cd::StepParameters step{update->dt, theta};
+  if (!cd::closes_within_step(contact, bodies, step)) {
+    inactive.push_back(contact);
+    return;
+  }
+  cd::prepare_mechanics(contact, contact_law, bodies);
+  contacts.push_back(contact);
+  records.push_back(record);
+}
+
+void FixContactDynamics::collect_pair_contacts()
+{
+  double **x = atom->x;
+  const double *radius = atom->radius;
+  const tagint *tag = atom->tag;
+  const int *type = atom->type;
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    const int *neighbours = list->firstneigh[i];
+    const cd::Disk disk_i{x[i][0], x[i][1], radius[i]};
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      const int j = neighbours[jj] & NEIGHMASK;
+      if (!(mask[i] & groupbit) && !(mask[j] & groupbit)) continue;
+      if (j >= nlocal && tag[i] > tag[j]) continue;    // listed from both sides
+      const int body_j = body_of(j);
+      if (body_j == 1 + i)
+        error->one(FLERR, "Fix contact/dynamics: atom {} touches its own periodic image; the cell "
+                   "is too short", tag[i]);
+      const cd::Disk disk_j{x[j][0], x[j][1], radius[j]};
+      const cd::ContactGeometry geometry = cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j);
+      add_candidate(geometry, law(type[i], type[j]),
+                    {tag[i], static_cast<double>(tag[j]), tag[j], 0, geometry.point_x, geometry.point_y});
+    }
+  }
+}
+
+void FixContactDynamics::collect_wall_contacts()
+{
+  if (walls.empty()) return;
+  cd::PeriodicBox box;
+  box.periodic_x = domain->xperiodic;
+  box.periodic_y = domain->yperiodic;
+  box.length_x = domain->xprd;
+  box.length_y = domain->yprd;
+  const double alert = neighbor->skin;
+  double **x = atom->x;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(atom->mask[i] & groupbit)) continue;
+    const cd::Disk disk{x[i][0], x[i][1], atom->radius[i]};
+    for (int w = 0; w < static_cast<int>(walls.size()); w++) {
+      const auto touch = cd::wall_contact(walls[w], 1 + i, disk, alert, box);
+      if (!touch) continue;
+      add_candidate(touch->geometry, walls[w].law,
+                    {atom->tag[i], wall_key(w, touch->part), 0, w + 1, touch->geometry.point_x,
+                     touch->geometry.point_y});
+    }
+  }
+}
+
+void FixContactDynamics::shuffle_contacts()
+{
+  for (std::size_t k = contacts.size(); k > 1; k--) {
+    std::uniform_int_distribution<std::size_t> pick(0, k - 1);
+    const std::size_t other = pick(shuffle_rng);
+    std::swap(contacts[k - 1], contacts[other]);
+    std::swap(records[k - 1], records[other]);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   Warm start: each atom stores the impulses of its loaded contacts, keyed by partner atom ID
+   (or wall slot). Seen from either body the pair has the same (p_n, p_t): swapping a and b
+   flips both the normal and the tangent.
+------------------------------------------------------------------------- */
+
+void FixContactDynamics::load_warm_start()
+{
+  for (std::size_t k = 0; k < contacts.size(); k++) {
+    const double *row = history[contacts[k].body_a - 1];
+    const int count = static_cast<int>(row[0]);
+    for (int slot = 0; slot < count; slot++) {
+      const double *entry = row + 1 + 3 * slot;
+      if (entry[0] != records[k].key_for_a) continue;
+      contacts[k].impulse = {entry[1], entry[2]};
+      break;
+    }
+  }
+}
+
+void FixContactDynamics::append_history(int atom_index, double key, cd::Local2 impulse)
+{
+  double *row = history[atom_index];
+  const int count = static_cast<int>(row[0]);
+  if (count == max_contacts)
+    error->one(FLERR, "Fix contact/dynamics: atom {} has more than {} loaded contacts; raise "
+               "max_contacts", atom->tag[atom_index], max_contacts);
+  double *entry = row + 1 + 3 * count;
+  entry[0] = key;
+  entry[1] = impulse.n;
+  entry[2] = impulse.t;
+  row[0] = count + 1;
+}
+
+void FixContactDynamics::store_warm_start()
+{
+  for (int i = 0; i < atom->nlocal; i++) history[i][0] = 0.0;
+  loaded_contacts = 0;
+  for (std::size_t k = 0; k < contacts.size(); k++) {
+    const cd::Local2 p = contacts[k].impulse;
+    const ContactRecord &record = records[k];
+    if (!std::isfinite(p.n) || !std::isfinite(p.t))
+      error->one(FLERR, "Fix contact/dynamics: non-finite impulse between atom {} and {} {} at step {}",
+                 record.atom_a, record.wall ? "wall" : "atom", record.wall ? record.wall : record.atom_b,
+                 update->ntimestep);
+    if (p.n <= 0.0) continue;
+    ++loaded_contacts;
+    append_history(contacts[k].body_a - 1, record.key_for_a, p);
+    if (record.wall == 0)
+      append_history(contacts[k].body_b - 1, static_cast<double>(record.atom_a), p);
+  }
+}
+
+void FixContactDynamics::write_back_motion()
+{
+  const double advance = theta * update->dt;
+  double **x = atom->x;
+  double **v = atom->v;
+  double **omega = atom->omega;
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const cd::BodyVelocity &velocity = bodies.velocity[1 + i];
+    if (!std::isfinite(velocity.vx) || !std::isfinite(velocity.vy) || !std::isfinite(velocity.spin))
+      error->one(FLERR, "Fix contact/dynamics: non-finite velocity of atom {} at step {}", atom->tag[i],
+                 update->ntimestep);
+    v[i][0] = velocity.vx;
+    v[i][1] = velocity.vy;
+    omega[i][2] = velocity.spin;
+    x[i][0] += advance * velocity.vx;
+    x[i][1] += advance * velocity.vy;
+  }
+}
+
+// Interpenetration at the end of the step, linearised: gap + theta dt u_n^+, over the active
+// contacts and the inactive candidates (which other impulses may have pushed together).
+void FixContactDynamics::measure_overlaps()
+{
+  const cd::StepParameters step{update->dt, theta};
+  double deepest = 0.0, total = 0.0;
+  auto overlap_of = [&](const cd::Contact &c) {
+    const double u_n = cd::relative_velocity(c, bodies.velocity[c.body_a], bodies.velocity[c.body_b]).n;
+    return std::max(0.0, -cd::end_of_step_gap(c.gap, u_n, step));
+  };
+  for (const cd::Contact &c : contacts) {
+    const double overlap = overlap_of(c);
+    deepest = std::max(deepest, overlap);
+    total += overlap;
+  }
+  for (const cd::Contact &c : inactive) deepest = std::max(deepest, overlap_of(c));
+  const double scale = mean_diameter > 0.0 ? mean_diameter : 2.0 * covered_radius;
+  max_overlap = deepest / scale;
+  mean_overlap = contacts.empty() ? 0.0 : total / contacts.size() / scale;
+}
+
+void FixContactDynamics::fill_local_output()
+{
+  if (loaded_contacts > local_rows_allocated) {
+    local_rows_allocated = loaded_contacts;
+    memory->destroy(array_local);
+    memory->create(array_local, local_rows_allocated, output_columns, "contact/dynamics:array_local");
+  }
+  int row = 0;
+  for (std::size_t k = 0; k < contacts.size(); k++) {
+    if (contacts[k].impulse.n <= 0.0) continue;
+    const ContactRecord &record = records[k];
+    double *out = array_local[row++];
+    out[0] = record.atom_a;
+    out[1] = record.atom_b;
+    out[2] = record.wall;
+    out[3] = contacts[k].impulse.n;
+    out[4] = contacts[k].impulse.t;
+    out[5] = record.point_x;
+    out[6] = record.point_y;
+  }
+  size_local_rows = row;
+}
+
+double FixContactDynamics::compute_vector(int n)
+{
+  switch (n) {
+    case 0: return last_report.iterations;
+    case 1: return last_report.residual;
+    case 2: return static_cast<double>(contacts.size());
+    case 3: return loaded_contacts;
+    case 4: return max_overlap;
+    case 5: return mean_overlap;
+    case 6: return last_report.converged ? 1.0 : 0.0;
+    case 7: return total_iterations;
+    case 8: return total_unconverged_steps;
+    case 9: return total_steps;
+  }
+  return 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   restart and per-atom life cycle
+------------------------------------------------------------------------- */
+
+void FixContactDynamics::write_restart(FILE *fp)
+{
+  if (comm->me != 0) return;
+  const double totals[3] = {total_iterations, total_unconverged_steps, total_steps};
+  const int size = sizeof(totals);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(totals, sizeof(double), 3, fp);
+}
+
+void FixContactDynamics::restart(char *buf)
+{
+  const auto *totals = reinterpret_cast<const double *>(buf);
+  total_iterations = totals[0];
+  total_unconverged_steps = totals[1];
+  total_steps = totals[2];
+}
+
+void FixContactDynamics::grow_arrays(int nmax)
+{
+  memory->grow(history, nmax, history_width, "contact/dynamics:history");
+}
+
+void FixContactDynamics::copy_arrays(int i, int j, int)
+{
+  std::memcpy(history[j], history[i], sizeof(double) * (1 + 3 * static_cast<int>(history[i][0])));
+}
+
+void FixContactDynamics::set_arrays(int i)
+{
+  history[i][0] = 0.0;
+}
+
+int FixContactDynamics::pack_exchange(int i, double *buf)
+{
+  const int n = 1 + 3 * static_cast<int>(history[i][0]);
+  std::memcpy(buf, history[i], sizeof(double) * n);
+  return n;
+}
+
+int FixContactDynamics::unpack_exchange(int nlocal, double *buf)
+{
+  const int n = 1 + 3 * static_cast<int>(buf[0]);
+  std::memcpy(history[nlocal], buf, sizeof(double) * n);
+  return n;
+}
+
+int FixContactDynamics::pack_restart(int i, double *buf)
+{
+  const int n = 1 + 3 * static_cast<int>(history[i][0]);
+  buf[0] = n + 1;    // LAMMPS convention: the first value counts the values of this fix
+  std::memcpy(buf + 1, history[i], sizeof(double) * n);
+  return n + 1;
+}
+
+void FixContactDynamics::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
+  m++;
+  const int count = static_cast<int>(extra[nlocal][m]);
+  if (count > max_contacts)
+    error->one(FLERR, "Fix contact/dynamics: restart holds {} contacts for atom {}, more than "
+               "max_contacts {}", count, atom->tag[nlocal], max_contacts);
+  std::memcpy(history[nlocal], &extra[nlocal][m], sizeof(double) * (1 + 3 * count));
+}
+
+int FixContactDynamics::size_restart(int i)
+{
+  return 2 + 3 * static_cast<int>(history[i][0]);
+}
+
+int FixContactDynamics::maxsize_restart()
+{
+  return 1 + history_width;
+}
+
+double FixContactDynamics::memory_usage()
+{
+  double bytes = static_cast<double>(atom->nmax) * history_width * sizeof(double);
+  bytes += contacts.capacity() * sizeof(cd::Contact) + inactive.capacity() * sizeof(cd::Contact);
+  bytes += records.capacity() * sizeof(ContactRecord);
+  bytes += bodies.velocity.capacity() * (2 * sizeof(cd::BodyVelocity) + sizeof(cd::BodyInertia));
+  bytes += static_cast<double>(local_rows_allocated) * output_columns * sizeof(double);
+  return bytes;
+}

@@ -1,0 +1,123 @@
+/* Rigid-disk non-smooth Contact Dynamics (Moreau–Jean, nonlinear Gauss–Seidel) as a LAMMPS fix.
+   This class is the adapter: it turns LAMMPS atoms, neighbour lists and walls into the solver
+   core's bodies and contacts (src/cd/), runs the core, and writes velocities, positions and
+   outputs back. The physics lives in the core. */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(contact/dynamics,FixContactDynamics);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_CONTACT_DYNAMICS_H
+#define LMP_FIX_CONTACT_DYNAMICS_H
+
+#include <random>
+#include <vector>
+
+#include "cd/gauss_seidel.h"
+#include "cd/walls.h"
+#include "fix.h"
+
+namespace LAMMPS_NS {
+
+class FixContactDynamics : public Fix {
+ public:
+  FixContactDynamics(class LAMMPS *, int, char **);
+  ~FixContactDynamics() override;
+  int setmask() override;
+  void init() override;
+  void init_list(int, class NeighList *) override;
+  void setup(int) override;
+  void initial_integrate(int) override;
+  void pre_force(int) override;
+  void final_integrate() override;
+  double compute_vector(int) override;
+
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+  double memory_usage() override;
+
+ private:
+  // Who touches whom, for warm starts and the local output.
+  struct ContactRecord {
+    tagint atom_a;     // atom ID of body a (always an atom)
+    double key_for_a;  // partner key stored with atom a: atom ID of b, or -(wall slot)
+    tagint atom_b;     // atom ID of body b, 0 for a wall
+    int wall;          // 1-based wall index, 0 for an atom pair
+    double point_x;    // contact point at the predicted configuration
+    double point_y;
+  };
+
+  enum class ContactOrder { fixed, shuffled };
+
+  // --- settings (from the command line) ---
+  double theta;
+  cd::SolverSettings solver_settings;
+  ContactOrder order;
+  bool warm_start;
+  int max_contacts;
+  double disc_density;  // > 0: masses reset to pi r^2 rho
+  std::vector<cd::ContactLaw> type_laws;  // (ntypes+1)^2, row-major
+  std::vector<cd::Wall> walls;
+  std::mt19937_64 shuffle_rng;
+
+  // --- per-step state ---
+  class NeighList *list;
+  double covered_radius;  // largest radius the neighbour/ghost cutoff was set for
+  double mean_diameter;
+  bigint natoms_checked;
+  cd::BodySet bodies;
+  std::vector<cd::Contact> contacts;
+  std::vector<ContactRecord> records;
+  std::vector<cd::Contact> inactive;  // candidate pairs without impulse, watched for overlap
+  cd::SolveReport last_report;
+  double max_overlap, mean_overlap;  // in units of the mean diameter
+  int loaded_contacts;
+
+  // --- running totals (kept across restarts) ---
+  double total_iterations, total_unconverged_steps, total_steps;
+
+  // --- per-atom warm-start store: [count, (partner key, p_n, p_t) x max_contacts] ---
+  double **history;
+  int history_width;
+
+  // --- local output: one row per loaded contact ---
+  int local_rows_allocated;
+
+  void parse_arguments(int narg, char **arg);
+  int parse_wall(int iarg, int narg, char **arg);
+  void parse_type_law(const char *keyword, int iarg, int narg, char **arg, bool friction);
+  void check_integrators();
+  void check_disk_masses();
+  void assign_disc_masses();
+  void request_neighbor_list();
+
+  const cd::ContactLaw &law(int itype, int jtype) const;
+  int body_of(int atom_index) const;
+  void gather_bodies();
+  void collect_pair_contacts();
+  void collect_wall_contacts();
+  void add_candidate(const cd::ContactGeometry &, const cd::ContactLaw &, const ContactRecord &);
+  void shuffle_contacts();
+  void load_warm_start();
+  void store_warm_start();
+  void append_history(int atom_index, double key, cd::Local2 impulse);
+  void write_back_motion();
+  void measure_overlaps();
+  void fill_local_output();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif
