@@ -1,0 +1,107 @@
+#include "io/dump.h"
+
+#include <algorithm>
+
+#include "io/ave_time.h"
+#include "io/tokens.h"
+
+namespace cdpost {
+
+namespace {
+bool starts_with(const std::string& text, const std::string& prefix) {
+  return text.compare(0, prefix.size(), prefix) == 0;
+}
+const std::string item_prefix = "ITEM: ";
+}  // namespace
+
+DumpReader::DumpReader(const std::string& path) : source_(path) {}
+
+std::string DumpReader::require_line(const std::string& what) {
+  std::string line;
+  if (!source_.next(line)) source_.fail("file ends where " + what + " was expected (truncated dump?)");
+  return line;
+}
+
+size_t DumpReader::column_index(const DumpFrame& frame, const std::string& name) const {
+  auto found = std::find(frame.columns.begin(), frame.columns.end(), name);
+  if (found == frame.columns.end())
+    throw InputError(source_.path(), frame.line,
+                     "no per-atom column '" + name + "' (columns: " + join_names(frame.columns) + ")");
+  return static_cast<size_t>(found - frame.columns.begin());
+}
+
+void DumpReader::read_box(DumpFrame& frame) {
+  double* bounds[2][2] = {{&frame.xlo, &frame.xhi}, {&frame.ylo, &frame.yhi}};
+  for (int dim = 0; dim < 3; ++dim) {
+    auto line = require_line("a box bounds line");
+    auto tokens = split_whitespace(line);
+    if (tokens.size() < 2) source_.fail("expected 'low high' box bounds");
+    double low = parse_number(tokens[0], source_, "box low bound");
+    double high = parse_number(tokens[1], source_, "box high bound");
+    if (high <= low) source_.fail("box high bound not above the low bound");
+    if (dim < 2) {
+      *bounds[dim][0] = low;
+      *bounds[dim][1] = high;
+    }
+  }
+}
+
+void DumpReader::read_atoms(DumpFrame& frame, const std::string& item) {
+  frame.columns.clear();
+  const std::string names = item.substr(std::string("ATOMS").size());
+  for (auto token : split_whitespace(names))
+    frame.columns.emplace_back(token);
+  if (frame.columns.empty()) source_.fail("'ITEM: ATOMS' names no columns");
+  frame.values.clear();
+  frame.values.reserve(frame.atoms * frame.columns.size());
+  for (size_t atom = 0; atom < frame.atoms; ++atom) {
+    auto line = require_line("atom " + std::to_string(atom + 1) + " of " + std::to_string(frame.atoms));
+    auto tokens = split_whitespace(line);
+    if (tokens.size() != frame.columns.size())
+      source_.fail("expected " + std::to_string(frame.columns.size()) + " values (" +
+                   join_names(frame.columns) + "), found " + std::to_string(tokens.size()));
+    for (size_t c = 0; c < tokens.size(); ++c)
+      frame.values.push_back(parse_number(tokens[c], source_, frame.columns[c]));
+  }
+}
+
+bool DumpReader::next(DumpFrame& frame) {
+  std::string line;
+  do {
+    if (!source_.next(line)) return false;
+  } while (line.find_first_not_of(" \t") == std::string::npos);
+  if (line != item_prefix + "TIMESTEP") source_.fail("expected 'ITEM: TIMESTEP', found '" + line + "'");
+  frame.line = source_.line_number();
+  auto step_line = require_line("the timestep");
+  auto step = split_whitespace(step_line);
+  if (step.size() != 1) source_.fail("expected one timestep value");
+  frame.timestep = parse_integer(step[0], source_, "timestep");
+  bool have_atom_count = false, have_box = false;
+  while (true) {
+    line = require_line("an 'ITEM:' line");
+    if (!starts_with(line, item_prefix)) source_.fail("expected an 'ITEM:' line, found '" + line + "'");
+    std::string item = line.substr(item_prefix.size());
+    if (starts_with(item, "NUMBER OF ATOMS")) {
+      auto count_line = require_line("the number of atoms");
+      auto count = split_whitespace(count_line);
+      if (count.size() != 1) source_.fail("expected one atom count");
+      long atoms = parse_integer(count[0], source_, "number of atoms");
+      if (atoms < 0) source_.fail("negative number of atoms");
+      frame.atoms = static_cast<size_t>(atoms);
+      have_atom_count = true;
+    } else if (starts_with(item, "BOX BOUNDS")) {
+      read_box(frame);
+      have_box = true;
+    } else if (starts_with(item, "UNITS") || starts_with(item, "TIME")) {
+      require_line(item);
+    } else if (starts_with(item, "ATOMS")) {
+      if (!have_atom_count || !have_box) source_.fail("'ITEM: ATOMS' before the atom count and box");
+      read_atoms(frame, item);
+      return true;
+    } else {
+      source_.fail("unknown dump item '" + item + "'");
+    }
+  }
+}
+
+}  // namespace cdpost

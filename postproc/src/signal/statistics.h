@@ -1,0 +1,31 @@
+// Time averages with uncertainties that respect the correlation of successive samples.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+namespace cdpost {
+
+// A problem found while analysing data that was read correctly (e.g. no stationary regime).
+class AnalysisError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A measured or fitted number and its one-sigma error; no error when none can be given
+// (e.g. a fit with as many parameters as points). Units are those of the quantity.
+struct Estimate {
+  double value = 0;
+  std::optional<double> error;
+};
+
+// Mean of x[begin, end) with the standard error of `blocks` consecutive block means
+// (block averaging: correct for correlated samples when a block is longer than the
+// correlation time). Needs at least 2 samples per block.
+Estimate block_mean(const std::vector<double>& x, size_t begin, size_t end, int blocks = 10);
+
+// Pearson correlation coefficient of two equally long series (at least 3 points).
+double correlation(const std::vector<double>& x, const std::vector<double>& y);
+
+}  // namespace cdpost
