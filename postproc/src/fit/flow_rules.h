@@ -1,0 +1,64 @@
+// Flow rules across a series of runs (SCENE.md): Pouliquen's rule, the mu(I) rule, and the
+// linear phi(U) law. Angles in degrees, I = d U / (sqrt(g) h^1.5) dimensionless.
+//
+// Pouliquen's tan θ = tan θ1 + (tan θ2 − tan θ1) exp(−(β h / (ℓ d)) sqrt(g h) / U) depends on
+// the run only through (h/d) sqrt(g h)/U = 1/I, so both rules are fitted as tan θ(I).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "fit/linear_fit.h"
+
+namespace cdpost {
+
+// One run of a series, as the flow rules see it.
+struct FlowPoint {
+  double mu = 0;             // contact friction coefficient (groups the runs)
+  double theta_deg = 0;      // tilt
+  double inertial_number = 0;
+  double velocity = 0;       // U / sqrt(g d)
+  std::optional<double> phi; // area fraction of the flowing layer
+};
+
+struct AngleBounds {  // θ1 and θ2 of one friction coefficient
+  double mu = 0;
+  Estimate theta1_deg;
+  Estimate theta2_deg;
+};
+
+struct PouliquenFit {
+  AngleBounds angles;
+  Estimate ell;  // ℓ, dimensionless
+  double beta = 0;
+  FitResult raw;
+};
+// Fits θ1, θ2, ℓ to the points of one friction coefficient (at least 3 points).
+PouliquenFit fit_pouliquen(const std::vector<FlowPoint>& points, double beta);
+double pouliquen_tan(double inertial_number, double tan1, double tan2, double ell, double beta);
+// I for which the rule gives tan θ; none outside (tan θ1, tan θ2).
+std::optional<double> pouliquen_inertial_number(double tan_theta, const PouliquenFit& fit);
+
+struct MuIFit {
+  Estimate i0;  // shared by every friction coefficient
+  std::vector<AngleBounds> angles;
+  FitResult raw;
+};
+// Joint fit over all the points: one I0, θ1 and θ2 per friction coefficient.
+MuIFit fit_mu_of_i(const std::vector<FlowPoint>& points);
+double mu_of_i_tan(double inertial_number, double tan1, double tan2, double i0);
+std::optional<double> mu_of_i_inertial_number(double tan_theta, const AngleBounds& angles, double i0);
+
+struct PhiFit {
+  Estimate k;  // shared slope
+  std::vector<std::pair<double, Estimate>> phi_c;  // per friction coefficient
+  FitResult raw;
+};
+// phi = phi_c(mu) − k U/sqrt(g d) over the points that have phi.
+PhiFit fit_phi_velocity(const std::vector<FlowPoint>& points);
+
+// The distinct friction coefficients, ascending.
+std::vector<double> friction_values(const std::vector<FlowPoint>& points);
+std::vector<FlowPoint> points_with_mu(const std::vector<FlowPoint>& points, double mu);
+
+}  // namespace cdpost

@@ -1,0 +1,81 @@
+#include "fit/linear_fit.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_multifit.h>
+
+#include <cmath>
+
+namespace cdpost {
+
+const Estimate& FitResult::operator[](const std::string& name) const {
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return parameters[i];
+  throw AnalysisError("fit has no parameter '" + name + "'");
+}
+
+void use_gsl_error_codes() { gsl_set_error_handler_off(); }
+
+std::vector<Estimate> with_errors(const std::vector<double>& parameters, const Eigen::MatrixXd& covariance,
+                                  double chi2, int dof) {
+  std::vector<Estimate> estimates;
+  for (size_t i = 0; i < parameters.size(); ++i) {
+    Estimate e{parameters[i], std::nullopt};
+    double variance = covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
+    if (dof > 0 && std::isfinite(variance) && variance >= 0) e.error = std::sqrt(variance * chi2 / dof);
+    estimates.push_back(e);
+  }
+  return estimates;
+}
+
+FitResult fit_linear(const Eigen::MatrixXd& design, const std::vector<double>& y, std::vector<std::string> names) {
+  use_gsl_error_codes();
+  const size_t n = static_cast<size_t>(design.rows()), p = static_cast<size_t>(design.cols());
+  if (n != y.size() || p != names.size()) throw AnalysisError("fit_linear: inconsistent sizes");
+  if (n < p) throw AnalysisError("a fit of " + std::to_string(p) + " parameters needs at least as many points, got " + std::to_string(n));
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> x = design;
+  std::vector<double> y_copy = y;
+  gsl_matrix_view x_view = gsl_matrix_view_array(x.data(), n, p);
+  gsl_vector_view y_view = gsl_vector_view_array(y_copy.data(), n);
+  gsl_vector* c = gsl_vector_alloc(p);
+  gsl_matrix* cov = gsl_matrix_alloc(p, p);
+  gsl_multifit_linear_workspace* work = gsl_multifit_linear_alloc(n, p);
+  size_t rank = 0;
+  double chi2 = 0;
+  int status = gsl_multifit_linear_tsvd(&x_view.matrix, &y_view.vector, 1e-12, c, cov, &chi2, &rank, work);
+  std::vector<double> parameters(c->data, c->data + p);
+  Eigen::MatrixXd covariance(p, p);
+  for (size_t i = 0; i < p; ++i)
+    for (size_t j = 0; j < p; ++j) covariance(i, j) = gsl_matrix_get(cov, i, j);
+  gsl_multifit_linear_free(work);
+  gsl_matrix_free(cov);
+  gsl_vector_free(c);
+  if (status != GSL_SUCCESS || rank < p) throw AnalysisError("linear fit is degenerate (the data do not determine every parameter)");
+  const int dof = static_cast<int>(n - p);
+  // gsl returns the covariance already scaled by chi2/dof when dof > 0; undo it for with_errors.
+  if (dof > 0 && chi2 > 0) covariance *= dof / chi2;
+  FitResult fit{std::move(names), with_errors(parameters, covariance, chi2, dof), chi2, static_cast<int>(n), dof};
+  return fit;
+}
+
+PowerLaw fit_power_law(const std::vector<double>& x, const std::vector<double>& y) {
+  if (x.size() != y.size() || x.size() < 2) throw AnalysisError("a power law needs at least 2 points");
+  Eigen::MatrixXd design(x.size(), 2);
+  std::vector<double> log_y;
+  for (size_t i = 0; i < x.size(); ++i) {
+    if (!(x[i] > 0 && y[i] > 0)) throw AnalysisError("a power-law fit needs positive values");
+    design(static_cast<Eigen::Index>(i), 0) = 1.0;
+    design(static_cast<Eigen::Index>(i), 1) = std::log(x[i]);
+    log_y.push_back(std::log(y[i]));
+  }
+  auto fit = fit_linear(design, log_y, {"log_prefactor", "exponent"});
+  PowerLaw law;
+  const auto& log_prefactor = fit.parameters[0];
+  law.prefactor.value = std::exp(log_prefactor.value);
+  if (log_prefactor.error) law.prefactor.error = law.prefactor.value * *log_prefactor.error;
+  law.exponent = fit.parameters[1];
+  law.points = fit.points;
+  if (x.size() >= 3) law.correlation = correlation(x, y);
+  return law;
+}
+
+}  // namespace cdpost

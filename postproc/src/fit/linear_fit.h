@@ -1,0 +1,43 @@
+// Linear least squares (GSL) and the fits built on it.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include <string>
+#include <vector>
+
+#include "signal/statistics.h"
+
+namespace cdpost {
+
+// Fitted parameters. Errors come from the covariance scaled by chi2/dof (the data carry no
+// individual errors, so their scatter sets the scale); with dof == 0 there are none.
+struct FitResult {
+  std::vector<std::string> names;
+  std::vector<Estimate> parameters;
+  double chi2 = 0;  // sum of squared residuals, in squared data units
+  int points = 0;
+  int dof = 0;
+  const Estimate& operator[](const std::string& name) const;
+};
+
+// GSL aborts on errors by default; the fits report them as AnalysisError instead.
+void use_gsl_error_codes();
+
+// Errors of `parameters` from an unscaled covariance matrix (J^T J)^-1, scaled by chi2/dof.
+std::vector<Estimate> with_errors(const std::vector<double>& parameters, const Eigen::MatrixXd& covariance,
+                                  double chi2, int dof);
+
+// y ≈ design * p. Needs at least as many points as parameters and a full-rank design.
+FitResult fit_linear(const Eigen::MatrixXd& design, const std::vector<double>& y, std::vector<std::string> names);
+
+// y = prefactor * x^exponent, fitted as a line in log-log; x and y must be positive.
+struct PowerLaw {
+  Estimate prefactor;
+  Estimate exponent;
+  std::optional<double> correlation;  // Pearson correlation of x and y (3 points or more)
+  int points = 0;
+};
+PowerLaw fit_power_law(const std::vector<double>& x, const std::vector<double>& y);
+
+}  // namespace cdpost
