@@ -29,6 +29,9 @@ constexpr int output_columns = 7;
 constexpr double disk_inertia_factor = 0.5;  // I = m r^2 / 2 for a uniform disk
 // Relative spread below which a mass/radius^k ratio counts as uniform over the group.
 constexpr double uniform_ratio_tolerance = 1.0e-6;
+// Default alert distance, in mean diameters: pairs this close are solved even when their free
+// motion does not close them (see cd::is_candidate).
+constexpr double default_alert_fraction = 0.01;
 
 // Keys of wall contacts in the per-atom store are negative, atom IDs positive.
 double wall_key(int wall_index, cd::WallPart part)
@@ -42,7 +45,7 @@ double wall_key(int wall_index, cd::WallPart part)
 
 FixContactDynamics::FixContactDynamics(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), theta(0.5), order(ContactOrder::fixed), warm_start(true),
-    max_contacts(12), disc_density(0.0), list(nullptr), covered_radius(0.0), mean_diameter(0.0),
+    max_contacts(12), disc_density(0.0), alert_distance(-1.0), alert_given(false), list(nullptr), covered_radius(0.0), mean_diameter(0.0),
     natoms_checked(-1), max_overlap(0.0), mean_overlap(0.0), loaded_contacts(0),
     total_iterations(0.0), total_unconverged_steps(0.0), total_steps(0.0), history(nullptr),
     local_rows_allocated(0)
@@ -206,6 +209,11 @@ void FixContactDynamics::parse_arguments(int narg, char **arg)
       max_contacts = integer_for("max_contacts", value, error);
       if (max_contacts < 1)
         error->all(FLERR, "Fix contact/dynamics: max_contacts must be >= 1, got {}", max_contacts);
+    } else if (keyword == "alert") {
+      alert_distance = number_for("alert", value, error);
+      alert_given = true;
+      if (alert_distance < 0.0)
+        error->all(FLERR, "Fix contact/dynamics: alert must be >= 0, got {}", alert_distance);
     } else if (keyword == "density") {
       disc_density = number_for("density", value, error);
       if (disc_density <= 0.0)
@@ -379,8 +387,9 @@ void FixContactDynamics::check_disk_masses()
   MPI_Allreduce(local, global, 4, MPI_DOUBLE, MPI_MAX, world);
   MPI_Allreduce(diameter_sum_local, diameter_sum, 2, MPI_DOUBLE, MPI_SUM, world);
   natoms_checked = atom->natoms;
+  mean_diameter = diameter_sum[1] > 0.0 ? diameter_sum[0] / diameter_sum[1] : 2.0 * covered_radius;
+  if (!alert_given) alert_distance = default_alert_fraction * mean_diameter;
   if (diameter_sum[1] == 0.0) return;
-  mean_diameter = diameter_sum[0] / diameter_sum[1];
   if (disc_density > 0.0) return;
   const bool area_uniform = global[0] <= -global[1] * (1.0 + uniform_ratio_tolerance);
   const bool volume_uniform = global[2] <= -global[3] * (1.0 + uniform_ratio_tolerance);
@@ -515,11 +524,11 @@ void FixContactDynamics::add_candidate(const cd::ContactGeometry &geometry, cons
 {
   cd::Contact contact = cd::contact_frame(geometry);
   const cd::StepParameters step{update->dt, theta};
-  if (!cd::closes_within_step(contact, bodies, step)) {
+  if (!cd::is_candidate(contact, bodies, step, alert_distance)) {
     inactive.push_back(contact);
     return;
   }
-  cd::prepare_mechanics(contact, contact_law, bodies);
+  cd::prepare_mechanics(contact, contact_law, bodies, step);
   contacts.push_back(contact);
   records.push_back(record);
 }
@@ -676,9 +685,8 @@ void FixContactDynamics::measure_overlaps()
     total += overlap;
   }
   for (const cd::Contact &c : inactive) deepest = std::max(deepest, overlap_of(c));
-  const double scale = mean_diameter > 0.0 ? mean_diameter : 2.0 * covered_radius;
-  max_overlap = deepest / scale;
-  mean_overlap = contacts.empty() ? 0.0 : total / contacts.size() / scale;
+  max_overlap = deepest / mean_diameter;
+  mean_overlap = contacts.empty() ? 0.0 : total / contacts.size() / mean_diameter;
 }
 
 void FixContactDynamics::fill_local_output()

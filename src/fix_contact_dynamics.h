@@ -66,7 +66,9 @@ class FixContactDynamics : public Fix {
   ContactOrder order;
   bool warm_start;
   int max_contacts;
-  double disc_density;  // > 0: masses reset to pi r^2 rho
+  double disc_density;    // > 0: masses reset to pi r^2 rho
+  double alert_distance;  // candidate pairs: gap closed at free velocity <= alert (m)
+  bool alert_given;
   std::vector<cd::ContactLaw> type_laws;  // (ntypes+1)^2, row-major
   std::vector<cd::Wall> walls;
   std::mt19937_64 shuffle_rng;

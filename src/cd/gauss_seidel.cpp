@@ -44,7 +44,7 @@ inline void update_contact(Contact& c, std::vector<BodyVelocity>& velocity, doub
   BodyVelocity& b = velocity[c.body_b];
   const Local2 u = relative_velocity(c, a, b);
   const Local2 own = c.delassus.times(c.impulse);
-  const Local2 u_free{u.n + c.restitution_bias - own.n, u.t - own.t};
+  const Local2 u_free{u.n + c.velocity_bias - own.n, u.t - own.t};
 
   Local2 p = solve_coulomb_local(c.delassus, u_free, c.mu).impulse;
   p.n = relaxation * p.n + (1.0 - relaxation) * c.impulse.n;
@@ -70,14 +70,14 @@ Contact contact_frame(const ContactGeometry& g)
   return c;
 }
 
-bool closes_within_step(const Contact& frame, const BodySet& bodies, const StepParameters& step)
+bool is_candidate(const Contact& frame, const BodySet& bodies, const StepParameters& step, double alert)
 {
   const Local2 u_free =
       relative_velocity(frame, bodies.velocity[frame.body_a], bodies.velocity[frame.body_b]);
-  return frame.gap + step.theta * step.dt * u_free.n <= 0.0;
+  return frame.gap + step.theta * step.dt * std::min(u_free.n, 0.0) <= alert;
 }
 
-void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies)
+void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies, const StepParameters& step)
 {
   const BodyInertia& a = bodies.inertia[c.body_a];
   const BodyInertia& b = bodies.inertia[c.body_b];
@@ -90,10 +90,13 @@ void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies)
   c.delassus = {translation, 0.0,
                 translation + c.lever_a * c.spin_gain_a + c.lever_b * c.spin_gain_b};
   c.mu = law.mu;
-  const Local2 u_start =
-      relative_velocity(c, bodies.start_velocity[c.body_a], bodies.start_velocity[c.body_b]);
-  c.restitution_bias = law.restitution * std::min(u_start.n, 0.0);
   c.impulse = {};
+
+  const double u_start =
+      relative_velocity(c, bodies.start_velocity[c.body_a], bodies.start_velocity[c.body_b]).n;
+  const double advance = step.theta * step.dt;
+  const bool impact = c.gap <= 0.0 || c.gap + advance * u_start <= 0.0;
+  c.velocity_bias = impact ? law.restitution * std::min(u_start, 0.0) : c.gap / advance;
 }
 
 void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity)

@@ -1,12 +1,12 @@
 // Moreau–Jean contact impulses by nonlinear Gauss–Seidel over contacts.
 //
 // One step, in the order the driver runs it:
-//   prepare      contact frames, activation, Delassus blocks, restitution bias
+//   prepare      contact frames, candidates, Delassus blocks, velocity bias of the normal law
 //   warm start   apply the impulses carried over from the previous step (apply_impulses)
 //   solve        sweeps of exact local Coulomb solves until the convergence norm is met
 //   store        the caller keeps contact.impulse for the next step's warm start
 // Restitution needs no stage of its own: Newton's law is imposed on u_n^+ + e u_n^-, so the
-// pre-impact velocity enters once, as a bias, when the contact is prepared.
+// pre-impact velocity enters once, as a velocity bias, when the contact is prepared.
 #pragma once
 
 #include <optional>
@@ -48,7 +48,7 @@ struct Contact {
   double spin_gain_b = 0.0;
   Delassus2 delassus;             // local W (m/s per N s)
   double mu = 0.0;
-  double restitution_bias = 0.0;  // e * min(u_n^-, 0) (m/s): the law acts on u_n + bias
+  double velocity_bias = 0.0;     // b (m/s): the normal law acts on u_n + b (prepare_mechanics)
   double gap = 0.0;               // at the predicted configuration (m)
   Local2 impulse;                 // accumulated over the step (N s)
 };
@@ -59,15 +59,22 @@ Local2 relative_velocity(const Contact& c, const BodyVelocity& a, const BodyVelo
 // The frame of a candidate contact: bodies, normal, levers and gap; no mechanics yet.
 Contact contact_frame(const ContactGeometry& geometry);
 
-// Activation: the pair would close its gap by the end of the step under the free motion,
-// gap + theta dt u_n^free <= 0. Inactive pairs carry no impulse. Contacts that close early are
-// caught one step ahead, so a collision starts at a gap of at most theta dt |u_n| instead of
-// ending with that overlap.
-bool closes_within_step(const Contact& frame, const BodySet& bodies, const StepParameters& step);
+// Candidate selection: the pair is kept in the step's problem if its gap, closed at the free
+// relative velocity for theta dt, is at most `alert` (m): gap + theta dt min(u_n^free, 0) <= alert.
+// Pairs further apart cannot meet within the step unless other impulses drive them together
+// faster than alert / (theta dt); they are watched for overlap but not solved.
+bool is_candidate(const Contact& frame, const BodySet& bodies, const StepParameters& step, double alert);
 
-// Completes an active contact: inverse masses, Delassus block, friction, and the restitution
-// bias from the pre-impact velocity v_n.
-void prepare_mechanics(Contact& contact, const ContactLaw& law, const BodySet& bodies);
+// Completes a candidate: inverse masses, Delassus block, friction, and the velocity bias b of
+// the normal law u_n^+ + b >= 0 ⊥ p_n >= 0:
+//   impact (touching at x_m, or meeting within the step at the pre-step velocity v_n):
+//       b = e min(u_n^-, 0), Newton's restitution on the pre-impact velocity u_n^-;
+//   otherwise (open, and closing only through the step's forces or other impulses):
+//       b = gap / (theta dt), the gap may close but not overlap by the end of the step.
+// The second law holds resting contacts whose gap is a rounding error above zero, and
+// keeps contacts that close gently from overlapping; it adds no restitution.
+void prepare_mechanics(Contact& contact, const ContactLaw& law, const BodySet& bodies,
+                       const StepParameters& step);
 
 // Adds the contacts' impulses (e.g. the warm start) to the body velocities.
 void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity);

@@ -29,8 +29,8 @@ Impact make_impact(double vx, double vy, double spin, double mu, double e)
   const cd::ContactGeometry g =
       cd::disk_disk_geometry(1, cd::Disk{0.0, 0.0, radius}, 2, cd::Disk{2.0 * radius, 0.0, radius});
   impact.contact = cd::contact_frame(g);
-  EXPECT_TRUE(cd::closes_within_step(impact.contact, impact.bodies, {1e-3, 0.5}));
-  cd::prepare_mechanics(impact.contact, {mu, e}, impact.bodies);
+  EXPECT_TRUE(cd::is_candidate(impact.contact, impact.bodies, {1e-3, 0.5}, 0.0));
+  cd::prepare_mechanics(impact.contact, {mu, e}, impact.bodies, {1e-3, 0.5});
   return impact;
 }
 
@@ -111,21 +111,59 @@ TEST(BinaryImpact, ElasticFrictionlessImpactConservesEnergy)
   EXPECT_NEAR(after, before, 1e-12 * before);
 }
 
-TEST(BinaryImpact, SeparatingPairIsNotActivated)
-{
+// Two unit disks, b at rest, a with velocity (vx, 0) and free velocity (vx_free, 0), at `gap`.
+struct PairNearContact {
   cd::BodySet bodies;
-  bodies.reset(3);
-  bodies.inertia[1] = bodies.inertia[2] = {1.0, 1.0};
-  bodies.velocity[1] = {-1.0, 0.0, 0.0};    // moving away from b
-  const cd::Contact frame = cd::contact_frame(
-      cd::disk_disk_geometry(1, cd::Disk{0.0, 0.0, radius}, 2, cd::Disk{1.0 + 1e-9, 0.0, radius}));
-  EXPECT_FALSE(cd::closes_within_step(frame, bodies, {1e-3, 0.5}));
-  // Closing, but the gap is wider than theta dt |u_n|: not yet active.
-  bodies.velocity[1] = {1.0, 0.0, 0.0};
-  const cd::Contact far = cd::contact_frame(
-      cd::disk_disk_geometry(1, cd::Disk{0.0, 0.0, radius}, 2, cd::Disk{1.0 + 6e-4, 0.0, radius}));
-  EXPECT_FALSE(cd::closes_within_step(far, bodies, {1e-3, 0.5}));
-  EXPECT_TRUE(cd::closes_within_step(far, bodies, {1e-3, 1.0}));
+  cd::Contact contact;
+};
+
+PairNearContact pair_near_contact(double gap, double vx, double vx_free)
+{
+  PairNearContact pair;
+  pair.bodies.reset(3);
+  pair.bodies.inertia[1] = pair.bodies.inertia[2] = {1.0, 2.0};
+  pair.bodies.start_velocity[1] = {vx, 0.0, 0.0};
+  pair.bodies.velocity[1] = {vx_free, 0.0, 0.0};
+  pair.contact = cd::contact_frame(
+      cd::disk_disk_geometry(1, cd::Disk{0.0, 0.0, 0.5}, 2, cd::Disk{1.0 + gap, 0.0, 0.5}));
+  return pair;
+}
+
+TEST(Candidates, OnlyPairsThatCanMeetWithinTheStepAreSolved)
+{
+  const cd::StepParameters step{1e-3, 0.5};
+  EXPECT_FALSE(cd::is_candidate(pair_near_contact(1e-3, -1.0, -1.0).contact,
+                                pair_near_contact(1e-3, -1.0, -1.0).bodies, step, 1e-4));
+  const PairNearContact closing = pair_near_contact(1e-3, 2.0, 2.0);    // closes 1e-3 in the step
+  EXPECT_TRUE(cd::is_candidate(closing.contact, closing.bodies, step, 0.0));
+  const PairNearContact near = pair_near_contact(5e-5, 0.0, 0.0);
+  EXPECT_TRUE(cd::is_candidate(near.contact, near.bodies, step, 1e-4));
+  EXPECT_FALSE(cd::is_candidate(near.contact, near.bodies, step, 1e-5));
+}
+
+TEST(Candidates, FastApproachFromAGapRebounds)
+{
+  // Meets within the step at its pre-step velocity: an impact, rebounding with e from a gap.
+  const cd::StepParameters step{1e-3, 0.5};
+  PairNearContact pair = pair_near_contact(2e-4, 1.0, 1.0);
+  cd::prepare_mechanics(pair.contact, {0.0, 0.5}, pair.bodies, step);
+  std::vector<cd::Contact> contacts{pair.contact};
+  cd::solve_gauss_seidel(contacts, pair.bodies.velocity, {});
+  EXPECT_NEAR(pair.bodies.velocity[2].vx - pair.bodies.velocity[1].vx, 0.5, 1e-12);
+}
+
+TEST(Candidates, GentleClosureStopsAtContactWithoutRestitution)
+{
+  // At rest at the start, pushed together only by this step's force: the gap closes exactly
+  // by the end of the step, with no rebound, whatever e is.
+  const cd::StepParameters step{1e-3, 0.5};
+  const double gap = 1e-5;
+  PairNearContact pair = pair_near_contact(gap, 0.0, 0.5);
+  cd::prepare_mechanics(pair.contact, {0.0, 1.0}, pair.bodies, step);
+  std::vector<cd::Contact> contacts{pair.contact};
+  cd::solve_gauss_seidel(contacts, pair.bodies.velocity, {1e-12, 100, 1.0, cd::ConvergenceNorm::quadratic});
+  const double u_n = cd::relative_velocity(contacts[0], pair.bodies.velocity[1], pair.bodies.velocity[2]).n;
+  EXPECT_NEAR(cd::end_of_step_gap(gap, u_n, step), 0.0, 1e-15);
 }
 
 }  // namespace

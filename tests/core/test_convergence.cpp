@@ -55,7 +55,7 @@ TEST(ConvergenceNorm, ScaleFreeAcrossUnits)
                  : cd::disk_disk_geometry(k, cd::Disk{0, (2 * k - 1) * r, r}, k - 1,
                                           cd::Disk{0, (2 * k - 3) * r, r});
       cd::Contact c = cd::contact_frame(g_k);
-      cd::prepare_mechanics(c, {0.5, 0.0}, bodies);
+      cd::prepare_mechanics(c, {0.5, 0.0}, bodies, {dt, 0.5});
       contacts.push_back(c);
     }
     return cd::solve_gauss_seidel(contacts, bodies.velocity, {1e-6, 10000, 1.0, cd::ConvergenceNorm::quadratic});
