@@ -1,0 +1,154 @@
+// Every bad input stops lmp_cd with a one-line error naming the problem. Each case runs the
+// executable on a deck and checks the exit status and the ERROR line.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+
+#ifndef LMP_CD_EXECUTABLE
+#error "LMP_CD_EXECUTABLE must name the lmp_cd executable"
+#endif
+
+namespace {
+
+struct RunResult {
+  int exit_status;
+  std::string output;
+};
+
+RunResult run_deck(const std::string& name, const std::string& deck, const std::string& launcher = "")
+{
+  const std::string path = "bad_input_" + name + ".in";
+  std::ofstream(path) << deck;
+  const std::string command = launcher + LMP_CD_EXECUTABLE " -log none -in " + path + " 2>&1";
+  RunResult result{0, ""};
+  FILE* pipe = popen(command.c_str(), "r");
+  std::array<char, 4096> buffer;
+  while (fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
+  result.exit_status = pclose(pipe);
+  std::remove(path.c_str());
+  return result;
+}
+
+// The ERROR line LAMMPS printed, or "" if none.
+std::string error_line(const std::string& output)
+{
+  const std::size_t start = output.find("ERROR");
+  if (start == std::string::npos) return "";
+  return output.substr(start, output.find('\n', start) - start);
+}
+
+const std::string preamble = R"(
+units si
+dimension 2
+atom_style sphere
+atom_modify map array
+comm_modify vel yes
+boundary p f p
+region box block 0 0.01 0 0.01 -0.0003 0.0003
+create_box 2 box
+create_atoms 1 single 0.005 0.00025 0
+create_atoms 1 single 0.006 0.00025 0
+set group all diameter 5e-4 density/disc 2500
+neighbor 1e-4 bin
+timestep 1e-5
+)";
+
+struct BadCase {
+  const char* name;
+  std::string deck;
+  const char* message;    // must appear in the ERROR line
+};
+
+class BadInput : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadInput, StopsWithAOneLineErrorNamingTheProblem)
+{
+  const BadCase& c = GetParam();
+  const RunResult result = run_deck(c.name, c.deck);
+  EXPECT_NE(result.exit_status, 0) << result.output;
+  const std::string line = error_line(result.output);
+  EXPECT_NE(line.find(c.message), std::string::npos) << "ERROR line: " << line << "\n" << result.output;
+}
+
+std::string with_fix(const std::string& fix_arguments)
+{
+  return preamble + "fix cd all contact/dynamics " + fix_arguments + "\nrun 10\n";
+}
+
+const BadCase bad_cases[] = {
+    {"negative_mu", with_fix("-0.1 0.5"), "mu must be >= 0, got -0.1"},
+    {"restitution_above_one", with_fix("0.5 1.5"), "e must be in [0,1], got 1.5"},
+    {"mu_not_a_number", with_fix("abc 0.5"), "mu expects a number, got 'abc'"},
+    {"missing_e", with_fix("0.5"), "needs mu and e"},
+    {"unknown_keyword", with_fix("0.5 0.5 tolerence 1e-4"), "unknown keyword 'tolerence'"},
+    {"zero_tolerance", with_fix("0.5 0.5 tolerance 0"), "tolerance must be > 0, got 0"},
+    {"zero_iteration_cap", with_fix("0.5 0.5 max_iterations 0"), "max_iterations must be >= 1, got 0"},
+    {"fractional_iteration_cap", with_fix("0.5 0.5 max_iterations 2.5"), "max_iterations expects an integer, got '2.5'"},
+    {"theta_out_of_range", with_fix("0.5 0.5 theta 0.3"), "theta must be in [0.5,1], got 0.3"},
+    {"relaxation_out_of_range", with_fix("0.5 0.5 relaxation 1.5"), "relaxation must be in (0,1], got 1.5"},
+    {"unknown_norm", with_fix("0.5 0.5 norm l2"), "norm must be quadratic or maximum, got 'l2'"},
+    {"unknown_order", with_fix("0.5 0.5 order random"), "order must be fixed or shuffle, got 'random'"},
+    {"missing_value", with_fix("0.5 0.5 tolerance"), "tolerance needs 1 value(s)"},
+    {"negative_type_mu", with_fix("0.5 0.5 mu/types 1 2 -1"), "mu/types must be >= 0, got -1"},
+    {"wall_outside_box", with_fix("0.5 0.5 wall yplane -0.001 0.5 0.5"), "wall yplane at -0.001 is outside the box"},
+    {"segment_outside_box", with_fix("0.5 0.5 wall segment 0 0 0 0.02 0.5 0.5"), "wall segment end (0, 0.02) is outside the box"},
+    {"unknown_wall", with_fix("0.5 0.5 wall zplane 0 0.5 0.5"), "wall must be xplane, yplane or segment, got 'zplane'"},
+    {"wall_restitution", with_fix("0.5 0.5 wall yplane 0 0.5 2"), "wall e must be in [0,1], got 2"},
+    {"dimension_3",
+     "units si\natom_style sphere\nregion box block 0 1 0 1 0 1\ncreate_box 1 box\n"
+     "fix cd all contact/dynamics 0.5 0.5\n",
+     "requires dimension 2"},
+    {"atom_style_without_radius",
+     "units si\ndimension 2\natom_style atomic\nregion box block 0 1 0 1 -0.1 0.1\ncreate_box 1 box\n"
+     "fix cd all contact/dynamics 0.5 0.5\n",
+     "requires atom_style sphere"},
+    {"ghost_velocities_off",
+     [] {
+       std::string deck = with_fix("0.5 0.5");
+       deck.replace(deck.find("comm_modify vel yes"), 19, "comm_modify vel no");
+       return deck;
+     }(),
+     "use comm_modify vel yes"},
+    {"no_atom_map",
+     [] {
+       std::string deck = with_fix("0.5 0.5");
+       deck.replace(deck.find("atom_modify map array"), 21, "");
+       return deck;
+     }(),
+     "requires an atom map"},
+    {"second_integrator", preamble + "fix nve all nve/sphere\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
+     "fix nve (nve/sphere) also integrates atoms of group all"},
+    {"sphere_masses",
+     preamble + "set atom 2 diameter 4e-4\nset group all density 2500\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
+     "has sphere masses"},
+    {"non_finite_velocity",
+     // An infinite external force (a user variable overflowing) reaches the solver.
+     preamble + "variable huge equal 1e308*10\nfix push all addforce v_huge 0.0 0.0\n"
+                "fix cd all contact/dynamics 0.5 0.5\nrun 1\n",
+     "non-finite velocity of atom 1 at step 1"},
+    {"too_many_contacts",
+     // The bottom disk of a resting pair carries the floor and the upper disk: two contacts.
+     preamble + "set atom 2 x 0.005 y 0.00075\nfix g all gravity 9.81 vector 0 -1 0\n"
+                "fix cd all contact/dynamics 0.5 0.5 max_contacts 1 wall yplane 0 0.5 0.5\nrun 1\n",
+     "atom 1 has more than 1 loaded contacts; raise max_contacts"},
+};
+
+INSTANTIATE_TEST_SUITE_P(Decks, BadInput, ::testing::ValuesIn(bad_cases),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(MultipleRanks, RefusedWithAClearMessage)
+{
+  const std::string deck = "units si\ndimension 2\natom_style sphere\natom_modify map array\n"
+                           "comm_modify vel yes\nregion box block 0 1 0 1 -0.1 0.1\ncreate_box 1 box\n"
+                           "fix cd all contact/dynamics 0.5 0.5\n";
+  const RunResult result = run_deck("two_ranks", deck, "mpirun --allow-run-as-root --oversubscribe -np 2 ");
+  EXPECT_NE(result.exit_status, 0);
+  EXPECT_NE(result.output.find("runs on one MPI rank only in this version (got 2)"), std::string::npos)
+      << result.output;
+}
+
+}  // namespace
