@@ -132,7 +132,7 @@ TEST(Dump, StreamsFramesPlainAndGzip) {
     EXPECT_EQ(frame.timestep, 100);
     EXPECT_EQ(frame.atoms, 2u);
     EXPECT_DOUBLE_EQ(frame.xhi, 10);
-    EXPECT_DOUBLE_EQ(frame.value(1, reader.column_index(frame, "vx")), 1.7);
+    EXPECT_DOUBLE_EQ(frame.value(1, frame.column_index("vx")), 1.7);
     EXPECT_FALSE(reader.next(frame));
   }
 }

@@ -18,8 +18,8 @@ TEST(Stationary, SkipsAnExponentialTransient) {
     u.push_back(10 * (1 - std::exp(-t.back() / 1.0)) + noise(rng));
   }
   auto window = detect_stationary(t, u, {});
-  EXPECT_LT(relative_drift(t, u, window), 0.05);
-  // After 3 relaxation times the remaining drift is within 5%.
+  EXPECT_LT(relative_drift(t, u, window), 0.02);
+  // After about 4 relaxation times the remaining drift is within 2%.
   EXPECT_GT(t[window.begin], 2.0);
   EXPECT_LT(t[window.begin], 6.0);
   EXPECT_EQ(window.end, u.size());

@@ -22,12 +22,11 @@ std::string DumpReader::require_line(const std::string& what) {
   return line;
 }
 
-size_t DumpReader::column_index(const DumpFrame& frame, const std::string& name) const {
-  auto found = std::find(frame.columns.begin(), frame.columns.end(), name);
-  if (found == frame.columns.end())
-    throw InputError(source_.path(), frame.line,
-                     "no per-atom column '" + name + "' (columns: " + join_names(frame.columns) + ")");
-  return static_cast<size_t>(found - frame.columns.begin());
+size_t DumpFrame::column_index(const std::string& name) const {
+  auto found = std::find(columns.begin(), columns.end(), name);
+  if (found == columns.end())
+    throw InputError(source, line, "no per-atom column '" + name + "' (columns: " + join_names(columns) + ")");
+  return static_cast<size_t>(found - columns.begin());
 }
 
 void DumpReader::read_box(DumpFrame& frame) {
@@ -72,6 +71,7 @@ bool DumpReader::next(DumpFrame& frame) {
   } while (line.find_first_not_of(" \t") == std::string::npos);
   if (line != item_prefix + "TIMESTEP") source_.fail("expected 'ITEM: TIMESTEP', found '" + line + "'");
   frame.line = source_.line_number();
+  frame.source = source_.path();
   auto step_line = require_line("the timestep");
   auto step = split_whitespace(step_line);
   if (step.size() != 1) source_.fail("expected one timestep value");

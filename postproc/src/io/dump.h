@@ -16,9 +16,12 @@ struct DumpFrame {
   std::vector<std::string> columns;           // as named on the "ITEM: ATOMS" line
   size_t atoms = 0;
   std::vector<double> values;  // values[atom * columns.size() + column]
+  std::string source;          // the dump file
   long line = 0;               // line of the frame's "ITEM: TIMESTEP"
 
   double value(size_t atom, size_t column) const { return values[atom * columns.size() + column]; }
+  // Index of column `name`; fails naming the file, the frame's line and the columns.
+  size_t column_index(const std::string& name) const;
 };
 
 class DumpReader {
@@ -27,8 +30,6 @@ class DumpReader {
   // Reads the next frame into `frame`; false at the end of the file.
   bool next(DumpFrame& frame);
   const LineSource& source() const { return source_; }
-  // Index of column `name` in `frame`; fails naming the file, the frame and the columns.
-  size_t column_index(const DumpFrame& frame, const std::string& name) const;
 
  private:
   std::string require_line(const std::string& what);

@@ -12,7 +12,7 @@
 namespace cdpost {
 
 struct StationaryCriterion {
-  double max_relative_drift = 0.05;
+  double max_relative_drift = 0.02;
   double min_window_fraction = 0.25;
   int candidate_starts = 50;
 };

@@ -1,0 +1,361 @@
+#include "analysis/run_analysis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <gsl/gsl_statistics_double.h>
+
+#include "io/ave_chunk.h"
+#include "io/ave_time.h"
+#include "io/line_source.h"
+
+namespace cdpost {
+
+double Units::reduced_velocity_mps() const { return std::sqrt(g_mps2 * d_m); }
+double Units::reduced_time_s() const { return std::sqrt(d_m / g_mps2); }
+double Units::reduced_rate_hz() const { return std::sqrt(g_mps2 / d_m); }
+void Units::use_reduced_input() {
+  length_unit_m = d_m;
+  time_unit_s = reduced_time_s();
+}
+
+namespace {
+
+std::string path_in(const RunSettings& settings, const std::string& file) {
+  return (std::filesystem::path(settings.directory) / file).string();
+}
+
+// Runs `step`, turning an AnalysisError into an InputError that names `file`.
+template <class Step>
+auto about_file(const std::string& file, Step step) {
+  try {
+    return step();
+  } catch (const AnalysisError& e) {
+    throw InputError(file, 0, e.what());
+  }
+}
+
+std::vector<double> scaled(const std::vector<double>& values, double factor) {
+  std::vector<double> out(values);
+  for (double& v : out) v *= factor;
+  return out;
+}
+
+std::vector<double> slice(const std::vector<double>& values, const Window& window) {
+  return {values.begin() + static_cast<long>(window.begin), values.begin() + static_cast<long>(window.end)};
+}
+
+// Spectra need one sampling interval: LAMMPS writes at a fixed Nfreq unless the deck changes it.
+double regular_interval(const ColumnTable& table, const std::vector<double>& time_s) {
+  if (time_s.size() < 2) throw InputError(table.source, 0, "fewer than 2 samples");
+  const double interval = time_s[1] - time_s[0];
+  for (size_t i = 1; i < time_s.size(); ++i) {
+    double step = time_s[i] - time_s[i - 1];
+    if (std::abs(step - interval) > 1e-6 * interval)
+      throw InputError(table.source, table.row_lines[i],
+                       "irregular sampling: interval " + std::to_string(step) + " s after " + std::to_string(interval) +
+                           " s (spectra need a fixed output interval)");
+  }
+  return interval;
+}
+
+std::vector<double> time_in_seconds(const ColumnTable& table, const RunSettings& settings) {
+  const auto& c = settings.columns;
+  const double unit = settings.units.time_unit_s;
+  if (table.has(c.time)) return scaled(table.column(c.time), unit);
+  if (!settings.timestep_size)
+    throw InputError(table.source, 0,
+                     "no time column '" + c.time + "': give --dt (the time step in input time units) so that time = " +
+                         c.timestep + " * dt");
+  return scaled(table.column(c.timestep), *settings.timestep_size * unit);
+}
+
+std::optional<std::vector<double>> optional_column(const ColumnTable& table, const std::string& name, double factor,
+                                                   std::vector<std::string>& warnings, const std::string& consequence) {
+  if (table.has(name)) return scaled(table.column(name), factor);
+  warnings.push_back(table.source + ": no column '" + name + "': " + consequence);
+  return std::nullopt;
+}
+
+TimeSeries read_time_series(const RunSettings& settings, std::vector<std::string>& warnings) {
+  const auto& c = settings.columns;
+  auto table = read_ave_time(path_in(settings, c.time_file));
+  const double velocity = settings.units.velocity_unit_mps();
+  TimeSeries series;
+  series.time_s = time_in_seconds(table, settings);
+  series.sample_interval_s = regular_interval(table, series.time_s);
+  series.u_flow_mps = scaled(table.column(c.u_flow), velocity);
+  series.v_flow_mps = scaled(table.column(c.v_flow), velocity);
+  series.u_all_mps = optional_column(table, c.u_all, velocity, warnings, "u(t) of all grains not reported");
+  series.phi = optional_column(table, c.phi, 1.0, warnings, "phi not reported");
+  if (table.has(c.h)) series.h_m = scaled(table.column(c.h), settings.units.length_unit_m);
+  return series;
+}
+
+// Input time units per step for the chunk files: --dt, or inferred from the time file.
+std::optional<double> timestep_size(const RunSettings& settings, const std::string& time_path) {
+  if (settings.timestep_size) return settings.timestep_size;
+  auto table = read_ave_time(time_path);
+  const auto& c = settings.columns;
+  if (!table.has(c.time) || !table.has(c.timestep) || table.rows() < 2) return std::nullopt;
+  const auto& t = table.column(c.time);
+  const auto& step = table.column(c.timestep);
+  return (t.back() - t.front()) / (step.back() - step.front());
+}
+
+Window given_window(const RunSettings& settings, const std::vector<double>& time_s) {
+  const double unit = settings.units.time_unit_s;
+  double start = settings.t_start ? *settings.t_start * unit : time_s.front();
+  double end = settings.t_end ? *settings.t_end * unit : time_s.back();
+  return window_between(time_s, start, end);
+}
+
+Window choose_window(const RunSettings& settings, const TimeSeries& series, bool& detected, const std::string& file) {
+  detected = !settings.t_start && !settings.t_end;
+  return about_file(file, [&] {
+    if (detected) return detect_stationary(series.time_s, series.u_flow_mps, settings.criterion);
+    return given_window(settings, series.time_s);
+  });
+}
+
+// Blocks of a chunk file whose time lies in [t0, t1].
+std::vector<size_t> blocks_between(const ChunkSeries& chunks, double seconds_per_step, double t0, double t1) {
+  std::vector<size_t> blocks;
+  for (size_t b = 0; b < chunks.blocks(); ++b) {
+    double t = chunks.timesteps[b] * seconds_per_step;
+    if (t >= t0 && t <= t1) blocks.push_back(b);
+  }
+  return blocks;
+}
+
+VelocityProfile average_profile(const ChunkSeries& chunks, const std::vector<size_t>& blocks, const RunSettings& settings) {
+  const auto& c = settings.columns;
+  const size_t coord = chunks.column_index(c.profile_coord), vx = chunks.column_index(c.profile_vx);
+  const size_t count = chunks.column_index(c.profile_count);
+  const double to_d = settings.units.length_unit_m / settings.units.d_m;
+  const double to_reduced = settings.units.velocity_unit_mps() / settings.units.reduced_velocity_mps();
+  VelocityProfile profile;
+  for (size_t chunk = 0; chunk < chunks.chunks; ++chunk) {
+    double weight = 0, momentum = 0;
+    for (size_t b : blocks) {
+      weight += chunks.value(b, chunk, count);
+      momentum += chunks.value(b, chunk, count) * chunks.value(b, chunk, vx);
+    }
+    if (weight <= 0) continue;  // empty bin (above the surface): no velocity to report
+    profile.z_d.push_back((chunks.value(blocks.front(), chunk, coord) - settings.z0) * to_d);
+    profile.u_reduced.push_back(momentum / weight * to_reduced);
+    profile.count.push_back(weight / static_cast<double>(blocks.size()));
+  }
+  if (profile.z_d.size() >= 2) profile.bin_width_d = std::abs(profile.z_d[1] - profile.z_d[0]);
+  return profile;
+}
+
+// Layer top: the highest bin above z = 0 still holding half the median count of the
+// occupied bins above z = 0.
+std::optional<Estimate> thickness_from_profile(const VelocityProfile& profile) {
+  std::vector<double> counts;
+  for (size_t i = 0; i < profile.z_d.size(); ++i)
+    if (profile.z_d[i] > 0) counts.push_back(profile.count[i]);
+  if (counts.size() < 3) return std::nullopt;
+  std::sort(counts.begin(), counts.end());
+  const double threshold = 0.5 * counts[counts.size() / 2];
+  double top = 0;
+  for (size_t i = 0; i < profile.z_d.size(); ++i)
+    if (profile.z_d[i] > 0 && profile.count[i] >= threshold) top = std::max(top, profile.z_d[i]);
+  return Estimate{top + 0.5 * profile.bin_width_d, 0.5 * profile.bin_width_d};
+}
+
+void add_spectrum_results(ResultTable& results, const Spectrum& spectrum, const SpectralPeak& peak,
+                          const RunSettings& settings, const std::string& unit) {
+  results.add("f", Estimate{peak.frequency_hz, peak.frequency_error_hz}, "Hz", "peak frequency of v(t); error = half width at half power");
+  results.add("A", peak.amplitude, unit, "spectral amplitude of v(t) at the peak");
+  results.add("A_mean", mean_amplitude_above(spectrum, settings.high_frequency_hz), unit,
+              "mean spectral amplitude of v(t) at f >= " + format_estimate(settings.high_frequency_hz, std::nullopt) + " Hz");
+  results.add("spectrum_resolution", spectrum.resolution_hz, "Hz", "frequency resolution (1 / segment duration)");
+  results.add("spectrum_segments", spectrum.segments, "", "Hann-windowed segments averaged (Welch)");
+}
+
+struct Analyser {
+  RunAnalysis& run;
+  const RunSettings& settings;
+  const Units& units;
+
+  std::string time_path() const { return path_in(settings, settings.columns.time_file); }
+  double reduced_velocity(double mps) const { return mps / units.reduced_velocity_mps(); }
+  double reduced_time(double s) const { return s / units.reduced_time_s(); }
+
+  Estimate window_mean(const std::vector<double>& values, double factor) const {
+    auto estimate = about_file(time_path(), [&] {
+      return block_mean(values, run.window.begin, run.window.end, settings.averaging_blocks);
+    });
+    estimate.value *= factor;
+    if (estimate.error) *estimate.error *= factor;
+    return estimate;
+  }
+
+  void time_averages() {
+    const auto& s = run.series;
+    auto& r = run.results;
+    r.add("t_start", reduced_time(s.time_s[run.window.begin]), "sqrt(d/g)",
+          run.window_detected ? "start of the detected stationary regime" : "start of the stationary window (given)");
+    r.add("t_end", reduced_time(s.time_s[run.window.end - 1]), "sqrt(d/g)", "end of the stationary window");
+    r.add("stationary_drift", relative_drift(s.time_s, s.u_flow_mps, run.window), "",
+          "drift of the line fitted to U(t) across the window, relative to its mean");
+    r.add("U", window_mean(s.u_flow_mps, 1 / units.reduced_velocity_mps()), "sqrt(g d)", "mean x-velocity of the grains with z > 0");
+    if (s.u_all_mps) r.add("u_all", window_mean(*s.u_all_mps, 1 / units.reduced_velocity_mps()), "sqrt(g d)", "mean x-velocity of all grains");
+    if (s.phi) r.add("phi", window_mean(*s.phi, 1.0), "", "area fraction of the flowing layer");
+    if (s.h_m) r.add("h", window_mean(*s.h_m, 1 / units.d_m), "d", "flowing-layer thickness (from " + settings.columns.h + ")");
+  }
+
+  void spectrum_of_v() {
+    auto v = scaled(slice(run.series.v_flow_mps, run.window), 1 / units.reduced_velocity_mps());
+    about_file(time_path(), [&] {
+      run.spectrum = amplitude_spectrum(v, run.series.sample_interval_s, settings.spectrum);
+      run.peak = find_peak(run.spectrum, settings.peak_fmin_hz, settings.peak_fmax_hz);
+      add_spectrum_results(run.results, run.spectrum, run.peak, settings, "sqrt(g d)");
+      return 0;
+    });
+  }
+
+  std::optional<ChunkSeries> read_optional_chunks(const std::string& file, const std::string& consequence) {
+    const auto path = path_in(settings, file);
+    if (!std::filesystem::exists(path)) {
+      run.warnings.push_back(path + " not found: " + consequence);
+      return std::nullopt;
+    }
+    return read_ave_chunk(path);
+  }
+
+  double seconds_per_step(const ChunkSeries& chunks) const {
+    auto dt = timestep_size(settings, time_path());
+    if (!dt) throw InputError(chunks.source, 0, "cannot convert Timestep to time: give --dt or a time column '" + settings.columns.time + "' in " + time_path());
+    return *dt * units.time_unit_s;
+  }
+
+  std::vector<size_t> window_blocks(const ChunkSeries& chunks) const {
+    auto blocks = blocks_between(chunks, seconds_per_step(chunks), run.series.time_s[run.window.begin],
+                                 run.series.time_s[run.window.end - 1]);
+    if (blocks.empty()) throw InputError(chunks.source, 0, "no output block inside the stationary window");
+    return blocks;
+  }
+
+  void profile() {
+    auto chunks = read_optional_chunks(settings.columns.profile_file, "no u(z), Bagnold or creep fit");
+    if (!chunks) return;
+    run.profile = average_profile(*chunks, window_blocks(*chunks), settings);
+    if (!run.series.h_m) {
+      if (auto h = thickness_from_profile(*run.profile))
+        run.results.add("h", *h, "d", "flowing-layer thickness: top of the bins holding half the median count");
+    }
+    const auto* h = run.results.find("h");
+    if (!h) return;
+    run.h_d = h->value;
+    fit_profile(chunks->source);
+  }
+
+  void fit_profile(const std::string& file) {
+    const auto& p = *run.profile;
+    try {
+      run.bagnold = fit_bagnold(p.z_d, p.u_reduced, run.h_d);
+      run.results.add("bagnold_slip", run.bagnold->slip, "sqrt(g d)", "u(0) of the Bagnold fit u = slip + a (h^1.5 - (h-z)^1.5)");
+      run.results.add("bagnold_amplitude", run.bagnold->amplitude, "sqrt(g d)/d^1.5", "a of the Bagnold fit");
+      run.results.add("bagnold_r2", run.bagnold->r_squared, "", "coefficient of determination of the Bagnold fit");
+    } catch (const AnalysisError& e) {
+      run.warnings.push_back(file + ": Bagnold fit skipped: " + e.what());
+    }
+    try {
+      run.creep = fit_creep(p.z_d, p.u_reduced, -settings.creep_depth_d);
+      run.results.add("creep_lambda", run.creep->lambda, "d", "decay length of u(z) = u0 exp(z/lambda) below z = 0");
+      run.results.add("creep_u0", run.creep->u0, "sqrt(g d)", "u0 of the creep fit");
+    } catch (const AnalysisError& e) {
+      run.warnings.push_back(file + ": creep fit skipped: " + e.what());
+    }
+  }
+
+  void derived_rates() {
+    if (run.h_d <= 0) {
+      run.warnings.push_back("no layer thickness h (no column " + settings.columns.h + " and no profile): U/h and I not reported");
+      return;
+    }
+    const auto& U = *run.results.find("U");
+    const double rate_reduced = U.value / run.h_d;  // sqrt(g/d)
+    const double h_error = run.results.find("h")->error.value_or(0);
+    auto relative = [&](double power) {  // relative error of U / h^power
+      return std::hypot(U.error.value_or(0) / U.value, power * h_error / run.h_d);
+    };
+    run.results.add("shear_rate", Estimate{rate_reduced * units.reduced_rate_hz(), rate_reduced * units.reduced_rate_hz() * relative(1)}, "1/s", "U/h");
+    run.results.add("shear_rate_reduced", Estimate{rate_reduced, rate_reduced * relative(1)}, "sqrt(g/d)", "U/h");
+    const double inertial = U.value / std::pow(run.h_d, 1.5);
+    run.results.add("I", Estimate{inertial, inertial * relative(1.5)}, "", "inertial number d U / (sqrt(g) h^1.5)");
+    const double x = std::sqrt(units.reduced_rate_hz() * units.reduced_rate_hz() / U.value);
+    run.results.add("f_scale", Estimate{x, 0.5 * x * U.error.value_or(0) / U.value}, "Hz", "(sqrt(g d)/U * g/d)^(1/2)");
+  }
+
+  void layer_spectra() {
+    auto chunks = read_optional_chunks(settings.columns.layers_file, "no depth-resolved spectra");
+    if (!chunks) return;
+    const auto& c = settings.columns;
+    const size_t coord = chunks->column_index(c.layers_coord), vz = chunks->column_index(c.layers_vz);
+    const auto blocks = window_blocks(*chunks);
+    const double interval = (chunks->timesteps[blocks.back()] - chunks->timesteps[blocks.front()]) /
+                            static_cast<double>(blocks.size() - 1) * seconds_per_step(*chunks);
+    const double to_reduced = units.velocity_unit_mps() / units.reduced_velocity_mps();
+    for (size_t chunk = 0; chunk < chunks->chunks; ++chunk) {
+      if (chunks->has(c.layers_count) && mean_count(*chunks, blocks, chunk) < 0.5) continue;  // empty layer
+      std::vector<double> v;
+      for (size_t b : blocks) v.push_back(chunks->value(b, chunk, vz) * to_reduced);
+      LayerSpectrum layer;
+      layer.z_d = (chunks->value(blocks.front(), chunk, coord) - settings.z0) * units.length_unit_m / units.d_m;
+      about_file(chunks->source, [&] {
+        layer.spectrum = amplitude_spectrum(v, interval, settings.spectrum);
+        layer.peak = find_peak(layer.spectrum, settings.peak_fmin_hz, settings.peak_fmax_hz);
+        return 0;
+      });
+      layer.amplitude_at_f = amplitude_at(layer.spectrum, run.peak.frequency_hz);
+      run.layers.push_back(layer);
+    }
+    run.results.add("layers", static_cast<double>(run.layers.size()), "", "layers with a depth-resolved spectrum");
+  }
+
+  double mean_count(const ChunkSeries& chunks, const std::vector<size_t>& blocks, size_t chunk) const {
+    const size_t count = chunks.column_index(settings.columns.layers_count);
+    double sum = 0;
+    for (size_t b : blocks) sum += chunks.value(b, chunk, count);
+    return sum / static_cast<double>(blocks.size());
+  }
+};
+
+}  // namespace
+
+ColumnSpectrum analyse_column_spectrum(const std::string& path, const std::string& column, const RunSettings& settings) {
+  auto table = read_ave_time(path);
+  auto time_s = time_in_seconds(table, settings);
+  const double interval = regular_interval(table, time_s);
+  return about_file(path, [&] {
+    auto window = given_window(settings, time_s);
+    ColumnSpectrum result;
+    result.spectrum = amplitude_spectrum(slice(table.column(column), window), interval, settings.spectrum);
+    result.peak = find_peak(result.spectrum, settings.peak_fmin_hz, settings.peak_fmax_hz);
+    result.results.add("t_start", time_s[window.begin], "s", "start of the analysed window");
+    result.results.add("t_end", time_s[window.end - 1], "s", "end of the analysed window");
+    add_spectrum_results(result.results, result.spectrum, result.peak, settings, "input");
+    return result;
+  });
+}
+
+RunAnalysis analyse_run(const RunSettings& settings) {
+  RunAnalysis run;
+  run.settings = settings;
+  run.series = read_time_series(settings, run.warnings);
+  run.window = choose_window(settings, run.series, run.window_detected, path_in(settings, settings.columns.time_file));
+  Analyser analyser{run, settings, settings.units};
+  analyser.time_averages();
+  analyser.spectrum_of_v();
+  analyser.profile();
+  if (run.h_d <= 0 && run.results.find("h")) run.h_d = run.results.find("h")->value;
+  analyser.derived_rates();
+  analyser.layer_spectra();
+  return run;
+}
+
+}  // namespace cdpost

@@ -1,0 +1,233 @@
+#include "cli/commands.h"
+
+#include <filesystem>
+#include <functional>
+#include <iostream>
+
+#include "analysis/run_analysis.h"
+#include "analysis/series_analysis.h"
+#include "analysis/snapshot.h"
+#include "cli/options.h"
+#include "io/ave_time.h"
+#include "io/line_source.h"
+
+namespace cdpost {
+
+namespace {
+
+const char* const overview =
+    "cdpost: analysis of Contact Dynamics chute runs (spectra, profiles, flow rules, figures, reports)\n"
+    "\n"
+    "usage: cdpost COMMAND [ARGUMENTS] [OPTIONS]     (cdpost COMMAND --help for its options)\n"
+    "\n"
+    "commands:\n"
+    "  run DIR          analyse one run directory (flow.time, profile.chunk, layers.chunk)\n"
+    "  series MANIFEST  analyse the runs listed in a CSV (run,mu,theta[,L]) and fit the flow rules\n"
+    "  spectrum FILE    spectrum of one column of a fix ave/time file\n"
+    "  snapshot DUMP    picture of one frame of a dump (grains coloured by x-velocity)\n"
+    "\n"
+    "Results go to CSV and JSON beside the report; see doc/postproc.md.\n";
+
+// Options naming the files of a run and their columns, bound to RunColumns members.
+struct ColumnOption {
+  const char* name;
+  std::string RunColumns::*member;
+  const char* help;
+};
+const std::vector<ColumnOption> column_options = {
+    {"time-file", &RunColumns::time_file, "fix ave/time file of the run"},
+    {"col-timestep", &RunColumns::timestep, "its timestep column"},
+    {"col-time", &RunColumns::time, "its time column (optional; else TimeStep * --dt)"},
+    {"col-u-all", &RunColumns::u_all, "mean x-velocity of all grains (optional)"},
+    {"col-u-flow", &RunColumns::u_flow, "mean x-velocity of the grains with z > 0"},
+    {"col-v-flow", &RunColumns::v_flow, "mean z-velocity of the grains with z > 0"},
+    {"col-phi", &RunColumns::phi, "area fraction of the flowing layer (optional)"},
+    {"col-h", &RunColumns::h, "flowing-layer thickness (optional; else from the profile)"},
+    {"profile-file", &RunColumns::profile_file, "fix ave/chunk file of the velocity profile"},
+    {"col-profile-z", &RunColumns::profile_coord, "its bin-centre column"},
+    {"col-profile-vx", &RunColumns::profile_vx, "its x-velocity column"},
+    {"col-profile-count", &RunColumns::profile_count, "its grain-count column"},
+    {"layers-file", &RunColumns::layers_file, "fix ave/chunk file of v per layer"},
+    {"col-layers-z", &RunColumns::layers_coord, "its layer-centre column"},
+    {"col-layers-v", &RunColumns::layers_vz, "its normal-velocity column"},
+    {"col-layers-count", &RunColumns::layers_count, "its grain-count column (optional)"},
+};
+
+std::vector<OptionSpec> unit_options() {
+  return {{"d", "METRES", "mean grain diameter (default 5e-4)"},
+          {"g", "M/S2", "gravity (default 9.81)"},
+          {"units", "si|reduced", "units of the input: SI (default) or reduced (d, sqrt(d/g))"},
+          {"length-unit", "METRES", "one input length unit in metres (overrides --units)"},
+          {"time-unit", "SECONDS", "one input time unit in seconds (overrides --units)"},
+          {"dt", "TIME", "time-step size in input time units (time = TimeStep * dt)"},
+          {"progress", "", "show progress on stderr even when it is not a terminal"},
+          {"help", "", "show this help"}};
+}
+
+std::vector<OptionSpec> analysis_options() {
+  std::vector<OptionSpec> specs = unit_options();
+  std::vector<OptionSpec> more = {
+      {"t-start", "TIME", "start of the stationary window (input time units; disables detection)"},
+      {"t-end", "TIME", "end of the stationary window (input time units)"},
+      {"max-drift", "FRACTION", "stationarity: largest drift of U across the window / mean (default 0.02)"},
+      {"min-window", "FRACTION", "stationarity: smallest window, fraction of the run (default 0.25)"},
+      {"segment", "SECONDS", "spectrum segment duration (default 1)"},
+      {"overlap", "FRACTION", "spectrum segment overlap (default 0.5)"},
+      {"fmin", "HZ", "lowest frequency searched for the peak (default 5)"},
+      {"fmax", "HZ", "highest frequency searched for the peak (default Nyquist)"},
+      {"high-frequency", "HZ", "A_mean is the mean amplitude above this (default 100)"},
+      {"z0", "LENGTH", "height of the wall tops in input length units (z = y - z0; default 0)"},
+      {"creep-depth", "D", "the creep fit uses -D <= z < 0, in d (default 30)"},
+      {"blocks", "N", "blocks for the standard error of means (default 10)"},
+      {"out", "DIR", "output directory"}};
+  specs.insert(specs.end(), more.begin(), more.end());
+  for (const auto& c : column_options) specs.push_back({c.name, "NAME", std::string(c.help) + " (default " + RunColumns().*c.member + ")"});
+  return specs;
+}
+
+Units units_from(const ParsedOptions& options, const std::string& command) {
+  Units units;
+  units.d_m = options.number("d").value_or(units.d_m);
+  units.g_mps2 = options.number("g").value_or(units.g_mps2);
+  if (!(units.d_m > 0 && units.g_mps2 > 0)) throw UsageError(command + ": --d and --g must be positive");
+  auto system = options.text("units").value_or("si");
+  if (system == "reduced")
+    units.use_reduced_input();
+  else if (system != "si")
+    throw UsageError(command + ": --units must be 'si' or 'reduced', not '" + system + "'");
+  units.length_unit_m = options.number("length-unit").value_or(units.length_unit_m);
+  units.time_unit_s = options.number("time-unit").value_or(units.time_unit_s);
+  return units;
+}
+
+RunSettings settings_from(const ParsedOptions& options, const std::string& command) {
+  RunSettings s;
+  s.units = units_from(options, command);
+  s.timestep_size = options.number("dt");
+  s.t_start = options.number("t-start");
+  s.t_end = options.number("t-end");
+  s.criterion.max_relative_drift = options.number("max-drift").value_or(s.criterion.max_relative_drift);
+  s.criterion.min_window_fraction = options.number("min-window").value_or(s.criterion.min_window_fraction);
+  s.spectrum.segment_duration_s = options.number("segment").value_or(s.spectrum.segment_duration_s);
+  s.spectrum.overlap = options.number("overlap").value_or(s.spectrum.overlap);
+  s.peak_fmin_hz = options.number("fmin").value_or(s.peak_fmin_hz);
+  s.peak_fmax_hz = options.number("fmax").value_or(s.peak_fmax_hz);
+  s.high_frequency_hz = options.number("high-frequency").value_or(s.high_frequency_hz);
+  s.z0 = options.number("z0").value_or(s.z0);
+  s.creep_depth_d = options.number("creep-depth").value_or(s.creep_depth_d);
+  s.averaging_blocks = static_cast<int>(options.integer("blocks").value_or(s.averaging_blocks));
+  s.progress = options.flag("progress");
+  for (const auto& c : column_options)
+    if (auto name = options.text(c.name)) s.columns.*c.member = *name;
+  if (s.averaging_blocks < 2) throw UsageError(command + ": --blocks must be at least 2");
+  if (!(s.spectrum.segment_duration_s > 0)) throw UsageError(command + ": --segment must be positive");
+  return s;
+}
+
+// Parses `arguments`, printing help and returning nothing if --help was asked.
+std::optional<ParsedOptions> parse_or_help(const std::string& command, const std::string& usage,
+                                           const std::vector<std::string>& arguments, const std::vector<OptionSpec>& specs,
+                                           size_t positional_count) {
+  auto options = parse_options(command, arguments, specs);
+  if (options.flag("help")) {
+    std::cout << "usage: " << usage << "\n\noptions:\n" << options_help(specs);
+    return std::nullopt;
+  }
+  if (options.positional.size() != positional_count) throw UsageError(command + ": usage: " + usage);
+  return options;
+}
+
+void print_warnings(const std::vector<std::string>& warnings) {
+  for (const auto& w : warnings) std::cerr << "cdpost: warning: " << w << '\n';
+}
+
+int command_run(const std::vector<std::string>& arguments) {
+  auto specs = analysis_options();
+  specs.push_back({"dump", "FILE", "LAMMPS dump (.gz allowed) for the snapshot figure; default: none"});
+  auto options = parse_or_help("cdpost run", "cdpost run DIR [options]", arguments, specs, 1);
+  if (!options) return 0;
+  auto settings = settings_from(*options, "cdpost run");
+  settings.directory = options->positional[0];
+  if (!std::filesystem::is_directory(settings.directory)) throw InputError(settings.directory, 0, "not a directory");
+  auto out = options->text("out").value_or((std::filesystem::path(settings.directory) / "post").string());
+  auto run = analyse_run(settings);
+  write_run_outputs(run, out, options->text("dump").value_or(""));
+  std::cout << run.results.text() << "results: " << out << "/results.csv, report: " << out << "/report.md\n";
+  print_warnings(run.warnings);
+  return 0;
+}
+
+int command_series(const std::vector<std::string>& arguments) {
+  auto options = parse_or_help("cdpost series", "cdpost series MANIFEST.csv [options]", arguments, analysis_options(), 1);
+  if (!options) return 0;
+  SeriesSettings series;
+  series.run = settings_from(*options, "cdpost series");
+  series.manifest = options->positional[0];
+  auto out = options->text("out").value_or((std::filesystem::path(series.manifest).parent_path() / "series-post").string());
+  auto result = analyse_series(series);
+  write_series_outputs(result, out);
+  std::cout << result.fits.text() << "results: " << out << "/fits.csv, " << out << "/runs.csv, report: " << out << "/report.md\n";
+  print_warnings(result.warnings);
+  return 0;
+}
+
+int command_spectrum(const std::vector<std::string>& arguments) {
+  auto specs = analysis_options();
+  specs.push_back({"column", "NAME", "column to transform (default v_v_flow)"});
+  auto options = parse_or_help("cdpost spectrum", "cdpost spectrum FILE [--column NAME] [options]", arguments, specs, 1);
+  if (!options) return 0;
+  auto settings = settings_from(*options, "cdpost spectrum");
+  const std::string column = options->text("column").value_or(settings.columns.v_flow);
+  auto run = analyse_column_spectrum(options->positional[0], column, settings);
+  std::cout << run.results.text();
+  if (auto out = options->text("out")) {
+    std::filesystem::create_directories(*out);
+    run.results.write_csv(*out + "/spectrum_results.csv");
+    write_columns_csv(*out + "/spectrum.csv", {"f_Hz", "A"}, {run.spectrum.frequency_hz, run.spectrum.amplitude});
+  }
+  return 0;
+}
+
+int command_snapshot(const std::vector<std::string>& arguments) {
+  auto specs = unit_options();
+  specs.insert(specs.end(), {{"timestep", "N", "frame to draw (default: the last)"},
+                             {"z0", "LENGTH", "height of the wall tops in input length units (default 0)"},
+                             {"out", "DIR", "output directory (default: the dump's directory)"}});
+  auto options = parse_or_help("cdpost snapshot", "cdpost snapshot DUMP [options]", arguments, specs, 1);
+  if (!options) return 0;
+  SnapshotRequest request;
+  request.dump_path = options->positional[0];
+  request.timestep = options->integer("timestep");
+  request.progress = options->flag("progress");
+  auto out = options->text("out").value_or(std::filesystem::path(request.dump_path).parent_path().string());
+  if (out.empty()) out = ".";
+  std::filesystem::create_directories(out);
+  auto figure = snapshot_figure(request, units_from(*options, "cdpost snapshot"), options->number("z0").value_or(0));
+  if (auto problem = render_figure(figure, out)) throw std::runtime_error(*problem);
+  std::cout << "snapshot: " << out << "/snapshot.png, " << out << "/snapshot.svg\n";
+  return 0;
+}
+
+}  // namespace
+
+int run_command_line(const std::vector<std::string>& arguments) {
+  const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
+      {"run", command_run}, {"series", command_series}, {"spectrum", command_spectrum}, {"snapshot", command_snapshot}};
+  if (arguments.empty() || arguments[0] == "--help" || arguments[0] == "-h" || arguments[0] == "help") {
+    std::cout << overview;
+    return arguments.empty() ? 2 : 0;
+  }
+  try {
+    auto command = commands.find(arguments[0]);
+    if (command == commands.end()) throw UsageError("unknown command '" + arguments[0] + "'");
+    return command->second({arguments.begin() + 1, arguments.end()});
+  } catch (const UsageError& e) {
+    std::cerr << "cdpost: " << e.what() << " (see cdpost --help)\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "cdpost: error: " << e.what() << '\n';
+    return 1;
+  }
+}
+
+}  // namespace cdpost

@@ -1,0 +1,50 @@
+// Figures drawn by gnuplot (Debian's gnuplot-nox): each figure is written as one
+// self-contained script NAME.gp (data inline), then rendered to NAME.png and NAME.svg.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace cdpost {
+
+enum class CurveStyle { Points, Lines, LinesPoints, ErrorBars, Circles, ShadedCircles };
+
+struct Curve {
+  std::string title;
+  CurveStyle style = CurveStyle::Points;
+  std::vector<double> x, y;
+  std::vector<double> y_error;  // ErrorBars
+  std::vector<double> radius;   // Circles: radius in x-axis units
+  std::vector<double> colour;   // Circles: value mapped on the palette
+};
+
+struct Panel {
+  std::string title, x_label, y_label;
+  bool log_x = false, log_y = false;
+  bool equal_axes = false;
+  std::string colour_label;  // for Circles: the colour bar's label
+  std::optional<std::pair<double, double>> x_range, y_range;
+  std::optional<std::pair<double, double>> x_band;  // shaded interval, e.g. the stationary window
+  std::string key = "top left";
+  std::vector<Curve> curves;
+  // Placement in the canvas (fractions); the default fills it.
+  double origin_x = 0, origin_y = 0, width = 1, height = 1;
+};
+
+struct Figure {
+  std::string name;  // file stem
+  std::string caption;
+  std::vector<Panel> panels;
+  int width_px = 900, height_px = 650;
+};
+
+// The gnuplot script for `figure`, writing NAME.png and NAME.svg in the working directory.
+std::string gnuplot_script(const Figure& figure);
+
+// Writes DIR/NAME.gp and runs gnuplot in DIR. Returns a problem description, or nothing on
+// success (missing gnuplot or a failed run is reported, not thrown: figures are optional).
+std::optional<std::string> render_figure(const Figure& figure, const std::string& directory);
+
+}  // namespace cdpost

@@ -1,0 +1,92 @@
+// A synthetic run directory in the layout the chute decks write (SI units), with known
+// U, phi, h, oscillation frequency and amplitude, Bagnold profile and creep length.
+#pragma once
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "lammps_text.h"
+#include "temp_files.h"
+
+namespace cdpost::testing {
+
+struct SyntheticRun {
+  double d = 5e-4, g = 9.81;
+  double dt = 1e-5;          // s per step
+  long output_every = 100;   // steps: 1 kHz sampling
+  double duration = 6.0;     // s
+  double relaxation = 0.4;   // s, transient of U
+  double u_final = 10.0;     // sqrt(g d)
+  double h = 40.0;           // d
+  double phi = 0.78;
+  double frequency = 37.0;   // Hz
+  double amplitude = 0.2;    // sqrt(g d)
+  double noise = 0.3;        // sqrt(g d), white noise on v(t)
+  double creep_lambda = 3.0; // d
+  unsigned seed = 1;
+
+  double v0() const { return std::sqrt(g * d); }
+  double u_of_t(double t) const { return u_final * (1 - std::exp(-t / relaxation)); }
+  // Bagnold above the bed with u(h) = u_surface, exponential creep below.
+  double u_of_z(double z) const {
+    const double slip = 0.3, surface = 2 * u_final;
+    if (z < 0) return slip * std::exp(z / creep_lambda);
+    return slip + (surface - slip) * (std::pow(h, 1.5) - std::pow(h - std::min(z, h), 1.5)) / std::pow(h, 1.5);
+  }
+};
+
+inline void write_synthetic_run(const std::filesystem::path& dir, const SyntheticRun& run) {
+  std::filesystem::create_directories(dir);
+  std::mt19937 rng(run.seed);
+  std::normal_distribution<double> gauss(0, 1);
+  const double v0 = run.v0();
+  const long steps = static_cast<long>(run.duration / run.dt);
+
+  std::vector<std::vector<double>> rows;
+  for (long step = run.output_every; step <= steps; step += run.output_every) {
+    const double t = step * run.dt;
+    const double v = run.amplitude * std::sin(2 * M_PI * run.frequency * t) + run.noise * gauss(rng);
+    rows.push_back({double(step), t, 0.5 * run.u_of_t(t) * v0, (run.u_of_t(t) + 0.05 * gauss(rng)) * v0, v * v0,
+                    run.phi + 0.005 * gauss(rng), (run.h + 0.3 * gauss(rng)) * run.d});
+  }
+  write_file(dir / "flow.time", ave_time_text({"TimeStep", "v_time", "v_u_all", "v_u_flow", "v_v_flow", "v_phi_flow", "v_h"}, rows));
+
+  std::vector<long> profile_steps;
+  for (long step = 10000; step <= steps; step += 10000) profile_steps.push_back(step);
+  const size_t bins = 80;  // z from -30 d to 50 d
+  auto z_of = [&](size_t bin) { return -30.0 + bin + 0.5; };
+  write_file(dir / "profile.chunk",
+             ave_chunk_text({"Coord1", "Ncount", "vx"}, profile_steps, bins, [&](size_t, size_t bin, size_t column) {
+               const double z = z_of(bin);
+               const bool occupied = z < run.h;
+               if (column == 0) return z * run.d;
+               if (column == 1) return occupied ? 20.0 : 0.0;
+               return occupied ? run.u_of_z(z) * v0 * std::exp(0.02 * gauss(rng)) : 0.0;
+             }));
+
+  std::vector<long> layer_steps;
+  for (long step = run.output_every; step <= steps; step += run.output_every) layer_steps.push_back(step);
+  write_file(dir / "layers.chunk",
+             ave_chunk_text({"Coord1", "Ncount", "vy"}, layer_steps, 6, [&](size_t block, size_t layer, size_t column) {
+               const double z = -5.0 + 10.0 * layer;  // -5 ... 45 d; the top layer is empty
+               if (column == 0) return z * run.d;
+               if (column == 1) return z < run.h ? 30.0 : 0.0;
+               if (z >= run.h) return 0.0;
+               const double t = layer_steps[block] * run.dt;
+               const double depth_factor = std::exp((z - run.h) / 20.0);
+               return (run.amplitude * depth_factor * std::sin(2 * M_PI * run.frequency * t) + 0.1 * gauss(rng)) * v0;
+             }));
+
+  std::vector<DumpAtom> atoms;
+  for (long id = 1; id <= 300; ++id) {
+    const double x = (id % 30 + 0.5) * run.d * 1.5, z = ((id / 30) - 3.0) * run.d * 1.5;
+    atoms.push_back({id, x, z, run.u_of_z(z / run.d) * v0, 0, 0.5 * run.d});
+  }
+  write_gzip(dir / "dump.chute.gz", dump_frame_text(0, 45 * run.d, 60 * run.d, atoms) +
+                                        dump_frame_text(steps, 45 * run.d, 60 * run.d, atoms));
+}
+
+}  // namespace cdpost::testing
