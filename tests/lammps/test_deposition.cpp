@@ -127,9 +127,12 @@ run 100
     return positions_by_id(s);
   }
 
-  const std::string restart_file = "test_restart.cd.restart";
-  const std::string unbroken_iterations = "test_restart.unbroken.txt";
-  const std::string restarted_iterations = "test_restart.restarted.txt";
+  // Per-test file names: ctest may run the tests of this fixture in parallel.
+  const std::string prefix = std::string("test_restart_") +
+                             ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const std::string restart_file = prefix + ".restart";
+  const std::string unbroken_iterations = prefix + ".unbroken.txt";
+  const std::string restarted_iterations = prefix + ".restarted.txt";
   Snapshot reference;
 };
 

@@ -130,14 +130,17 @@ SiconosSolution solve_with_siconos(const Fc2dProblem& p, int solver_id, double t
   return s;
 }
 
-// Siconos's error measure, absolute (norm argument 0): |r - proj_K(r - u_hat)| over all contacts.
+// Siconos's error measure. fc2d_compute_error (4.4) returns the natural-map residual
+// |r - proj_K(r - u_hat)| divided by max(|r|, |u|, norm), norm = 0 here; it is multiplied back
+// by that scale so that one absolute tolerance serves both codes.
 double siconos_error(const Fc2dProblem& p, std::vector<double> reaction)
 {
   SiconosProblem problem(p);
   std::vector<double> velocity(p.size(), 0.0);
-  double error = 0.0;
-  fc2d_compute_error(problem.get(), reaction.data(), velocity.data(), 0.0, 0.0, &error);
-  return error;
+  double relative_error = 0.0;
+  fc2d_compute_error(problem.get(), reaction.data(), velocity.data(), 0.0, 0.0, &relative_error);
+  const double scale = std::max(norm2(reaction), norm2(p.velocity(reaction)));
+  return scale > std::numeric_limits<double>::epsilon() ? relative_error * scale : relative_error;
 }
 
 // The core's error measure on the same problem: sqrt of the sum of the contacts' squared
@@ -297,6 +300,278 @@ TEST(SiconosLocal, ExactLocalSolverAgreesWithFc2dSolvers)
   std::printf("ours worst residual/tol %.3g\n", worst_ours);
   for (int s = 0; s < 4; ++s) EXPECT_GE(status_count[s], 50) << "status " << s;
   EXPECT_GE(compared, 4 * residual_only);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Many contacts: Gauss–Seidel on a disk cluster against fc2d solvers on the assembled problem
+// ---------------------------------------------------------------------------------------------
+
+// A contact as the test derives it from the disks alone.
+struct ContactKinematics {
+  int body_a = 0;
+  int body_b = 0;        // cd::world_body for a wall
+  double nx = 0.0;       // unit normal from b to a
+  double ny = 0.0;
+  double lever_a = 0.0;  // centre-to-contact distances (m); 0 for the world
+  double lever_b = 0.0;
+};
+
+struct Scene {
+  std::vector<cd::Disk> disks;  // indexed by body; disks[0] stands for the world
+  std::vector<ContactKinematics> kinematics;
+  std::vector<cd::Contact> contacts;
+  cd::BodySet bodies;
+  int body_count() const { return static_cast<int>(disks.size()) - 1; }  // the world excluded
+};
+
+// Disks of radius U[0.4, 0.6] dropped one by one against the cluster, each overlapping one
+// placed disk, or two (a nest, closing loops of contacts), by 1e-6..1e-3 m and no other disk by
+// more: every intended contact has gap < 0, an impact, so zero restitution leaves no velocity
+// bias and q is the free relative velocity.
+std::vector<cd::Disk> random_cluster(int count, std::mt19937_64& rng)
+{
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto overlap = [&] { return 1e-6 + (1e-3 - 1e-6) * unit(rng); };
+  std::vector<cd::Disk> disks(1);
+  disks.push_back({0.0, 0.0, 0.4 + 0.2 * unit(rng)});
+  while (static_cast<int>(disks.size()) <= count) {
+    cd::Disk d{0.0, 0.0, 0.4 + 0.2 * unit(rng)};
+    const int placed = static_cast<int>(disks.size()) - 1;
+    const cd::Disk& p = disks[1 + static_cast<int>(unit(rng) * placed) % placed];
+    int nest = 0;  // a second disk to touch, if any is close enough
+    if (placed > 1 && unit(rng) < 0.5) {
+      double best = std::numeric_limits<double>::infinity();
+      for (int j = 1; j <= placed; ++j) {
+        const double dist = std::hypot(disks[j].x - p.x, disks[j].y - p.y);
+        if (dist > 0.0 && dist < best) best = dist, nest = j;
+      }
+    }
+    if (nest) {
+      const cd::Disk& q = disks[nest];
+      const double a = p.radius + d.radius - overlap(), b = q.radius + d.radius - overlap();
+      const double ex = q.x - p.x, ey = q.y - p.y, dist = std::hypot(ex, ey);
+      if (dist >= a + b) continue;
+      const double along = (a * a - b * b + dist * dist) / (2.0 * dist);
+      const double side = (unit(rng) < 0.5 ? -1.0 : 1.0) * std::sqrt(a * a - along * along);
+      d.x = p.x + (along * ex - side * ey) / dist;
+      d.y = p.y + (along * ey + side * ex) / dist;
+    } else {
+      const double angle = 2.0 * M_PI * unit(rng);
+      const double dist = p.radius + d.radius - overlap();
+      d.x = p.x + dist * std::cos(angle);
+      d.y = p.y + dist * std::sin(angle);
+    }
+    bool fits = true;
+    for (int j = 1; j <= placed && fits; ++j)
+      fits = std::hypot(d.x - disks[j].x, d.y - disks[j].y) - d.radius - disks[j].radius >= -1e-3;
+    if (fits) disks.push_back(d);
+  }
+  return disks;
+}
+
+// The cluster on a floor and against a left wall (both overlapping their nearest disks by
+// 5e-4 m), bodies with m = pi r^2, I = m r^2 / 2 and a free velocity that compresses the
+// cluster towards its centre and the floor, plus noise and spin.
+Scene random_scene(int disk_count, double mu, std::mt19937_64& rng)
+{
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Scene s;
+  s.disks = random_cluster(disk_count, rng);
+  const int n = s.body_count();
+
+  s.bodies.reset(n + 1);
+  double cx = 0.0, cy = 0.0;
+  for (int i = 1; i <= n; ++i) cx += s.disks[i].x / n, cy += s.disks[i].y / n;
+  for (int i = 1; i <= n; ++i) {
+    const cd::Disk& d = s.disks[i];
+    const double mass = M_PI * d.radius * d.radius;
+    s.bodies.inertia[i] = {1.0 / mass, 1.0 / (0.5 * mass * d.radius * d.radius)};
+    s.bodies.velocity[i] = {-0.3 * (d.x - cx) + (2.0 * unit(rng) - 1.0),
+                            -0.3 * (d.y - cy) - 0.5 + (2.0 * unit(rng) - 1.0), 4.0 * unit(rng) - 2.0};
+  }
+  s.bodies.start_velocity = s.bodies.velocity;
+
+  const cd::ContactLaw law{mu, 0.0};
+  const cd::StepParameters step{1e-3, 0.5};
+  auto add = [&](const cd::ContactGeometry& g, const ContactKinematics& k) {
+    cd::Contact c = cd::contact_frame(g);
+    cd::prepare_mechanics(c, law, s.bodies, step);
+    s.contacts.push_back(c);
+    s.kinematics.push_back(k);
+  };
+  for (int i = 1; i <= n; ++i)
+    for (int j = i + 1; j <= n; ++j) {
+      const bool flip = unit(rng) < 0.5;  // either disk may be body a
+      const int a = flip ? j : i, b = flip ? i : j;
+      const cd::Disk &da = s.disks[a], &db = s.disks[b];
+      const double dist = std::hypot(da.x - db.x, da.y - db.y);
+      if (dist - da.radius - db.radius >= 0.0) continue;
+      add(cd::disk_disk_geometry(a, da, b, db),
+          {a, b, (da.x - db.x) / dist, (da.y - db.y) / dist, da.radius, db.radius});
+    }
+  double floor_y = std::numeric_limits<double>::infinity(), wall_x = floor_y;
+  for (int i = 1; i <= n; ++i) {
+    floor_y = std::min(floor_y, s.disks[i].y - s.disks[i].radius + 5e-4);
+    wall_x = std::min(wall_x, s.disks[i].x - s.disks[i].radius + 5e-4);
+  }
+  for (int i = 1; i <= n; ++i) {
+    const cd::Disk& d = s.disks[i];
+    if (d.y - d.radius < floor_y)
+      add(cd::disk_world_geometry(i, d, 0.0, d.y - floor_y, 0.0, 1.0),
+          {i, cd::world_body, 0.0, 1.0, d.radius, 0.0});
+    if (d.x - d.radius < wall_x)
+      add(cd::disk_world_geometry(i, d, d.x - wall_x, 0.0, 1.0, 0.0),
+          {i, cd::world_body, 1.0, 0.0, d.radius, 0.0});
+  }
+  return s;
+}
+
+// H, the 2m x 3N map from body velocities (vx, vy, spin of bodies 1..N) to contact velocities,
+// row-major, from the kinematics of rigid disks: the contact point of a is c_a = x_a - r_a n,
+// of b is x_b + r_b n, and omega x (-r n) = -r omega t with t = (-n_y, n_x), so
+//   u_n = (v_a - v_b) . n,   u_t = (v_a - v_b) . t - r_a omega_a - r_b omega_b.
+std::vector<double> contact_jacobian(const Scene& s)
+{
+  const int m = static_cast<int>(s.kinematics.size()), cols = 3 * s.body_count();
+  std::vector<double> h(2 * m * cols, 0.0);
+  for (int k = 0; k < m; ++k) {
+    const ContactKinematics& c = s.kinematics[k];
+    const double tx = -c.ny, ty = c.nx;
+    double* normal = &h[(2 * k) * cols];
+    double* tangent = &h[(2 * k + 1) * cols];
+    const int a = 3 * (c.body_a - 1);
+    normal[a] += c.nx, normal[a + 1] += c.ny;
+    tangent[a] += tx, tangent[a + 1] += ty, tangent[a + 2] -= c.lever_a;
+    if (c.body_b != cd::world_body) {
+      const int b = 3 * (c.body_b - 1);
+      normal[b] -= c.nx, normal[b + 1] -= c.ny;
+      tangent[b] -= tx, tangent[b + 1] -= ty, tangent[b + 2] -= c.lever_b;
+    }
+  }
+  return h;
+}
+
+std::vector<double> generalized(const std::vector<cd::BodyVelocity>& v)
+{
+  std::vector<double> g;
+  for (std::size_t i = 1; i < v.size(); ++i) g.insert(g.end(), {v[i].vx, v[i].vy, v[i].spin});
+  return g;
+}
+
+std::vector<double> times(const std::vector<double>& matrix, int rows, const std::vector<double>& x)
+{
+  const int cols = static_cast<int>(x.size());
+  std::vector<double> y(rows, 0.0);
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j) y[i] += matrix[i * cols + j] * x[j];
+  return y;
+}
+
+// W = H M^-1 H^T and q = H v_free, assembled independently of the core's contact blocks.
+Fc2dProblem assemble(const Scene& s, const std::vector<double>& h, double mu)
+{
+  const int m = static_cast<int>(s.contacts.size()), cols = 3 * s.body_count();
+  std::vector<double> inverse_mass(cols);
+  for (int i = 1; i <= s.body_count(); ++i) {
+    inverse_mass[3 * (i - 1)] = inverse_mass[3 * (i - 1) + 1] = s.bodies.inertia[i].inv_mass;
+    inverse_mass[3 * (i - 1) + 2] = s.bodies.inertia[i].inv_inertia;
+  }
+  Fc2dProblem p(m);
+  for (int i = 0; i < 2 * m; ++i)
+    for (int j = 0; j < 2 * m; ++j) {
+      double sum = 0.0;
+      for (int k = 0; k < cols; ++k) sum += h[i * cols + k] * inverse_mass[k] * h[j * cols + k];
+      p.w(i, j) = sum;
+    }
+  p.free_velocity = times(h, 2 * m, generalized(s.bodies.velocity));
+  p.mu.assign(m, mu);
+  return p;
+}
+
+TEST(SiconosScene, GaussSeidelAgreesWithFc2dSolvers)
+{
+  std::mt19937_64 rng(1234567);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double mus[] = {0.0, 0.05, 0.5, 2.0};
+  const int scenes_per_mu = 6;
+
+  for (double mu : mus) {
+    for (int k = 0; k < scenes_per_mu; ++k) {
+      const int disk_count = 5 + static_cast<int>(36 * unit(rng));
+      Scene scene = random_scene(disk_count, mu, rng);
+      const int m = static_cast<int>(scene.contacts.size());
+      const std::vector<double> h = contact_jacobian(scene);
+      const Fc2dProblem p = assemble(scene, h, mu);
+
+      // The test's H against the core's kinematics, on an arbitrary velocity field.
+      std::vector<cd::BodyVelocity> probe(scene.body_count() + 1);
+      for (int i = 1; i <= scene.body_count(); ++i)
+        probe[i] = {2.0 * unit(rng) - 1.0, 2.0 * unit(rng) - 1.0, 2.0 * unit(rng) - 1.0};
+      const std::vector<double> u_probe = times(h, 2 * m, generalized(probe));
+      for (int c = 0; c < m; ++c) {
+        const cd::Contact& contact = scene.contacts[c];
+        const cd::Local2 u = cd::relative_velocity(contact, probe[contact.body_a], probe[contact.body_b]);
+        EXPECT_NEAR(u.n, u_probe[2 * c], 1e-14);
+        EXPECT_NEAR(u.t, u_probe[2 * c + 1], 1e-14);
+        EXPECT_NEAR(contact.delassus.nn, p.w(2 * c, 2 * c), 1e-14 * p.w(2 * c, 2 * c));
+        EXPECT_NEAR(contact.delassus.nt, p.w(2 * c, 2 * c + 1), 1e-14 * p.w(2 * c, 2 * c));
+        EXPECT_NEAR(contact.delassus.tt, p.w(2 * c + 1, 2 * c + 1), 1e-14 * p.w(2 * c + 1, 2 * c + 1));
+      }
+
+      // The core: Gauss–Seidel from zero impulses.
+      std::vector<cd::BodyVelocity> velocity = scene.bodies.velocity;
+      cd::apply_impulses(scene.contacts, velocity);
+      cd::SolverSettings settings;
+      settings.tolerance = 1e-12;
+      settings.max_iterations = 200000;
+      const cd::SolveReport report = cd::solve_gauss_seidel(scene.contacts, velocity, settings);
+      EXPECT_TRUE(report.converged);
+      std::vector<double> r_ours(2 * m), u_bodies(2 * m);
+      for (int c = 0; c < m; ++c) {
+        const cd::Contact& contact = scene.contacts[c];
+        r_ours[2 * c] = contact.impulse.n;
+        r_ours[2 * c + 1] = contact.impulse.t;
+        const cd::Local2 u = cd::relative_velocity(contact, velocity[contact.body_a], velocity[contact.body_b]);
+        u_bodies[2 * c] = u.n;
+        u_bodies[2 * c + 1] = u.t;
+      }
+      const std::vector<double> u_ours = p.velocity(r_ours);
+
+      const Spectrum spectrum = symmetric_spectrum(p.delassus, 2 * m);
+      std::vector<double> tangential_gram(m * m, 0.0);  // W_T W_T^T, W_T the tangential rows
+      for (int i = 0; i < m; ++i)
+        for (int j = 0; j < m; ++j)
+          for (int l = 0; l < 2 * m; ++l) tangential_gram[i + j * m] += p.w(2 * i + 1, l) * p.w(2 * j + 1, l);
+      const double tangential_norm = std::sqrt(symmetric_spectrum(tangential_gram, m).max);
+      const double monotonicity = spectrum.min - mu * tangential_norm;
+      const double lipschitz = spectrum.max + mu * tangential_norm;
+
+      const double impulse_scale = std::max(norm2(r_ours), norm2(p.free_velocity) / spectrum.max);
+      const double velocity_scale = norm2(p.free_velocity) + spectrum.max * impulse_scale;
+
+      const double ours_core = core_error(p, r_ours), ours_siconos = siconos_error(p, r_ours);
+      std::printf("mu %g disks %d contacts %d: GS %d iterations, lambda [%.3g, %.3g], |W_T| %.3g, c %.3g; "
+                  "u bodies-assembled %.3g; ours residual %.3g / %.3g (scale P %.3g V %.3g)\n",
+                  mu, disk_count, m, report.iterations, spectrum.min, spectrum.max, tangential_norm,
+                  monotonicity, distance(u_bodies, u_ours) / velocity_scale, ours_core / impulse_scale,
+                  ours_siconos / impulse_scale, impulse_scale, velocity_scale);
+
+      const SiconosSolution nsgs = solve_with_siconos(p, SICONOS_FRICTION_2D_NSGS, 1e-12, 200000);
+      const SiconosSolution lemke = solve_with_siconos(p, SICONOS_FRICTION_2D_LEMKE, 1e-12, 100000);
+      for (const auto* s : {&nsgs, &lemke}) {
+        const double e_core = core_error(p, s->reaction), e_sic = siconos_error(p, s->reaction);
+        std::printf("   %s: info %d iterations %d residual %.3g / %.3g, impulse gap %.3g, velocity gap %.3g\n",
+                    s == &nsgs ? "NSGS" : "Lemke", s->info, s->iterations, e_core / impulse_scale,
+                    e_sic / impulse_scale, distance(r_ours, s->reaction) / impulse_scale,
+                    distance(u_ours, p.velocity(s->reaction)) / velocity_scale);
+      }
+      if (m <= 5) {
+        const SiconosSolution en = solve_with_siconos(p, SICONOS_FRICTION_2D_ENUM, 1e-12, 100000);
+        std::printf("   Enum: info %d residual %.3g, impulse gap %.3g\n", en.info,
+                    core_error(p, en.reaction) / impulse_scale, distance(r_ours, en.reaction) / impulse_scale);
+      }
+    }
+  }
 }
 
 }  // namespace
