@@ -27,6 +27,7 @@ struct SyntheticRun {
   double noise = 0.3;        // sqrt(g d), white noise on v(t)
   double creep_lambda = 3.0; // d
   unsigned seed = 1;
+  bool with_chunks_and_dump = true;
 
   double v0() const { return std::sqrt(g * d); }
   double u_of_t(double t) const { return u_final * (1 - std::exp(-t / relaxation)); }
@@ -53,6 +54,7 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const Syntheti
                     run.phi + 0.005 * gauss(rng), (run.h + 0.3 * gauss(rng)) * run.d});
   }
   write_file(dir / "flow.time", ave_time_text({"TimeStep", "v_time", "v_u_all", "v_u_flow", "v_v_flow", "v_phi_flow", "v_h"}, rows));
+  if (!run.with_chunks_and_dump) return;
 
   std::vector<long> profile_steps;
   for (long step = 10000; step <= steps; step += 10000) profile_steps.push_back(step);

@@ -123,9 +123,12 @@ Figure flow_rule_figure(const SeriesAnalysis& series) {
                                }));
     }
   auto p = panel("U against tilt with the flow rules (curves at the mean h of each mu)", "theta (deg)", "U / sqrt(g d)", curves);
-  auto [t0, t1] = x_extent(by_friction(series, "theta", "U"));
+  const auto measured = by_friction(series, "theta", "U");
+  auto [t0, t1] = x_extent(measured);
+  double u_max = 0;
+  for (const auto& c : measured) u_max = std::max(u_max, *std::max_element(c.y.begin(), c.y.end()));
   p.x_range = std::make_pair(t0 - 1, t1 + 1);
-  p.log_y = true;
+  p.y_range = std::make_pair(0.0, 1.3 * u_max);  // the rules diverge at theta2
   return {"U_vs_theta", "U against theta with Pouliquen's and the mu(I) rule", {p}};
 }
 

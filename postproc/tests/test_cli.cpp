@@ -1,0 +1,155 @@
+// The cdpost executable end to end on synthetic run directories.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "synthetic_run.h"
+
+namespace cdpost {
+namespace {
+
+struct Outcome {
+  int status;
+  std::string out, err;
+};
+
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Outcome cdpost(const std::string& arguments) {
+  auto dir = testing::scratch_dir();
+  std::string command = std::string(CDPOST_EXE) + " " + arguments + " >" + (dir / "out.txt").string() + " 2>" + (dir / "err.txt").string();
+  int status = std::system(command.c_str());
+  return {WEXITSTATUS(status), slurp(dir / "out.txt"), slurp(dir / "err.txt")};
+}
+
+size_t line_count(const std::string& text) { return static_cast<size_t>(std::count(text.begin(), text.end(), '\n')); }
+
+// The value column of row `name` in a name,value,error,... CSV.
+double csv_value(const std::filesystem::path& csv, const std::string& name) {
+  std::istringstream lines(slurp(csv));
+  std::string line;
+  while (std::getline(lines, line))
+    if (line.rfind(name + ",", 0) == 0) return std::stod(line.substr(name.size() + 1));
+  ADD_FAILURE() << "no row " << name << " in " << csv;
+  return 0;
+}
+
+TEST(Cli, HelpAndUsageErrors) {
+  auto help = cdpost("--help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.out.find("series MANIFEST"), std::string::npos);
+  auto run_help = cdpost("run --help");
+  EXPECT_EQ(run_help.status, 0);
+  EXPECT_NE(run_help.out.find("--col-v-flow NAME"), std::string::npos);
+  auto unknown = cdpost("run . --frobnicate 3");
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_EQ(unknown.err, "cdpost: cdpost run: unknown option '--frobnicate' (see cdpost --help)\n");
+  EXPECT_EQ(cdpost("run . --dt abc").status, 2);
+  EXPECT_EQ(cdpost("transmogrify").status, 2);
+}
+
+TEST(Cli, RunWritesResultsFiguresAndReport) {
+  auto dir = testing::scratch_dir() / "run";
+  testing::SyntheticRun truth;
+  truth.duration = 4.0;
+  testing::write_synthetic_run(dir, truth);
+  auto outcome = cdpost(dir.string() + " --dump " + (dir / "dump.chute.gz").string());
+  EXPECT_EQ(outcome.status, 2);  // the subcommand is missing
+  outcome = cdpost("run " + dir.string() + " --dump " + (dir / "dump.chute.gz").string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_NE(outcome.out.find("f "), std::string::npos);
+  EXPECT_NEAR(csv_value(dir / "post/results.csv", "f"), truth.frequency, 1.0);
+  EXPECT_NE(slurp(dir / "post/results.json").find("\"name\": \"A_mean\""), std::string::npos);
+  for (const char* figure : {"u_t", "spectrum", "profile", "spectra_depth", "snapshot"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir / "post/figures" / (std::string(figure) + ".png"))) << figure;
+    EXPECT_TRUE(std::filesystem::exists(dir / "post/figures" / (std::string(figure) + ".svg"))) << figure;
+    EXPECT_NE(slurp(dir / "post/report.md").find("figures/" + std::string(figure) + ".png"), std::string::npos);
+  }
+}
+
+TEST(Cli, BrokenInputGivesOneLineNamingFileAndLine) {
+  auto dir = testing::scratch_dir() / "run";
+  testing::SyntheticRun truth;
+  truth.duration = 1.0;
+  truth.with_chunks_and_dump = false;
+  testing::write_synthetic_run(dir, truth);
+  auto text = slurp(dir / "flow.time");
+  testing::write_file(dir / "flow.time", text.substr(0, text.size() - 30));  // cut inside the last row
+  auto outcome = cdpost("run " + dir.string());
+  EXPECT_EQ(outcome.status, 1);
+  EXPECT_EQ(line_count(outcome.err), 1u) << outcome.err;
+  EXPECT_EQ(outcome.err.rfind("cdpost: error: " + (dir / "flow.time").string() + ":1001: expected 7 values", 0), 0u) << outcome.err;
+
+  testing::write_file(dir / "flow.time", "");
+  outcome = cdpost("run " + dir.string());
+  EXPECT_EQ(outcome.err, "cdpost: error: " + (dir / "flow.time").string() + ": file is empty\n");
+  EXPECT_EQ(cdpost("snapshot " + (dir / "nothing.gz").string()).status, 1);
+}
+
+TEST(Cli, SpectrumOfOneColumn) {
+  auto dir = testing::scratch_dir() / "run";
+  testing::SyntheticRun truth;
+  truth.duration = 2.0;
+  truth.with_chunks_and_dump = false;
+  testing::write_synthetic_run(dir, truth);
+  auto outcome = cdpost("spectrum " + (dir / "flow.time").string() + " --column v_v_flow --out " + (dir / "s").string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_NEAR(csv_value(dir / "s/spectrum_results.csv", "f"), truth.frequency, 1.0);
+}
+
+// A series following the mu(I) rule (I0 = 0.3) with f = 0.9 (sqrt(g d)/U g/d)^(1/2),
+// phi = phi_c(mu) - 0.002 U/sqrt(g d), plus an L series.
+TEST(Cli, SeriesRecoversTheFlowRulesAndScalings) {
+  auto dir = testing::scratch_dir();
+  std::ofstream manifest(dir / "series.csv");
+  manifest << "# synthetic series\nrun,mu,theta,L\n";
+  struct Friction { double mu, theta1, theta2, phi_c; std::vector<double> angles; };
+  const std::vector<Friction> frictions = {{0.05, 15, 26, 0.82, {16, 17.5, 19, 20.5, 22}}, {0.5, 21, 33, 0.80, {22, 23.5, 25, 26.5, 28}}};
+  int index = 0;
+  for (const auto& friction : frictions)
+    for (double theta : friction.angles) {
+      auto t = [](double deg) { return std::tan(deg * M_PI / 180); };
+      testing::SyntheticRun run;
+      run.duration = 2.5;
+      run.relaxation = 0.1;
+      run.with_chunks_and_dump = false;
+      run.seed = static_cast<unsigned>(++index);
+      const double inertial = 0.3 * (t(theta) - t(friction.theta1)) / (t(friction.theta2) - t(theta));
+      run.u_final = inertial * std::pow(run.h, 1.5);
+      run.phi = friction.phi_c - 0.002 * run.u_final;
+      run.frequency = 0.9 * std::sqrt(std::sqrt(run.g / run.d) * std::sqrt(run.g / run.d) / run.u_final);
+      const std::string name = "run" + std::to_string(index);
+      testing::write_synthetic_run(dir / name, run);
+      manifest << name << "," << friction.mu << "," << theta << "," << 45 + 10 * index << "\n";
+    }
+  manifest.close();
+  auto outcome = cdpost("series " + (dir / "series.csv").string() + " --out " + (dir / "post").string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const auto fits = dir / "post/fits.csv";
+  EXPECT_NEAR(csv_value(fits, "muI_I0"), 0.3, 0.03);
+  EXPECT_NEAR(csv_value(fits, "muI_theta1_mu0.5"), 21, 0.5);
+  EXPECT_NEAR(csv_value(fits, "muI_theta2_mu0.05"), 26, 0.5);
+  EXPECT_NEAR(csv_value(fits, "phi_k"), 0.002, 0.0003);
+  EXPECT_NEAR(csv_value(fits, "phi_c_mu0.05"), 0.82, 0.003);
+  EXPECT_NEAR(csv_value(fits, "f_vs_scale_exponent"), 1.0, 0.1);
+  EXPECT_GT(csv_value(fits, "f_vs_scale_correlation"), 0.95);
+  EXPECT_NEAR(csv_value(fits, "pouliquen_theta1_mu0.5"), 21, 2.0);
+  for (const char* figure : {"f_vs_scale", "f_vs_shear_rate", "A_vs_U", "A_vs_phi", "phi_vs_U", "U_vs_theta", "L_series"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "post/figures" / (std::string(figure) + ".png"))) << figure;
+  EXPECT_EQ(line_count(slurp(dir / "post/runs.csv")), 11u);
+
+  std::ofstream(dir / "bad.csv") << "run,mu,theta\nrun1,0.5\n";
+  auto bad = cdpost("series " + (dir / "bad.csv").string());
+  EXPECT_EQ(bad.err, "cdpost: error: " + (dir / "bad.csv").string() + ":2: expected 3 fields (run, mu, theta), found 2\n");
+}
+
+}  // namespace
+}  // namespace cdpost
