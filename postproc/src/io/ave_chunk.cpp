@@ -4,6 +4,7 @@
 
 #include "io/ave_time.h"
 #include "io/line_source.h"
+#include "io/progress.h"
 #include "io/tokens.h"
 
 namespace cdpost {
@@ -21,15 +22,13 @@ bool ChunkSeries::has(const std::string& name) const {
 
 namespace {
 
-bool is_blank(const std::string& line) { return line.find_first_not_of(" \t") == std::string::npos; }
-
 // Reads the '#' lines; returns the value column names from the "# Chunk ..." line and
 // leaves `line` holding the first data line.
 std::vector<std::string> read_header(LineSource& source, std::string& line) {
   std::vector<std::string> names;
   while (source.next(line)) {
     if (is_blank(line)) continue;
-    if (line.find_first_not_of(" \t") != line.find('#')) break;
+    if (!is_comment(line)) break;
     auto comment_names = header_names(line.substr(line.find('#')));
     if (!comment_names.empty() && comment_names.front() == "Chunk")
       names.assign(comment_names.begin() + 1, comment_names.end());
@@ -78,15 +77,12 @@ void read_block(LineSource& source, const std::string& line, ChunkSeries& series
   read_block_rows(source, series, timestep);
 }
 
-// LAMMPS repeats the header when a restarted run appends to the file: it must not change.
 void check_repeated_header(const LineSource& source, const std::string& line,
                            const ChunkSeries& series) {
   auto names = header_names(line.substr(line.find('#')));
   if (names.empty() || names.front() != "Chunk") return;
   names.erase(names.begin());
-  if (names != series.names)
-    source.fail("column header changed from (" + join_names(series.names) + ") to (" +
-                join_names(names) + ")");
+  require_same_columns(source, series.names, names);
 }
 
 }  // namespace
@@ -97,11 +93,13 @@ ChunkSeries read_ave_chunk(const std::string& path) {
   series.source = path;
   std::string line;
   series.names = read_header(source, line);
-  bool have_line = !is_blank(line) && line.find('#') == std::string::npos;
+  bool have_line = !is_blank(line) && !is_comment(line);
   if (!have_line) source.fail("no data blocks (only comments)");
+  Progress progress("reading " + path, true);
   do {
+    progress.update(source.fraction_read());
     if (is_blank(line)) continue;
-    if (line.find('#') != std::string::npos)
+    if (is_comment(line))
       check_repeated_header(source, line, series);
     else
       read_block(source, line, series);

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "io/line_source.h"
+#include "io/progress.h"
 #include "io/tokens.h"
 
 namespace cdpost {
@@ -33,12 +34,6 @@ std::string join_names(const std::vector<std::string>& names) {
 
 namespace {
 
-bool is_comment(const std::string& line) {
-  auto first = line.find_first_not_of(" \t");
-  return first != std::string::npos && line[first] == '#';
-}
-bool is_blank(const std::string& line) { return line.find_first_not_of(" \t") == std::string::npos; }
-
 void append_row(ColumnTable& table, const std::string& line, const LineSource& source) {
   auto tokens = split_whitespace(line);
   if (tokens.size() != table.names.size())
@@ -49,16 +44,13 @@ void append_row(ColumnTable& table, const std::string& line, const LineSource& s
   table.row_lines.push_back(source.line_number());
 }
 
-// A repeated header (LAMMPS writes one again after a restart with `append`) must name the
-// same columns as the first one.
 void accept_header(ColumnTable& table, const std::vector<std::string>& names,
                    const LineSource& source) {
   if (table.names.empty()) {
     table.names = names;
     table.columns.assign(names.size(), {});
-  } else if (names != table.names) {
-    source.fail("column header changed from (" + join_names(table.names) + ") to (" +
-                join_names(names) + ")");
+  } else {
+    require_same_columns(source, table.names, names);
   }
 }
 
@@ -81,7 +73,9 @@ ColumnTable read_ave_time(const std::string& path) {
   std::string line;
   std::vector<std::string> last_comment_names;
   bool expecting_header = true;
+  Progress progress("reading " + path, true);
   while (source.next(line)) {
+    if (source.line_number() % 4096 == 0) progress.update(source.fraction_read());
     if (is_blank(line)) continue;
     if (is_comment(line)) {
       last_comment_names = header_names(line.substr(line.find('#')));

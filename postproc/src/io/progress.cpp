@@ -16,6 +16,7 @@ Progress::~Progress() {
 void Progress::update(double fraction, const std::string& detail) {
   if (!shown_) return;
   auto now = std::chrono::steady_clock::now();
+  if (now - start_ < std::chrono::seconds(1)) return;
   if (printed_ && now - last_ < std::chrono::milliseconds(250)) return;
   last_ = now;
   printed_ = true;

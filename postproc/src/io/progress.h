@@ -1,4 +1,5 @@
-// Progress of a long read, shown on stderr (only when stderr is a terminal or when forced).
+// Progress of a long task, shown on stderr (only when stderr is a terminal or when forced,
+// and only once the task has run for a second, so short reads stay quiet).
 #pragma once
 
 #include <chrono>
@@ -18,6 +19,7 @@ class Progress {
   std::string label_;
   bool shown_;
   bool printed_ = false;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   std::chrono::steady_clock::time_point last_;
 };
 

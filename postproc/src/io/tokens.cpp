@@ -21,6 +21,23 @@ std::vector<std::string_view> split_whitespace(std::string_view line) {
   return tokens;
 }
 
+bool is_blank(std::string_view line) { return line.find_first_not_of(" \t") == std::string_view::npos; }
+
+bool is_comment(std::string_view line) {
+  auto first = line.find_first_not_of(" \t");
+  return first != std::string_view::npos && line[first] == '#';
+}
+
+void require_same_columns(const LineSource& source, const std::vector<std::string>& first,
+                          const std::vector<std::string>& repeated) {
+  auto joined = [](const std::vector<std::string>& names) {
+    std::string text;
+    for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
+    return text;
+  };
+  if (repeated != first) source.fail("column header changed from (" + joined(first) + ") to (" + joined(repeated) + ")");
+}
+
 double parse_number(std::string_view token, const LineSource& source, const std::string& what) {
   double value = 0;
   const char* first = token.data();
