@@ -42,11 +42,11 @@ if [ ! -f "$headers/.complete" ]; then
   tmp=$(mktemp -d)
   (cd "$tmp" && apt-get source -q --download-only lammps >/dev/null)
   tarball=$(ls "$tmp"/lammps_*.orig.tar.* | head -n1)
+  tar -xf "$tarball" -C "$tmp" --wildcards '*/src/*.h'
+  source_dir=$(dirname "$(ls -d "$tmp"/*/src/fmt)")
   mkdir -p "$headers/fmt"
-  top_dir=$(tar -tf "$tarball" | head -n1 | cut -d/ -f1)
-  tar -xf "$tarball" -C "$tmp" "$top_dir/src"
-  cp "$tmp/$top_dir"/src/fmt/*.h "$headers/fmt/"
-  cp "$tmp/$top_dir"/src/*.h "$headers/"
+  cp "$source_dir"/fmt/*.h "$headers/fmt/"
+  cp "$source_dir"/*.h "$headers/"
   touch "$headers/.complete"
   rm -rf "$tmp"
 fi
