@@ -46,17 +46,14 @@ double wall_key(int wall_index, cd::WallPart part)
 FixContactDynamics::FixContactDynamics(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), theta(0.5), order(ContactOrder::fixed), warm_start(true),
     max_contacts(12), disc_density(0.0), alert_distance(-1.0), alert_given(false), list(nullptr), covered_radius(0.0), mean_diameter(0.0),
-    natoms_checked(-1), max_overlap(0.0), mean_overlap(0.0), loaded_contacts(0),
+    natoms_checked(-1), distributed(false), max_overlap(0.0), mean_overlap(0.0),
+    solved_contacts_total(0.0), loaded_contacts_total(0.0), loaded_contacts(0),
     total_iterations(0.0), total_unconverged_steps(0.0), total_steps(0.0), history(nullptr),
     local_rows_allocated(0)
 {
   if (domain->dimension != 2) error->all(FLERR, "Fix contact/dynamics requires dimension 2");
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
     error->all(FLERR, "Fix contact/dynamics requires atom_style sphere (per-atom radius, rmass, omega)");
-  if (comm->nprocs > 1)
-    error->all(FLERR, "Fix contact/dynamics runs on one MPI rank only in this version (got {})",
-               comm->nprocs);
-
   parse_arguments(narg, arg);
 
   time_integrate = 1;
@@ -70,6 +67,8 @@ FixContactDynamics::FixContactDynamics(LAMMPS *lmp, int narg, char **arg) :
   restart_global = 1;
   restart_peratom = 1;
   create_attribute = 1;
+  comm_forward = 3;    // vx, vy, spin of a body
+  comm_reverse = 3;    // the change of a ghost's vx, vy, spin over one sweep
 
   history_width = 1 + 3 * max_contacts;
   maxexchange = history_width;
@@ -293,8 +292,7 @@ int FixContactDynamics::parse_wall(int iarg, int narg, char **arg)
 
 void FixContactDynamics::init()
 {
-  if (comm->nprocs > 1)
-    error->all(FLERR, "Fix contact/dynamics runs on one MPI rank only in this version (got {})", comm->nprocs);
+  distributed = comm->nprocs > 1;
   if (!comm->ghost_velocity)
     error->all(FLERR, "Fix contact/dynamics requires ghost velocities: use comm_modify vel yes");
   if (atom->map_style == Atom::MAP_NONE)
@@ -409,6 +407,23 @@ void FixContactDynamics::setup(int)
 {
   if (disc_density > 0.0) assign_disc_masses();
   check_disk_masses();
+  check_subdomains();
+}
+
+// A ghost must be one hop from its owner: the exchange sends each ghost's velocity change
+// straight back to the rank that owns it.
+void FixContactDynamics::check_subdomains()
+{
+  if (!distributed) return;
+  const double cutoff = 2.0 * covered_radius + neighbor->skin;
+  int thin_local = 0;
+  for (int axis = 0; axis < 2; axis++)
+    if (domain->subhi[axis] - domain->sublo[axis] < cutoff) thin_local = 1;
+  int thin = 0;
+  MPI_Allreduce(&thin_local, &thin, 1, MPI_INT, MPI_MAX, world);
+  if (thin)
+    error->all(FLERR, "Fix contact/dynamics: an MPI subdomain is thinner than the contact cutoff "
+               "{} (2 max radius + skin); use fewer ranks or another processors grid", cutoff);
 }
 
 void FixContactDynamics::pre_force(int)
@@ -441,6 +456,7 @@ void FixContactDynamics::final_integrate()
     if (disc_density > 0.0) assign_disc_masses();
     check_disk_masses();
   }
+  if (neighbor->ago == 0) check_subdomains();
   gather_bodies();
   contacts.clear();
   records.clear();
@@ -451,12 +467,16 @@ void FixContactDynamics::final_integrate()
   if (warm_start) load_warm_start();
 
   cd::apply_impulses(contacts, bodies.velocity);
-  last_report = cd::solve_gauss_seidel(contacts, bodies.velocity, solver_settings);
+  RankExchange exchange(*this);
+  if (distributed) exchange.synchronise_velocities();
+  last_report = cd::solve_gauss_seidel(contacts, bodies.velocity, solver_settings,
+                                       distributed ? &exchange : nullptr);
 
   store_warm_start();
   write_back_motion();
   measure_overlaps();
   fill_local_output();
+  reduce_step_outputs();
 
   total_iterations += last_report.iterations;
   total_steps += 1.0;
@@ -478,19 +498,25 @@ const cd::ContactLaw &FixContactDynamics::law(int itype, int jtype) const
   return type_laws[itype * (atom->ntypes + 1) + jtype];
 }
 
-// Body of an atom: owned atoms are bodies 1..nlocal; a periodic ghost is its owner's body.
-int FixContactDynamics::body_of(int j) const
+// Bodies: 0 is the world, 1 + i an owned atom i, 1 + g a ghost g whose owner is on another
+// rank. A periodic image of an owned atom is that atom's body; several images of one remote
+// atom share the body of the image LAMMPS's atom map returns.
+void FixContactDynamics::map_bodies()
 {
-  if (j < atom->nlocal) return 1 + j;
-  const int owner = atom->map(atom->tag[j]);
-  if (owner < 0 || owner >= atom->nlocal)
-    error->one(FLERR, "Fix contact/dynamics: ghost atom {} has no owner on this rank", atom->tag[j]);
-  return 1 + owner;
+  const int nall = atom->nlocal + atom->nghost;
+  body_of_atom.resize(nall);
+  for (int j = 0; j < nall; j++) {
+    const int canonical = j < atom->nlocal ? j : atom->map(atom->tag[j]);
+    if (canonical < 0)
+      error->one(FLERR, "Fix contact/dynamics: ghost atom {} is missing from the atom map", atom->tag[j]);
+    body_of_atom[j] = 1 + canonical;
+  }
 }
 
 void FixContactDynamics::gather_bodies()
 {
   const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
   const double dt = update->dt;
   double **v = atom->v;
   double **f = atom->f;
@@ -500,22 +526,31 @@ void FixContactDynamics::gather_bodies()
   const double *rmass = atom->rmass;
   const int *mask = atom->mask;
 
-  bodies.reset(1 + nlocal);
-  for (int i = 0; i < nlocal; i++) {
-    if (radius[i] > covered_radius)
+  map_bodies();
+  bodies.reset(1 + nall);
+  for (int i = 0; i < nall; i++) {
+    if (body_of_atom[i] != 1 + i) continue;    // a periodic image of another body
+    if (i < nlocal && radius[i] > covered_radius)
       error->one(FLERR, "Fix contact/dynamics: atom {} has radius {}, larger than the {} the "
                  "neighbour cutoff was set for; start a new run", atom->tag[i], radius[i], covered_radius);
     const cd::BodyVelocity start{v[i][0], v[i][1], omega[i][2]};
     bodies.start_velocity[1 + i] = start;
     bodies.velocity[1 + i] = start;
     if (!(mask[i] & groupbit)) continue;    // obstacle: infinite mass, keeps its velocity
+    // Ghost masses are refreshed only at reneighbouring: take them from the density if set.
+    const double mass = disc_density > 0.0 ? MY_PI * radius[i] * radius[i] * disc_density : rmass[i];
     cd::BodyInertia &inertia = bodies.inertia[1 + i];
-    inertia.inv_mass = 1.0 / rmass[i];
-    inertia.inv_inertia = 1.0 / (disk_inertia_factor * rmass[i] * radius[i] * radius[i]);
+    inertia.inv_mass = 1.0 / mass;
+    inertia.inv_inertia = 1.0 / (disk_inertia_factor * mass * radius[i] * radius[i]);
+    if (i >= nlocal) continue;    // ghosts receive their owner's free velocity below
     cd::BodyVelocity &free = bodies.velocity[1 + i];
     free.vx += dt * f[i][0] * inertia.inv_mass;
     free.vy += dt * f[i][1] * inertia.inv_mass;
     if (torque) free.spin += dt * torque[i][2] * inertia.inv_inertia;
+  }
+  if (distributed) {
+    ghost_reference.resize(bodies.velocity.size());
+    comm->forward_comm_fix(this);
   }
 }
 
@@ -549,15 +584,20 @@ void FixContactDynamics::collect_pair_contacts()
     for (int jj = 0; jj < list->numneigh[i]; jj++) {
       const int j = neighbours[jj] & NEIGHMASK;
       if (!(mask[i] & groupbit) && !(mask[j] & groupbit)) continue;
-      if (j >= nlocal && tag[i] > tag[j]) continue;    // listed from both sides
-      const int body_j = body_of(j);
+      // A pair across a periodic or rank boundary is listed from both sides: the side with
+      // the smaller atom ID solves it (on the rank that owns that atom).
+      if (j >= nlocal && tag[i] > tag[j]) continue;
+      const int body_j = body_of_atom[j];
       if (body_j == 1 + i)
         error->one(FLERR, "Fix contact/dynamics: atom {} touches its own periodic image; the cell "
                    "is too short", tag[i]);
       const cd::Disk disk_j{x[j][0], x[j][1], radius[j]};
       const cd::ContactGeometry geometry = cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j);
+      // The warm start lives with the smaller ID, an owned atom by the rule above.
+      const bool i_keeps = tag[i] < tag[j];
       add_candidate(geometry, law(type[i], type[j]),
-                    {tag[i], static_cast<double>(tag[j]), tag[j], 0, geometry.point_x, geometry.point_y});
+                    {tag[i], tag[j], 0, i_keeps ? i : j, static_cast<double>(i_keeps ? tag[j] : tag[i]),
+                     geometry.point_x, geometry.point_y});
     }
   }
 }
@@ -579,7 +619,7 @@ void FixContactDynamics::collect_wall_contacts()
       const auto touch = cd::wall_contact(walls[w], 1 + i, disk, alert, box);
       if (!touch) continue;
       add_candidate(touch->geometry, walls[w].law,
-                    {atom->tag[i], wall_key(w, touch->part), 0, w + 1, touch->geometry.point_x,
+                    {atom->tag[i], 0, w + 1, i, wall_key(w, touch->part), touch->geometry.point_x,
                      touch->geometry.point_y});
     }
   }
@@ -596,19 +636,19 @@ void FixContactDynamics::shuffle_contacts()
 }
 
 /* ----------------------------------------------------------------------
-   Warm start: each atom stores the impulses of its loaded contacts, keyed by partner atom ID
-   (or wall slot). Seen from either body the pair has the same (p_n, p_t): swapping a and b
-   flips both the normal and the tangent.
+   Warm start: the atom with the smaller ID of a pair (or the atom touching a wall) stores the
+   impulses of its loaded contacts, keyed by partner atom ID (or wall slot). Seen from either
+   body the pair has the same (p_n, p_t): swapping a and b flips both normal and tangent.
 ------------------------------------------------------------------------- */
 
 void FixContactDynamics::load_warm_start()
 {
   for (std::size_t k = 0; k < contacts.size(); k++) {
-    const double *row = history[contacts[k].body_a - 1];
+    const double *row = history[records[k].history_atom];
     const int count = static_cast<int>(row[0]);
     for (int slot = 0; slot < count; slot++) {
       const double *entry = row + 1 + 3 * slot;
-      if (entry[0] != records[k].key_for_a) continue;
+      if (entry[0] != records[k].history_key) continue;
       contacts[k].impulse = {entry[1], entry[2]};
       break;
     }
@@ -642,9 +682,7 @@ void FixContactDynamics::store_warm_start()
                  update->ntimestep);
     if (p.n <= 0.0) continue;
     ++loaded_contacts;
-    append_history(contacts[k].body_a - 1, record.key_for_a, p);
-    if (record.wall == 0)
-      append_history(contacts[k].body_b - 1, static_cast<double>(record.atom_a), p);
+    append_history(record.history_atom, record.history_key, p);
   }
 }
 
@@ -685,8 +723,101 @@ void FixContactDynamics::measure_overlaps()
     total += overlap;
   }
   for (const cd::Contact &c : inactive) deepest = std::max(deepest, overlap_of(c));
+  max_overlap = deepest;
+  mean_overlap = total;
+}
+
+// Global values of the step for the output vector: sums and maxima over ranks.
+void FixContactDynamics::reduce_step_outputs()
+{
+  const double local_sums[3] = {static_cast<double>(contacts.size()), static_cast<double>(loaded_contacts),
+                                mean_overlap};
+  double sums[3];
+  MPI_Allreduce(local_sums, sums, 3, MPI_DOUBLE, MPI_SUM, world);
+  double deepest = 0.0;
+  MPI_Allreduce(&max_overlap, &deepest, 1, MPI_DOUBLE, MPI_MAX, world);
+  solved_contacts_total = sums[0];
+  loaded_contacts_total = sums[1];
   max_overlap = deepest / mean_diameter;
-  mean_overlap = contacts.empty() ? 0.0 : total / contacts.size() / mean_diameter;
+  mean_overlap = sums[0] > 0.0 ? sums[2] / sums[0] / mean_diameter : 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   Exchange across ranks. A sweep changes the velocities of owned bodies and of ghost bodies
+   touched by contacts this rank solves; the changes of ghosts are summed into their owners,
+   then every ghost takes its owner's velocity again.
+------------------------------------------------------------------------- */
+
+void FixContactDynamics::RankExchange::synchronise_velocities()
+{
+  fix.comm->reverse_comm_fix(&fix);
+  fix.comm->forward_comm_fix(&fix);
+}
+
+void FixContactDynamics::RankExchange::after_sweep(cd::SweepChange &change)
+{
+  synchronise_velocities();
+  double sums[4] = {change.sum_change_sq, change.sum_scale_sq, change.sum_scale, change.contacts};
+  MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, fix.world);
+  MPI_Allreduce(MPI_IN_PLACE, &change.max_change, 1, MPI_DOUBLE, MPI_MAX, fix.world);
+  change.sum_change_sq = sums[0];
+  change.sum_scale_sq = sums[1];
+  change.sum_scale = sums[2];
+  change.contacts = sums[3];
+}
+
+int FixContactDynamics::pack_forward_comm(int n, int *list, double *buf, int, int *)
+{
+  int m = 0;
+  for (int k = 0; k < n; k++) {
+    const cd::BodyVelocity &velocity = bodies.velocity[body_of_atom[list[k]]];
+    buf[m++] = velocity.vx;
+    buf[m++] = velocity.vy;
+    buf[m++] = velocity.spin;
+  }
+  return m;
+}
+
+void FixContactDynamics::unpack_forward_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  for (int g = first; g < first + n; g++, m += 3) {
+    if (body_of_atom[g] != 1 + g) continue;    // an image: its body is updated elsewhere
+    const cd::BodyVelocity velocity{buf[m], buf[m + 1], buf[m + 2]};
+    bodies.velocity[1 + g] = velocity;
+    ghost_reference[1 + g] = velocity;
+  }
+}
+
+cd::BodyVelocity FixContactDynamics::velocity_change_of_ghost(int g) const
+{
+  if (body_of_atom[g] != 1 + g) return {};    // images of owned atoms change their owner directly
+  const cd::BodyVelocity &now = bodies.velocity[1 + g];
+  const cd::BodyVelocity &before = ghost_reference[1 + g];
+  return {now.vx - before.vx, now.vy - before.vy, now.spin - before.spin};
+}
+
+int FixContactDynamics::pack_reverse_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  for (int g = first; g < first + n; g++) {
+    const cd::BodyVelocity change = velocity_change_of_ghost(g);
+    buf[m++] = change.vx;
+    buf[m++] = change.vy;
+    buf[m++] = change.spin;
+  }
+  return m;
+}
+
+void FixContactDynamics::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  int m = 0;
+  for (int k = 0; k < n; k++, m += 3) {
+    cd::BodyVelocity &velocity = bodies.velocity[body_of_atom[list[k]]];
+    velocity.vx += buf[m];
+    velocity.vy += buf[m + 1];
+    velocity.spin += buf[m + 2];
+  }
 }
 
 void FixContactDynamics::fill_local_output()
@@ -717,8 +848,8 @@ double FixContactDynamics::compute_vector(int n)
   switch (n) {
     case 0: return last_report.iterations;
     case 1: return last_report.residual;
-    case 2: return static_cast<double>(contacts.size());
-    case 3: return loaded_contacts;
+    case 2: return solved_contacts_total;
+    case 3: return loaded_contacts_total;
     case 4: return max_overlap;
     case 5: return mean_overlap;
     case 6: return last_report.converged ? 1.0 : 0.0;

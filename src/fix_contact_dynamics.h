@@ -34,6 +34,11 @@ class FixContactDynamics : public Fix {
   void final_integrate() override;
   double compute_vector(int) override;
 
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+
   void write_restart(FILE *) override;
   void restart(char *) override;
   void grow_arrays(int) override;
@@ -50,13 +55,27 @@ class FixContactDynamics : public Fix {
  private:
   // Who touches whom, for warm starts and the local output.
   struct ContactRecord {
-    tagint atom_a;     // atom ID of body a (always an atom)
-    double key_for_a;  // partner key stored with atom a: atom ID of b, or -(wall slot)
-    tagint atom_b;     // atom ID of body b, 0 for a wall
-    int wall;          // 1-based wall index, 0 for an atom pair
-    double point_x;    // contact point at the predicted configuration
+    tagint atom_a;      // atom ID of body a (always an owned atom)
+    tagint atom_b;      // atom ID of body b, 0 for a wall
+    int wall;           // 1-based wall index, 0 for an atom pair
+    int history_atom;   // owned atom whose row stores the warm start: the smaller ID of a pair
+    double history_key; // the partner in that row: the other atom ID, or -(wall slot)
+    double point_x;     // contact point at the predicted configuration
     double point_y;
   };
+
+  // Per-iteration exchange across MPI ranks: ghost velocity changes summed into their owners
+  // (reverse comm), owners' velocities copied to ghosts (forward comm), norm sums reduced.
+  class RankExchange : public cd::SweepExchange {
+   public:
+    explicit RankExchange(FixContactDynamics &fix) : fix(fix) {}
+    void after_sweep(cd::SweepChange &change) override;
+    void synchronise_velocities();
+
+   private:
+    FixContactDynamics &fix;
+  };
+  friend class RankExchange;
 
   enum class ContactOrder { fixed, shuffled };
 
@@ -78,13 +97,17 @@ class FixContactDynamics : public Fix {
   double covered_radius;  // largest radius the neighbour/ghost cutoff was set for
   double mean_diameter;
   bigint natoms_checked;
-  cd::BodySet bodies;
+  cd::BodySet bodies;                   // world, owned atoms, then ghosts owned elsewhere
+  std::vector<int> body_of_atom;        // body of every owned and ghost atom this step
+  std::vector<cd::BodyVelocity> ghost_reference;  // ghost velocities at the last forward comm
+  bool distributed;                     // more than one rank: exchange every sweep
   std::vector<cd::Contact> contacts;
   std::vector<ContactRecord> records;
   std::vector<cd::Contact> inactive;  // candidate pairs without impulse, watched for overlap
   cd::SolveReport last_report;
-  double max_overlap, mean_overlap;  // in units of the mean diameter
-  int loaded_contacts;
+  double max_overlap, mean_overlap;  // in units of the mean diameter, over all ranks
+  double solved_contacts_total, loaded_contacts_total;  // over all ranks
+  int loaded_contacts;                                  // on this rank
 
   // --- running totals (kept across restarts) ---
   double total_iterations, total_unconverged_steps, total_steps;
@@ -105,8 +128,10 @@ class FixContactDynamics : public Fix {
   void request_neighbor_list();
 
   const cd::ContactLaw &law(int itype, int jtype) const;
-  int body_of(int atom_index) const;
+  void check_subdomains();
+  void map_bodies();
   void gather_bodies();
+  cd::BodyVelocity velocity_change_of_ghost(int ghost) const;
   void collect_pair_contacts();
   void collect_wall_contacts();
   void add_candidate(const cd::ContactGeometry &, const cd::ContactLaw &, const ContactRecord &);
@@ -116,6 +141,7 @@ class FixContactDynamics : public Fix {
   void append_history(int atom_index, double key, cd::Local2 impulse);
   void write_back_motion();
   void measure_overlaps();
+  void reduce_step_outputs();
   void fill_local_output();
 };
 

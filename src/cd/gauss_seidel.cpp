@@ -116,7 +116,9 @@ SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyV
                                const SolverSettings& settings, SweepExchange* exchange)
 {
   SolveReport report;
-  if (contacts.empty()) return report;
+  // Without an exchange there is nothing to do; with one, every rank takes part in every
+  // sweep's exchange, contacts or not.
+  if (contacts.empty() && !exchange) return report;
   while (report.iterations < settings.max_iterations) {
     SweepChange change = sweep(contacts, velocity, settings.relaxation);
     if (exchange) exchange->after_sweep(change);

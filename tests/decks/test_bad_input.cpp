@@ -140,14 +140,19 @@ const BadCase bad_cases[] = {
 INSTANTIATE_TEST_SUITE_P(Decks, BadInput, ::testing::ValuesIn(bad_cases),
                          [](const auto& info) { return std::string(info.param.name); });
 
-TEST(MultipleRanks, RefusedWithAClearMessage)
+TEST(MultipleRanks, SubdomainsThinnerThanTheContactCutoffAreRefused)
 {
+  // Two ranks along x on a box 2 d wide: each subdomain (1 d) is thinner than 2 d_max + skin.
   const std::string deck = "units si\ndimension 2\natom_style sphere\natom_modify map array\n"
-                           "comm_modify vel yes\nregion box block 0 1 0 1 -0.1 0.1\ncreate_box 1 box\n"
-                           "fix cd all contact/dynamics 0.5 0.5\n";
-  const RunResult result = run_deck("two_ranks", deck, "mpirun --allow-run-as-root --oversubscribe -np 2 ");
+                           "comm_modify vel yes\nprocessors 2 1 1\nboundary p f p\n"
+                           "region box block 0 0.001 0 0.01 -0.0003 0.0003\ncreate_box 1 box\n"
+                           "create_atoms 1 single 0.0005 0.00025 0\n"
+                           "set group all diameter 5e-4 density/disc 2500\nneighbor 1e-4 bin\n"
+                           "timestep 1e-5\nfix cd all contact/dynamics 0.5 0.5 wall yplane 0 0.5 0.5\n"
+                           "run 1\n";
+  const RunResult result = run_deck("thin_subdomains", deck, "mpirun --allow-run-as-root --oversubscribe -np 2 ");
   EXPECT_NE(result.exit_status, 0);
-  EXPECT_NE(result.output.find("runs on one MPI rank only in this version (got 2)"), std::string::npos)
+  EXPECT_NE(error_line(result.output).find("an MPI subdomain is thinner than the contact cutoff"), std::string::npos)
       << result.output;
 }
 
