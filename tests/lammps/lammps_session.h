@@ -25,11 +25,11 @@ comm_modify vel yes
 
 class LammpsSession {
  public:
-  LammpsSession()
+  explicit LammpsSession(MPI_Comm communicator = MPI_COMM_WORLD)
   {
     std::vector<const char*> args{"lmp", "-log", "none", "-screen", "none", "-nocite"};
     lmp = new LAMMPS_NS::LAMMPS(static_cast<int>(args.size()), const_cast<char**>(args.data()),
-                                MPI_COMM_WORLD);
+                                communicator);
     LAMMPS_NS::register_project_styles(lmp);
   }
   ~LammpsSession() { delete lmp; }

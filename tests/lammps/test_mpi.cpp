@@ -1,0 +1,257 @@
+// Domain decomposition: the fix on 2 ranks against the same problem on 1 rank, run side by
+// side in one mpirun -np 2 (the 1-rank instance lives on rank 0 with MPI_COMM_SELF).
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "comm.h"
+#include "lammps_session.h"
+#include "small_deposition.h"
+
+namespace {
+
+using cdtest::LammpsSession;
+constexpr double d = cdtest::deposition_d;
+const std::string packing_file = "test_mpi_packing.data";
+
+int world_rank()
+{
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
+}
+
+// One value per atom ID over every rank of the session (sum of each owner's value).
+std::vector<double> by_id(const LammpsSession& s, const std::function<double(int)>& value)
+{
+  const auto* atom = s.lmp->atom;
+  std::vector<double> mine(atom->natoms, 0.0), all(atom->natoms, 0.0);
+  for (int i = 0; i < atom->nlocal; i++) mine[atom->tag[i] - 1] = value(i);
+  MPI_Allreduce(mine.data(), all.data(), static_cast<int>(mine.size()), MPI_DOUBLE, MPI_SUM, s.lmp->world);
+  return all;
+}
+
+struct State {
+  std::vector<double> x, y, vx, vy;
+  double candidates = 0.0, loaded = 0.0;
+};
+
+State state_of(const LammpsSession& s)
+{
+  const auto* atom = s.lmp->atom;
+  State st;
+  st.x = by_id(s, [&](int i) { return atom->x[i][0]; });
+  st.y = by_id(s, [&](int i) { return atom->x[i][1]; });
+  st.vx = by_id(s, [&](int i) { return atom->v[i][0]; });
+  st.vy = by_id(s, [&](int i) { return atom->v[i][1]; });
+  st.candidates = s.fix("cd")->compute_vector(2);
+  st.loaded = s.fix("cd")->compute_vector(3);
+  return st;
+}
+
+double largest_difference(const std::vector<double>& a, const std::vector<double>& b, double period = 0.0)
+{
+  double largest = 0.0;
+  for (std::size_t k = 0; k < a.size(); k++) {
+    double delta = a[k] - b[k];
+    if (period > 0.0) delta -= period * std::nearbyint(delta / period);
+    largest = std::max(largest, std::abs(delta));
+  }
+  return largest;
+}
+
+// The packing: 144 grains raining for 30 ms, the first ones landing, written once by rank 0.
+// Deliberately not a dense pile: a frictional pile's impulses are not unique, and 1 and 2
+// ranks (which order the sweep differently) may then pick different valid solutions; the
+// chute statistics compare those runs instead (bench/).
+class TwoRanks : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite()
+  {
+    if (world_rank() == 0) {
+      LammpsSession maker(MPI_COMM_SELF);
+      maker.commands(cdtest::disk_preamble);
+      maker.commands(cdtest::small_deposition(2024, "tolerance 1e-4"));
+      maker.commands("run 3000");
+      maker.commands("write_data " + packing_file);
+    }
+    MPI_Barrier(MPI_COMM_WORLD);
+  }
+  static void TearDownTestSuite()
+  {
+    if (world_rank() == 0) std::remove(packing_file.c_str());
+  }
+
+  // The deck on the packing; ranks split the cell along x.
+  static void load(LammpsSession& s, const std::string& fix_options)
+  {
+    s.commands(cdtest::disk_preamble);
+    s.commands("processors * 1 1\nboundary p f p\nread_data " + packing_file);
+    s.commands(fmt::format(R"(
+neighbor {skin} bin
+timestep 1e-5
+fix grav all gravity 9.81 vector 0 -1 0
+fix cd all contact/dynamics 0.5 0.5 wall yplane 0.0 0.5 0.5 {options}
+fix 2d all enforce2d
+)", fmt::arg("skin", 0.2 * d), fmt::arg("options", fix_options)));
+  }
+
+  // Runs the same commands on 2 ranks (all of MPI_COMM_WORLD) and on 1 rank (rank 0 only).
+  void run_both(const std::string& fix_options, const std::string& commands)
+  {
+    LammpsSession two(MPI_COMM_WORLD);
+    load(two, fix_options);
+    ASSERT_EQ(two.lmp->comm->nprocs, 2);
+    two.commands(commands);
+    on_two = state_of(two);
+    if (world_rank() == 0) {
+      LammpsSession one(MPI_COMM_SELF);
+      load(one, fix_options);
+      one.commands(commands);
+      on_one = state_of(one);
+    }
+  }
+
+  State on_one, on_two;
+};
+
+TEST_F(TwoRanks, SameConfigurationGivesSameContactsAndVelocities)
+{
+  run_both("tolerance 1e-12 max_iterations 100000", "run 1");
+  if (world_rank() != 0) return;
+  EXPECT_EQ(on_two.candidates, on_one.candidates);
+  EXPECT_EQ(on_two.loaded, on_one.loaded);
+  EXPECT_GT(on_one.loaded, 20);
+  // Both solve the same problem to 1e-12; grains move at ~0.3 m/s.
+  EXPECT_LT(largest_difference(on_two.vx, on_one.vx), 1e-9);
+  EXPECT_LT(largest_difference(on_two.vy, on_one.vy), 1e-9);
+}
+
+// Over 100 steps of landing grains, collisions amplify the 1e-10 solver differences by a
+// few orders; a wrong interface impulse would show at ~1e-3 d.
+constexpr double trajectory_tolerance = 1e-6;    // in d
+
+TEST_F(TwoRanks, ShortTrajectoriesAgreeToSolverTolerance)
+{
+  run_both("tolerance 1e-10 max_iterations 100000", "run 100");
+  if (world_rank() != 0) return;
+  EXPECT_LT(largest_difference(on_two.x, on_one.x, 20 * d) / d, trajectory_tolerance);
+  EXPECT_LT(largest_difference(on_two.y, on_one.y) / d, trajectory_tolerance);
+}
+
+TEST_F(TwoRanks, LoadBalancingKeepsTheTrajectory)
+{
+  // fix balance moves the cut between the ranks every 20 steps; atoms migrate with their
+  // warm-start rows.
+  run_both("tolerance 1e-10 max_iterations 100000",
+           "fix lb all balance 20 1.0 shift x 5 1.05\nrun 100");
+  if (world_rank() != 0) return;
+  EXPECT_LT(largest_difference(on_two.x, on_one.x, 20 * d) / d, trajectory_tolerance);
+  EXPECT_LT(largest_difference(on_two.y, on_one.y) / d, trajectory_tolerance);
+}
+
+TEST_F(TwoRanks, SameRankCountIsBitwiseReproducible)
+{
+  State first, second;
+  for (State* target : {&first, &second}) {
+    LammpsSession two(MPI_COMM_WORLD);
+    load(two, "tolerance 1e-4");
+    two.commands("run 200");
+    *target = state_of(two);
+  }
+  EXPECT_EQ(first.x, second.x);
+  EXPECT_EQ(first.y, second.y);
+  EXPECT_EQ(first.vx, second.vx);
+}
+
+std::vector<double> iterations_after(const std::string& path, int step)
+{
+  std::ifstream in(path);
+  std::vector<double> values;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    double at, value;
+    fields >> at >> value;
+    if (at > step) values.push_back(value);
+  }
+  return values;
+}
+
+TEST_F(TwoRanks, RestartWrittenOnTwoRanksContinuesOnOne)
+{
+  const std::string restart = "test_mpi.restart", unbroken = "test_mpi.unbroken", restarted = "test_mpi.restarted";
+  const std::string options = "tolerance 1e-10 max_iterations 100000";
+  {
+    LammpsSession two(MPI_COMM_WORLD);
+    load(two, options);
+    two.commands("run 100\nwrite_restart " + restart);
+    two.commands("fix iters all ave/time 1 1 1 f_cd[1] file " + unbroken + "\nrun 20\nunfix iters");
+    on_two = state_of(two);
+  }
+  if (world_rank() != 0) return;
+  LammpsSession one(MPI_COMM_SELF);
+  one.commands("read_restart " + restart);
+  one.commands(fmt::format(R"(
+neighbor {skin} bin
+comm_modify vel yes
+fix grav all gravity 9.81 vector 0 -1 0
+fix cd all contact/dynamics 0.5 0.5 wall yplane 0.0 0.5 0.5 {options}
+fix 2d all enforce2d
+fix iters all ave/time 1 1 1 f_cd[1] file {file}
+run 20
+unfix iters
+)", fmt::arg("skin", 0.2 * d), fmt::arg("options", options), fmt::arg("file", restarted)));
+  on_one = state_of(one);
+  const std::vector<double> before = iterations_after(unbroken, 100);
+  const std::vector<double> after = iterations_after(restarted, 100);
+  ASSERT_EQ(before.size(), 20u);
+  ASSERT_EQ(after.size(), 20u);
+  // The warm start crossed the change of rank count: no extra sweeps beyond a few.
+  for (int step = 0; step < 3; step++) EXPECT_LE(after[step], before[step] + 3) << "step " << step;
+  EXPECT_LT(largest_difference(on_two.x, on_one.x, 20 * d) / d, trajectory_tolerance);
+  for (const std::string& file : {restart, unbroken, restarted}) std::remove(file.c_str());
+}
+
+// Two disks meeting head on through the periodic boundary, each owned by a different rank.
+TEST(TwoRanksAnalytic, ImpactBetweenRanksFollowsNewtonRestitution)
+{
+  LammpsSession s(MPI_COMM_WORLD);
+  s.commands(cdtest::disk_preamble);
+  const double L = 10 * d, r = 0.5 * d, v = 0.2, e = 0.5;
+  s.commands(fmt::format(R"(
+processors 2 1 1
+boundary p p p
+region box block 0 {L} 0 {L} -{r} {r}
+create_box 1 box
+create_atoms 1 single {xa} {y} 0
+create_atoms 1 single {xb} {y} 0
+set group all diameter {d} density/disc 2500
+velocity all set {v} 0 0 sum no units box
+set atom 2 vx 0
+neighbor {skin} bin
+timestep 1e-5
+fix cd all contact/dynamics 0.3 {e} tolerance 1e-12
+fix 2d all enforce2d
+run 1
+)", fmt::arg("L", L), fmt::arg("r", r), fmt::arg("xa", L - r), fmt::arg("xb", r), fmt::arg("y", 0.5 * L),
+   fmt::arg("d", d), fmt::arg("v", v), fmt::arg("skin", 0.2 * d), fmt::arg("e", e)));
+  const auto* atom = s.lmp->atom;
+  const std::vector<double> vx = by_id(s, [&](int i) { return atom->v[i][0]; });
+  const std::vector<double> owner = by_id(s, [&](int) { return static_cast<double>(world_rank()); });
+  EXPECT_NE(owner[0], owner[1]) << "the disks must sit on different ranks";
+  EXPECT_NEAR(vx[0], v * (1 - e) / 2, 1e-12);
+  EXPECT_NEAR(vx[1], v * (1 + e) / 2, 1e-12);
+  EXPECT_EQ(s.fix("cd")->compute_vector(2), 1.0) << "the pair is solved once over both ranks";
+}
+
+}  // namespace
