@@ -12,6 +12,7 @@
 #include "fit/linear_fit.h"
 #include "io/ave_time.h"
 #include "io/line_source.h"
+#include "io/tokens.h"
 #include "output/gnuplot.h"
 #include "output/report.h"
 #include "signal/stationary.h"
@@ -28,6 +29,14 @@ using cdpost::format_estimate;
 std::optional<double> ComparedRun::wall_per_physical_second() const {
   if (!loop_seconds || !physical_seconds || *physical_seconds <= 0) return std::nullopt;
   return *loop_seconds / *physical_seconds;
+}
+
+std::optional<double> ComparedRun::cpu_per_physical_second() const {
+  auto wall = wall_per_physical_second();
+  if (!wall) return std::nullopt;
+  if (process_cpu_share) return *wall * std::min(1.0, *process_cpu_share);
+  if (cpu_percent) return *wall * std::min(1.0, *cpu_percent / 100);
+  return std::nullopt;
 }
 
 namespace {
@@ -114,6 +123,19 @@ void read_cost(ComparedRun& run, const Samples& samples, double time_unit_s, std
   run.loop_seconds = flow.seconds;
   run.physical_seconds = flow.steps * seconds_per_step;
   run.cpu_percent = flow.cpu_percent;
+  // timing.txt (run_comparison.sh): "wall user sys" seconds of the whole process.
+  const auto timing = fs::path(run.directory) / "timing.txt";
+  if (fs::exists(timing)) {
+    cdpost::LineSource source(timing.string());
+    std::string line;
+    if (source.next(line)) {
+      auto tokens = cdpost::split_whitespace(line);
+      if (tokens.size() != 3) source.fail("expected 'wall user sys' seconds");
+      const double wall = cdpost::parse_number(tokens[0], source, "wall");
+      const double cpu = cdpost::parse_number(tokens[1], source, "user") + cdpost::parse_number(tokens[2], source, "sys");
+      if (wall > 0) run.process_cpu_share = cpu / wall;
+    }
+  }
 }
 
 void read_overlaps(ComparedRun& run, const CompareSettings& settings, const cdpost::RunSettings& s, const Samples& samples,
@@ -338,7 +360,7 @@ std::vector<Column> table_columns() {
       {"contact_excess", "", [](const ComparedRun& r) { return r.contact_excess; }, none},
       {"A_mean", "sqrt(g d)", result("A_mean"), none},
       {"wall_per_physical_s", "s/s", [](const ComparedRun& r) { return r.wall_per_physical_second(); }, none},
-      {"cpu_use", "%", [](const ComparedRun& r) { return r.cpu_percent; }, none},
+      {"cpu_per_physical_s", "s/s", [](const ComparedRun& r) { return r.cpu_per_physical_second(); }, none},
   };
 }
 
@@ -535,43 +557,42 @@ Figure u_t_figure(const Comparison& c) {
 
 Figure cost_figure(const Comparison& c) {
   Panel panel;
-  panel.title = "Wall time per physical second (one core, same session)";
+  panel.title = "Cost per physical second: wall time, and wall time x the process's CPU share (rigid: flat lines)";
   panel.x_label = "k / (m g / d)";
-  panel.y_label = "wall s / physical s";
+  panel.y_label = "s / physical s";
   panel.log_x = panel.log_y = true;
   panel.key = "outside right top";
-  std::map<std::string, Curve> groups;
   double kmin = INFINITY, kmax = 0;
   for (const auto& r : c.runs)
     if (r.k_reduced) {
       kmin = std::min(kmin, *r.k_reduced);
       kmax = std::max(kmax, *r.k_reduced);
     }
-  for (const auto& r : c.runs) {
-    auto cost = r.wall_per_physical_second();
-    if (!cost) continue;
-    if (!r.k_reduced) {
-      if (kmax > 0) panel.curves.push_back(curve(r.label, CurveStyle::Lines, {kmin / 2, kmax * 2}, {*cost, *cost}));
-      continue;
+  using Metric = std::optional<double> (ComparedRun::*)() const;
+  const std::pair<const char*, Metric> metrics[2] = {{"wall", &ComparedRun::wall_per_physical_second},
+                                                     {"CPU", &ComparedRun::cpu_per_physical_second}};
+  for (const auto& [metric, cost_of] : metrics) {
+    std::map<std::string, std::vector<std::pair<double, double>>> groups;
+    for (const auto& r : c.runs) {
+      auto cost = (r.*cost_of)();
+      if (!cost) continue;
+      if (!r.k_reduced) {
+        if (kmax > 0) panel.curves.push_back(curve(r.label + " " + metric, CurveStyle::Lines, {kmin / 2, kmax * 2}, {*cost, *cost}));
+        continue;
+      }
+      groups[code_name(r.code) + " " + r.model].push_back({*r.k_reduced, *cost});
     }
-    auto& g = groups[code_name(r.code) + " " + r.model];
-    g.title = code_name(r.code) + " " + r.model;
-    g.style = CurveStyle::LinesPoints;
-    g.x.push_back(*r.k_reduced);
-    g.y.push_back(*cost);
-  }
-  for (auto& [name, g] : groups) {
-    std::vector<size_t> order(g.x.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return g.x[a] < g.x[b]; });
-    Curve sorted = g;
-    for (size_t i = 0; i < order.size(); ++i) {
-      sorted.x[i] = g.x[order[i]];
-      sorted.y[i] = g.y[order[i]];
+    for (auto& [name, points] : groups) {
+      std::sort(points.begin(), points.end());
+      std::vector<double> k, cost;
+      for (const auto& [x, y] : points) {
+        k.push_back(x);
+        cost.push_back(y);
+      }
+      panel.curves.push_back(curve(name + " " + metric, CurveStyle::LinesPoints, k, cost));
     }
-    panel.curves.push_back(sorted);
   }
-  return {"cost", "Cost of each model", {panel}, 1000, 600};
+  return {"cost", "Cost of each model", {panel}, 1100, 600};
 }
 
 void write_long_csvs(const Comparison& c, const std::string& out) {
@@ -609,9 +630,9 @@ std::string method_text(const CompareSettings& settings, const Comparison& c) {
     << short_number(settings.peak_excess) << ". A band maximum at an end of the flow band is no peak and is left out (\"-\"). f_contact = sqrt(2k/m)/(2 pi) with m the mass of a grain of diameter d "
        "and k the deck's stiffness (Hertz: the secant stiffness at the target overlap). Overlaps: every contact of every dump "
        "frame inside the window (grain pairs with the minimum image along x, grains and the floor), in d. Wall time per "
-       "physical second: the last `Loop time` of the run's log (its flow stage) over the simulated time of that stage; "
-       "cpu_use is LAMMPS's own report of the process's CPU share during that loop (other jobs shared the machine when it "
-       "is below 100%).";
+       "physical second: the last `Loop time` of the run's log (its flow stage) over the simulated time of that stage. "
+       "cpu_per_physical_s: the same times the process's CPU share, (user + sys)/wall from timing.txt (else LAMMPS's own "
+       "CPU-use line): what the run would cost on a core of its own when other jobs shared the machine.";
   (void)c;
   return m.str();
 }
@@ -660,8 +681,8 @@ void write_comparison(Comparison& comparison, const CompareSettings& settings, c
     runs << "- **" << r.label << "** (`" << r.directory << "`): window " << r.window_note;
     if (const auto* t0 = r.analysis.results.find("t_start"))
       runs << ", t = " << short_number(t0->value) << "–" << short_number(r.analysis.results.find("t_end")->value) << " sqrt(d/g)";
-    if (auto dt = r.info.text("dt")) runs << "; dt = " << *dt << " s";
-    if (auto sample = r.info.text("sample_interval")) runs << "; sampling " << *sample << " s";
+    if (auto dt = r.info.number("dt")) runs << "; dt = " << short_number(*dt) << " s";
+    if (auto sample = r.info.number("sample_interval")) runs << "; sampling " << short_number(*sample) << " s";
     if (r.overlaps) runs << "; overlaps over " << r.overlaps->frames << " frames, " << r.overlaps->contacts << " contacts, p99 "
                          << short_number(r.overlaps->p99) << " d";
     if (r.loop_seconds) runs << "; flow loop " << short_number(*r.loop_seconds) << " s for " << short_number(*r.physical_seconds) << " s";

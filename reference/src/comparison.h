@@ -38,12 +38,16 @@ struct ComparedRun {
   std::optional<double> k_eff_n_per_m, k_reduced, f_contact_hz, overlap_target;
   std::optional<OverlapStatistics> overlaps;
   std::optional<double> loop_seconds, physical_seconds, cpu_percent;
+  std::optional<double> process_cpu_share;  // (user + sys) / wall of the whole process (timing.txt)
   std::optional<cdpost::SpectralPeak> flow_peak;     // in [fmin, flow_band_max]
   std::optional<cdpost::SpectralPeak> contact_peak;  // in the contact band (soft runs), if prominent
   std::optional<double> contact_excess;              // contact band: max of A / fitted power law
 
   bool soft() const { return f_contact_hz.has_value(); }
   std::optional<double> wall_per_physical_second() const;
+  // The flow loop's wall time times the process's CPU share (timing.txt, else LAMMPS's CPU
+  // use): the cost on a core of its own, when other jobs shared the machine.
+  std::optional<double> cpu_per_physical_second() const;
 };
 
 struct Comparison {

@@ -1,0 +1,164 @@
+#!/usr/bin/env bash
+# Rigid and soft-sphere runs of one chute (mu, theta), one after the other on one core, then
+# the comparison report (cdref compare). Runs that finished before are read, not rerun, so an
+# interrupted campaign resumes and a finished one is re-analysed in seconds.
+#
+#   reference/run_comparison.sh [options] OUT
+#
+# Every model starts from the same packing: in.rain makes the initial rain, one deposition
+# in LAMMPS GRANULAR (Hooke, overlap 1e-4 by default) settles it into OUT/packing.data, and each run then
+# settles that packing for --settle under its own contact law before gravity is tilted.
+set -euo pipefail
+
+usage() {
+  cat <<'EOF'
+usage: reference/run_comparison.sh [options] OUT
+
+  --mu M               friction (default 0.5)
+  --theta DEG          tilt (default 24)
+  --cells N            cell length L in d (default 16)
+  --grains N           grains (default 320)
+  --bed-walls N        wall height in d (default 10)
+  --overlaps "A B .."  soft stiffness series: target overlaps at the floor, in d (default "1e-2 1e-3 1e-4")
+  --codes "C .."       soft codes: granular liggghts (default both)
+  --hertz "A .."       LAMMPS GRANULAR Hertz runs at these overlaps (default 1e-3; "" for none)
+  --rigid-tolerances "T .."  rigid runs (default 1e-3; "" for none)
+  --rigid-dt S         rigid time step (default 1e-5)
+  --deposit S          deposition time of the shared packing (default 0.2)
+  --deposit-overlap A  stiffness of that deposition, as a target overlap (default 1e-4: the
+                       rigid runs inherit its overlaps)
+  --settle S           settling of the packing by each model before the tilt (default 0.05)
+  --flow S             chute time (default 1.0)
+  --sample S           longest sampling interval of flow.time (default 1e-4)
+  --segment S          spectrum segment (default 0.25)
+  --read-only          do not run anything; compare the runs already in OUT/runs
+  --lmp PATH --liggghts PATH --lmp-cd PATH --cdref PATH   executables
+                       (defaults: lmp, liggghts, BUILD/lmp_cd, BUILD/reference/cdref with
+                        BUILD = $BUILD_DIR or build/ of the repository)
+EOF
+}
+
+arguments="$*"
+here=$(cd "$(dirname "$0")" && pwd)
+top=$(cd "$here/.." && pwd)
+build=${BUILD_DIR:-$top/build}
+mu=0.5 theta=24 cells=16 grains=320 bed_walls=10
+overlaps="1e-2 1e-3 1e-4" codes="granular liggghts" hertz="1e-3" rigid_tolerances="1e-3" rigid_dt=1e-5
+deposit=0.2 deposit_overlap=1e-4 settle=0.05 flow=1.0 sample=1e-4 segment=0.25 read_only=0
+lmp=lmp liggghts=liggghts lmp_cd=$build/lmp_cd cdref=""
+out=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --mu) mu=$2; shift 2 ;;
+    --theta) theta=$2; shift 2 ;;
+    --cells) cells=$2; shift 2 ;;
+    --grains) grains=$2; shift 2 ;;
+    --bed-walls) bed_walls=$2; shift 2 ;;
+    --overlaps) overlaps=$2; shift 2 ;;
+    --codes) codes=$2; shift 2 ;;
+    --hertz) hertz=$2; shift 2 ;;
+    --rigid-tolerances) rigid_tolerances=$2; shift 2 ;;
+    --rigid-dt) rigid_dt=$2; shift 2 ;;
+    --deposit) deposit=$2; shift 2 ;;
+    --deposit-overlap) deposit_overlap=$2; shift 2 ;;
+    --settle) settle=$2; shift 2 ;;
+    --flow) flow=$2; shift 2 ;;
+    --sample) sample=$2; shift 2 ;;
+    --segment) segment=$2; shift 2 ;;
+    --read-only) read_only=1; shift ;;
+    --lmp) lmp=$2; shift 2 ;;
+    --liggghts) liggghts=$2; shift 2 ;;
+    --lmp-cd) lmp_cd=$2; shift 2 ;;
+    --cdref) cdref=$2; shift 2 ;;
+    -h|--help) usage; exit 0 ;;
+    -*) echo "run_comparison.sh: unknown option $1" >&2; usage >&2; exit 2 ;;
+    *) [ -z "$out" ] || { echo "run_comparison.sh: one OUT only" >&2; exit 2; }; out=$1; shift ;;
+  esac
+done
+[ -n "$out" ] || { usage >&2; exit 2; }
+if [ -z "$cdref" ]; then
+  for candidate in "$build/reference/cdref" "$build/tests/reference/reference-build/cdref"; do
+    [ -x "$candidate" ] && { cdref=$candidate; break; }
+  done
+fi
+[ -n "$cdref" ] && [ -x "$cdref" ] || { echo "run_comparison.sh: cdref not found (build it, or give --cdref)" >&2; exit 2; }
+
+mkdir -p "$out/runs"
+out=$(cd "$out" && pwd)
+commands=$out/commands.txt
+common=(-var mu "$mu" -var theta "$theta" -var bed_walls "$bed_walls" -var flow "$flow" -var sample_max "$sample")
+TIMEFORMAT='%R %U %S'
+
+# run NAME EXECUTABLE DECK LOG [ARGS...]: runs DECK in OUT/runs/NAME unless it finished before;
+# the wall, user and system seconds of the whole process go to timing.txt.
+run() {
+  local name=$1 exe=$2 deck=$3 log=$4; shift 4
+  local dir=$out/runs/$name
+  echo "cd runs/$name && $exe -in reference/$(basename "$deck") -log $log $*" >> "$commands"
+  if [ -f "$dir/done" ]; then echo "== $name: done before, read"; return 0; fi
+  [ "$read_only" -eq 0 ] || { echo "run_comparison.sh: --read-only but $name has not run" >&2; exit 1; }
+  rm -rf "$dir"; mkdir -p "$dir"
+  echo "== $name ($(date +%H:%M:%S), load $(cut -d' ' -f1-3 /proc/loadavg))"
+  local timing
+  timing=$( { time (cd "$dir" && stdbuf -o0 "$exe" -in "$deck" -log "$log" "$@" > screen.txt 2>&1) ; } 2>&1 ) || {
+    echo "run_comparison.sh: $name failed; see $dir/screen.txt" >&2; tail -5 "$dir/screen.txt" >&2; exit 1; }
+  echo "$timing" > "$dir/timing.txt"
+  echo "   wall/user/sys s: $timing"
+  touch "$dir/done"
+}
+
+: > "$commands"
+echo "# reference/run_comparison.sh $arguments (mu $mu, theta $theta, L $cells d, $grains grains, walls $bed_walls d)" >> "$commands"
+
+# The shared initial state.
+if [ ! -f "$out/packing.data" ]; then
+  [ "$read_only" -eq 0 ] || { echo "run_comparison.sh: --read-only but no $out/packing.data" >&2; exit 1; }
+  echo "== rain and deposition ($(date +%H:%M:%S))"
+  (cd "$out" && "$lmp" -in "$here/in.rain" -log rain.log -screen none -var out rain.data \
+     -var cells "$cells" -var grains "$grains" -var bed_walls "$bed_walls") ||
+    { echo "run_comparison.sh: in.rain failed; see $out/rain.log" >&2; tail -3 "$out/rain.log" >&2; exit 1; }
+  mkdir -p "$out/deposition"
+  (cd "$out/deposition" && "$lmp" -in "$here/in.chute_granular" -log log.lammps -screen none \
+     -var data ../rain.data -var bed_walls "$bed_walls" -var overlap "$deposit_overlap" -var settle "$deposit" -var flow 0) ||
+    { echo "run_comparison.sh: the deposition failed; see $out/deposition/log.lammps" >&2; exit 1; }
+  cp "$out/deposition/packing.data" "$out/packing.data"
+fi
+echo "lmp -in reference/in.rain -var out rain.data -var cells $cells -var grains $grains -var bed_walls $bed_walls" >> "$commands"
+echo "cd deposition && lmp -in reference/in.chute_granular -var data ../rain.data -var bed_walls $bed_walls -var overlap $deposit_overlap -var settle $deposit -var flow 0" >> "$commands"
+
+dirs=()
+packing=(-var data ../../packing.data -var settle "$settle")
+for tolerance in $rigid_tolerances; do
+  run "rigid-tol$tolerance" "$lmp_cd" "$here/in.chute_rigid" log.lammps "${packing[@]}" "${common[@]}" \
+    -var tolerance "$tolerance" -var dt "$rigid_dt"
+  dirs+=("$out/runs/rigid-tol$tolerance")
+done
+for overlap in $overlaps; do
+  for code in $codes; do
+    case "$code" in
+      granular)
+        run "granular-hooke-$overlap" "$lmp" "$here/in.chute_granular" log.lammps "${packing[@]}" "${common[@]}" \
+          -var model hooke -var overlap "$overlap"
+        dirs+=("$out/runs/granular-hooke-$overlap") ;;
+      liggghts)
+        name="liggghts-hooke-$overlap"
+        run "$name" "$liggghts" "$here/in.chute_liggghts" log.liggghts "${packing[@]}" "${common[@]}" -var overlap "$overlap"
+        for f in profile layers; do
+          if [ ! -f "$out/runs/$name/$f.chunk" ] && [ -f "$out/runs/$name/$f.spatial" ]; then
+            "$cdref" spatial-to-chunk "$out/runs/$name/$f.spatial" "$out/runs/$name/$f.chunk" > /dev/null
+          fi
+        done
+        echo "cdref spatial-to-chunk profile.spatial profile.chunk; cdref spatial-to-chunk layers.spatial layers.chunk" >> "$commands"
+        dirs+=("$out/runs/$name") ;;
+      *) echo "run_comparison.sh: unknown code '$code' (granular, liggghts)" >&2; exit 2 ;;
+    esac
+  done
+done
+for overlap in $hertz; do
+  run "granular-hertz-$overlap" "$lmp" "$here/in.chute_granular" log.lammps "${packing[@]}" "${common[@]}" \
+    -var model hertz -var overlap "$overlap"
+  dirs+=("$out/runs/granular-hertz-$overlap")
+done
+
+echo "cdref compare runs/* --out comparison --segment $segment --commands commands.txt" >> "$commands"
+"$cdref" compare "${dirs[@]}" --out "$out/comparison" --segment "$segment" --commands "$commands"
