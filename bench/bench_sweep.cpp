@@ -1,0 +1,321 @@
+// Google Benchmark of the solver core on a dense bed of 4000 polydisperse disks resting on a
+// floor under gravity (bench/granular_bed.h): one Gauss–Seidel sweep, the local Coulomb
+// solver alone, the preparation of a step, and a whole step to tolerance.
+//
+// Throughput is reported as items per second: contact updates (one local solve and impulse
+// application) for the sweeps, local solves for the local solver, neighbour pairs for the
+// preparation, steps for the whole step. Google Benchmark divides by CPU time, which on a
+// shared machine is less disturbed than wall time by other processes.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "granular_bed.h"
+
+namespace {
+
+constexpr std::uint64_t shuffle_seed = 12345;
+
+// Contact orders of a sweep. fixed: as collected, the pairs of each disk together (the fix's
+// `order fixed`); shuffled: a random permutation (the fix's `order shuffle`); interleaved:
+// the fixed order locally permuted so that contacts a few places apart share no body
+// (interleave below), an order proposed for the fix in doc/benchmarks.md.
+enum Order : int { fixed_order = 0, shuffled_order = 1, interleaved_order = 2 };
+
+void shuffle(std::vector<cd::Contact>& contacts, std::mt19937_64& rng)
+{
+  for (std::size_t k = contacts.size(); k > 1; k--) {
+    std::uniform_int_distribution<std::size_t> pick(0, k - 1);
+    std::swap(contacts[k - 1], contacts[pick(rng)]);
+  }
+}
+
+// Consecutive contacts that share a body chain each local solve to the previous one through
+// that body's velocity (a store, then a load of the same address), so the CPU cannot overlap
+// them. This greedy pass keeps the fixed order within a window of `lookahead` contacts but
+// emits at each place the first pending contact whose bodies none of the last `distance`
+// emitted contacts touched. The world body counts like a disk: the sweep writes its (zero)
+// velocity change as well.
+void interleave(std::vector<cd::Contact>& contacts, int body_count, std::size_t lookahead = 32,
+                std::size_t distance = 4)
+{
+  std::vector<std::size_t> last_use(body_count, 0);  // 1 + output position of the body's last contact
+  std::vector<std::size_t> pending;                   // indices into `contacts`, in fixed order
+  std::vector<cd::Contact> out;
+  out.reserve(contacts.size());
+  std::size_t next = 0;
+  auto independent = [&](const cd::Contact& c) {
+    const std::size_t here = out.size() + 1;
+    return (last_use[c.body_a] == 0 || here - last_use[c.body_a] > distance) &&
+           (last_use[c.body_b] == 0 || here - last_use[c.body_b] > distance);
+  };
+  while (out.size() < contacts.size()) {
+    while (pending.size() < lookahead && next < contacts.size()) pending.push_back(next++);
+    std::size_t pick = 0;
+    while (pick < pending.size() && !independent(contacts[pending[pick]])) pick++;
+    if (pick == pending.size()) pick = 0;  // nothing independent in reach: keep the order
+    const cd::Contact& c = contacts[pending[pick]];
+    out.push_back(c);
+    last_use[c.body_a] = last_use[c.body_b] = out.size();
+    pending.erase(pending.begin() + static_cast<std::ptrdiff_t>(pick));
+  }
+  contacts.swap(out);
+}
+
+void put_in_order(std::vector<cd::Contact>& contacts, Order order, int body_count, std::mt19937_64& rng)
+{
+  if (order == shuffled_order) shuffle(contacts, rng);
+  if (order == interleaved_order) interleave(contacts, body_count);
+}
+
+// One local problem as the sweep poses it: W, the velocity without this contact's own
+// impulse (velocity bias included), and mu.
+struct LocalProblem {
+  cd::Delassus2 delassus;
+  cd::Local2 free_velocity;
+  double mu;
+};
+
+LocalProblem local_problem(const cd::Contact& c, const std::vector<cd::BodyVelocity>& velocity)
+{
+  const cd::Local2 u = cd::relative_velocity(c, velocity[c.body_a], velocity[c.body_b]);
+  const cd::Local2 own = c.delassus.times(c.impulse);
+  return {c.delassus, {u.n + c.velocity_bias - own.n, u.t - own.t}, c.mu};
+}
+
+// The bed, its next step frozen, and the solver state at the start of that step's solve.
+struct Scene {
+  bench::GranularBed bed{bench::BedSpec{}};
+  bench::FrozenStep frozen;
+  std::vector<cd::Contact> contacts[3];       // prepared and warm-started, in each Order
+  std::vector<cd::BodyVelocity> velocity;     // free velocity plus the warm-start impulses
+  std::vector<LocalProblem> bed_problems;     // what the first sweep's local solves see
+  std::vector<LocalProblem> mixed_problems;   // spread over every branch of the local solver
+
+  Scene()
+  {
+    frozen = bed.freeze();
+    bench::prepare_contacts(frozen, true, contacts[fixed_order]);
+    const int body_count = static_cast<int>(frozen.bodies.velocity.size());
+    std::mt19937_64 rng(shuffle_seed);
+    for (Order order : {shuffled_order, interleaved_order}) {
+      contacts[order] = contacts[fixed_order];
+      put_in_order(contacts[order], order, body_count, rng);
+    }
+    velocity = frozen.bodies.velocity;
+    cd::apply_impulses(contacts[fixed_order], velocity);
+    for (const cd::Contact& c : contacts[fixed_order]) bed_problems.push_back(local_problem(c, velocity));
+
+    // Same Delassus blocks, free velocities of the bed's size in uniformly random directions:
+    // half separate (no contact), the rest split between sticking and sliding.
+    double speed = 0.0;
+    for (const LocalProblem& p : bed_problems) speed += std::hypot(p.free_velocity.n, p.free_velocity.t);
+    speed /= static_cast<double>(bed_problems.size());
+    std::mt19937_64 directions(shuffle_seed + 1);
+    for (const LocalProblem& p : bed_problems) {
+      const double angle = 2.0 * 3.14159265358979323846 * static_cast<double>(directions() >> 11) * 0x1.0p-53;
+      mixed_problems.push_back({p.delassus, {speed * std::cos(angle), speed * std::sin(angle)}, p.mu});
+    }
+  }
+};
+
+const Scene& scene()
+{
+  static const Scene built;
+  return built;
+}
+
+void set_contact_counters(benchmark::State& state, std::size_t contacts)
+{
+  state.counters["contacts"] = static_cast<double>(contacts);
+}
+
+// (a) One sweep from the state at the start of the solve; the state is restored, untimed,
+// before each sweep so that every timed sweep does the same work.
+void BM_Sweep(benchmark::State& state)
+{
+  const Scene& s = scene();
+  const std::vector<cd::Contact>& start = s.contacts[state.range(0)];
+  std::vector<cd::Contact> contacts = start;
+  std::vector<cd::BodyVelocity> velocity = s.velocity;
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::copy(start.begin(), start.end(), contacts.begin());
+    std::copy(s.velocity.begin(), s.velocity.end(), velocity.begin());
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(cd::sweep(contacts, velocity, 1.0));
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(contacts.size()));
+  set_contact_counters(state, contacts.size());
+}
+BENCHMARK(BM_Sweep)->ArgName("order")->DenseRange(fixed_order, interleaved_order)->Unit(benchmark::kMicrosecond);
+
+// (a') Sweeps chained without restoring, as inside a solve: the impulses converge while the
+// benchmark runs, so this is the late, nearly converged part of a solve.
+void BM_SweepChained(benchmark::State& state)
+{
+  const Scene& s = scene();
+  std::vector<cd::Contact> contacts = s.contacts[state.range(0)];
+  std::vector<cd::BodyVelocity> velocity = s.velocity;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(cd::sweep(contacts, velocity, 1.0));
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(contacts.size()));
+  set_contact_counters(state, contacts.size());
+}
+BENCHMARK(BM_SweepChained)->ArgName("order")->DenseRange(fixed_order, interleaved_order)->Unit(benchmark::kMicrosecond);
+
+// (c) The exact local Coulomb solver alone, on the bed's local problems (nearly all sticking
+// or separating) and on problems spread over every branch.
+void BM_LocalSolver(benchmark::State& state)
+{
+  const Scene& s = scene();
+  const std::vector<LocalProblem>& problems = state.range(0) == 0 ? s.bed_problems : s.mixed_problems;
+  int counts[4] = {0, 0, 0, 0};
+  for (const LocalProblem& p : problems)
+    counts[static_cast<int>(cd::solve_coulomb_local(p.delassus, p.free_velocity, p.mu).status)]++;
+  for (auto _ : state) {
+    for (const LocalProblem& p : problems)
+      benchmark::DoNotOptimize(cd::solve_coulomb_local(p.delassus, p.free_velocity, p.mu));
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(problems.size()));
+  const double total = static_cast<double>(problems.size());
+  state.counters["no_contact"] = counts[0] / total;
+  state.counters["stick"] = counts[1] / total;
+  state.counters["slip"] = (counts[2] + counts[3]) / total;
+}
+BENCHMARK(BM_LocalSolver)->ArgName("mixed")->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// The preparation of a step: geometry, frame and selection of every pair of the neighbour
+// list, mechanics of the selected ones, and the warm start read.
+void BM_Prepare(benchmark::State& state)
+{
+  const Scene& s = scene();
+  std::vector<cd::Contact> contacts;
+  for (auto _ : state) {
+    bench::prepare_contacts(s.frozen, true, contacts);
+    benchmark::DoNotOptimize(contacts.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(s.frozen.pairs.size()));
+  state.counters["neighbour_pairs"] = static_cast<double>(s.frozen.pairs.size());
+  set_contact_counters(state, contacts.size());
+}
+BENCHMARK(BM_Prepare)->Unit(benchmark::kMicrosecond);
+
+// (b) A whole step of the core: prepare, order, warm start, Gauss–Seidel to 1e-4.
+// Counters: sweeps per step, and the contact updates per second of the whole step.
+void BM_WholeStep(benchmark::State& state)
+{
+  const Scene& s = scene();
+  const bool warm = state.range(0) != 0;
+  const auto order = static_cast<Order>(state.range(1));
+  const int body_count = static_cast<int>(s.frozen.bodies.velocity.size());
+  const cd::SolverSettings settings = s.bed.spec().solver;
+  std::vector<cd::Contact> contacts;
+  std::vector<cd::BodyVelocity> velocity;
+  std::mt19937_64 rng(shuffle_seed);
+  double sweeps = 0.0, updates = 0.0;
+  bool converged = true;
+  for (auto _ : state) {
+    bench::prepare_contacts(s.frozen, warm, contacts);
+    put_in_order(contacts, order, body_count, rng);
+    velocity = s.frozen.bodies.velocity;
+    cd::apply_impulses(contacts, velocity);
+    const cd::SolveReport report = cd::solve_gauss_seidel(contacts, velocity, settings);
+    sweeps += report.iterations;
+    updates += static_cast<double>(report.iterations) * static_cast<double>(contacts.size());
+    converged = converged && report.converged;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["sweeps"] = benchmark::Counter(sweeps, benchmark::Counter::kAvgIterations);
+  state.counters["updates_per_second"] = benchmark::Counter(updates, benchmark::Counter::kIsRate);
+  state.counters["converged"] = converged ? 1.0 : 0.0;
+  set_contact_counters(state, contacts.size());
+}
+BENCHMARK(BM_WholeStep)
+    ->ArgNames({"warm", "order"})
+    ->Args({1, fixed_order})
+    ->Args({1, shuffled_order})
+    ->Args({1, interleaved_order})
+    ->Args({0, fixed_order})
+    ->Unit(benchmark::kMillisecond);
+
+// What the packing is, in the report's context block (console header and JSON).
+void describe_scene()
+{
+  const Scene& s = scene();
+  const bench::GranularBed& bed = s.bed;
+  const bench::BedSpec& spec = bed.spec();
+  const auto& contacts = s.contacts[fixed_order];
+  const int disks = static_cast<int>(bed.disks().size());
+  int wall_contacts = 0;
+  for (const cd::Contact& c : contacts) wall_contacts += c.body_b == cd::world_body;
+  const int pair_contacts = static_cast<int>(contacts.size()) - wall_contacts;
+
+  // Solve the frozen step once for its loads: a bed at rest carries its weight on the floor.
+  std::vector<cd::Contact> solved = contacts;
+  std::vector<cd::BodyVelocity> velocity = s.velocity;
+  const cd::SolveReport report = cd::solve_gauss_seidel(solved, velocity, spec.solver);
+  double floor_impulse = 0.0, weight_impulse = 0.0, area = 0.0, top = 0.0;
+  int loaded = 0;
+  for (const cd::Contact& c : solved) {
+    loaded += c.impulse.n > 0.0;
+    if (c.body_b == cd::world_body) floor_impulse += c.impulse.n;
+  }
+  for (int k = 0; k < disks; k++) {
+    const double r = bed.disks()[k].radius;
+    weight_impulse += spec.gravity * spec.dt / s.frozen.bodies.inertia[1 + k].inv_mass;
+    area += 3.14159265358979323846 * r * r;
+    top = std::max(top, bed.disks()[k].y + r);
+  }
+  // Sweeps per step over the second half of the settling: the spread the frozen step sits in.
+  std::vector<int> sweeps;
+  const auto& settle = bed.settle_reports();
+  for (std::size_t k = settle.size() / 2; k < settle.size(); k++) sweeps.push_back(settle[k].iterations);
+  std::sort(sweeps.begin(), sweeps.end());
+  double mean_sweeps = 0.0;
+  for (int n : sweeps) mean_sweeps += n;
+  mean_sweeps /= std::max<std::size_t>(1, sweeps.size());
+
+  auto text = [](double v) { return std::to_string(v); };
+  benchmark::AddCustomContext("bed_disks", std::to_string(disks));
+  benchmark::AddCustomContext("bed_cell", text(spec.cell_length) + " d periodic in x, d = " +
+                                              text(spec.mean_diameter) + " m, (dmax-dmin)/d = " +
+                                              text(spec.polydispersity));
+  benchmark::AddCustomContext("bed_height_d", text(top / spec.mean_diameter));
+  benchmark::AddCustomContext("bed_solid_fraction", text(area / (top * bed.length_x())));
+  benchmark::AddCustomContext("bed_settle_steps", std::to_string(spec.settle_steps) + " of dt = " +
+                                                      text(spec.dt) + " s, max speed after " +
+                                                      text(bed.max_speed()) + " m/s");
+  if (!sweeps.empty())
+    benchmark::AddCustomContext("bed_settle_sweeps", "last " + std::to_string(sweeps.size()) + " steps: median " +
+                                                         std::to_string(sweeps[sweeps.size() / 2]) + ", mean " +
+                                                         text(mean_sweeps) + ", max " + std::to_string(sweeps.back()));
+  benchmark::AddCustomContext("step_neighbour_pairs", std::to_string(s.frozen.pairs.size()));
+  benchmark::AddCustomContext("step_active_contacts",
+                              std::to_string(contacts.size()) + " (" + std::to_string(pair_contacts) +
+                                  " disk-disk, " + std::to_string(wall_contacts) + " floor)");
+  benchmark::AddCustomContext("step_coordination", text(2.0 * pair_contacts / disks) + " disk-disk contacts per disk");
+  benchmark::AddCustomContext("step_loaded_contacts", std::to_string(loaded));
+  benchmark::AddCustomContext("step_solve", std::to_string(report.iterations) + " sweeps to " +
+                                                text(spec.solver.tolerance) + ", floor load / weight = " +
+                                                text(floor_impulse / weight_impulse));
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  describe_scene();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,339 @@
+#include "granular_bed.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+namespace bench {
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+constexpr double disk_inertia_factor = 0.5;  // I = m r^2 / 2
+// Rounding slack of the rain's contact geometry: a disk placed against two others touches them
+// to a few ulps, which must not read as an overlap.
+constexpr double touch_slack = 1.0e-9;
+
+// Uniform in [0, 1) from the top 53 bits: the same sequence with every standard library.
+double uniform01(std::mt19937_64& rng)
+{
+  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
+
+double nearest_image(double dx, double length)
+{
+  return dx - length * std::nearbyint(dx / length);
+}
+
+std::uint64_t pair_key(int body_a, int body_b)
+{
+  return (static_cast<std::uint64_t>(body_a) << 32) | static_cast<std::uint32_t>(body_b);
+}
+
+// Disks binned in square cells at least as wide as the largest contact distance, periodic in
+// x, growing upward in y >= 0: the 3 x 3 cells around a disk hold every disk it can touch.
+class CellGrid {
+ public:
+  CellGrid(double length_x, double min_cell)
+      : columns_(std::max(3, static_cast<int>(length_x / min_cell))),
+        width_(length_x / columns_), height_(min_cell), top_(columns_, -1)
+  {
+  }
+
+  int column(double x) const
+  {
+    const int c = static_cast<int>(std::floor(x / width_)) % columns_;
+    return c < 0 ? c + columns_ : c;
+  }
+  int row(double y) const { return std::max(0, static_cast<int>(std::floor(y / height_))); }
+  int columns() const { return columns_; }
+  double cell_width() const { return width_; }
+  int top_row(int column) const { return top_[column]; }
+
+  void insert(int index, const cd::Disk& disk)
+  {
+    const int c = column(disk.x), r = row(disk.y);
+    if (r >= rows_) {
+      rows_ = r + 1;
+      cells_.resize(static_cast<std::size_t>(rows_) * columns_);
+    }
+    cells_[static_cast<std::size_t>(r) * columns_ + c].push_back(index);
+    top_[c] = std::max(top_[c], r);
+  }
+
+  const std::vector<int>& cell(int column, int row) const
+  {
+    static const std::vector<int> none;
+    if (row < 0 || row >= rows_) return none;
+    const int c = ((column % columns_) + columns_) % columns_;
+    return cells_[static_cast<std::size_t>(row) * columns_ + c];
+  }
+
+  template <class Visit>
+  void for_each_near(double x, double y, Visit visit) const
+  {
+    const int c = column(x), r = row(y);
+    for (int dr = -1; dr <= 1; dr++)
+      for (int dc = -1; dc <= 1; dc++)
+        for (int k : cell(c + dc, r + dr)) visit(k);
+  }
+
+ private:
+  int columns_;
+  double width_;
+  double height_;
+  int rows_ = 0;
+  std::vector<int> top_;
+  std::vector<std::vector<int>> cells_;
+};
+
+// Where a disk of radius r rests on disks i and j (j at its image nearest to i): the upper
+// point at distance r_i + r from i and r_j + r from j, stable only between the two centres.
+bool rest_on_pair(const cd::Disk& i, const cd::Disk& j, double r, double& x, double& y)
+{
+  const double dx = j.x - i.x, dy = j.y - i.y;
+  const double distance = std::sqrt(dx * dx + dy * dy);
+  const double reach_i = i.radius + r, reach_j = j.radius + r;
+  if (distance >= reach_i + reach_j || distance <= std::abs(reach_i - reach_j)) return false;
+  const double along = (reach_i * reach_i - reach_j * reach_j + distance * distance) / (2.0 * distance);
+  const double across = std::sqrt(reach_i * reach_i - along * along);
+  const double side = dx >= 0.0 ? 1.0 : -1.0;  // picks the intersection above the line i-j
+  x = i.x + (along * dx - side * across * dy) / distance;
+  y = i.y + (along * dy + side * across * dx) / distance;
+  return x > std::min(i.x, j.x) && x < std::max(i.x, j.x);
+}
+
+}  // namespace
+
+void prepare_contacts(const FrozenStep& frozen, bool warm, std::vector<cd::Contact>& contacts)
+{
+  contacts.clear();
+  for (const NeighbourPair& pair : frozen.pairs) {
+    const cd::Disk& disk_a = frozen.predicted[pair.a - 1];
+    cd::ContactGeometry geometry;
+    const cd::ContactLaw* law = &frozen.grain_law;
+    if (pair.b == cd::world_body) {
+      const auto touch = cd::wall_contact(frozen.floor, pair.a, disk_a, frozen.wall_alert, frozen.box);
+      if (!touch) continue;
+      geometry = touch->geometry;
+      law = &frozen.floor.law;
+    } else {
+      cd::Disk disk_b = frozen.predicted[pair.b - 1];
+      disk_b.x += pair.b_shift_x;
+      geometry = cd::disk_disk_geometry(pair.a, disk_a, pair.b, disk_b);
+    }
+    cd::Contact contact = cd::contact_frame(geometry);
+    if (!cd::is_candidate(contact, frozen.bodies, frozen.step, frozen.alert)) continue;
+    cd::prepare_mechanics(contact, *law, frozen.bodies, frozen.step);
+    if (warm) contact.impulse = pair.warm_impulse;
+    contacts.push_back(contact);
+  }
+}
+
+GranularBed::GranularBed(const BedSpec& spec) : spec_(spec), length_x_(spec.cell_length * spec.mean_diameter)
+{
+  rain();
+  velocity_.assign(disks_.size(), cd::BodyVelocity{});
+  inertia_.resize(disks_.size());
+  for (std::size_t k = 0; k < disks_.size(); k++) {
+    const double r = disks_[k].radius;
+    const double mass = pi * r * r * spec_.density;
+    inertia_[k] = {1.0 / mass, 1.0 / (disk_inertia_factor * mass * r * r)};
+  }
+  for (int s = 0; s < spec_.settle_steps; s++) settle_reports_.push_back(step());
+}
+
+void GranularBed::rain()
+{
+  const double d = spec_.mean_diameter;
+  const double r_max = 0.5 * d * (1.0 + 0.5 * spec_.polydispersity);
+  std::mt19937_64 rng(spec_.seed);
+  CellGrid grid(length_x_, 2.0 * r_max);
+  disks_.clear();
+  disks_.reserve(spec_.disk_count);
+
+  std::vector<int> surface;
+  for (int n = 0; n < spec_.disk_count; n++) {
+    const double r = 0.5 * d * (1.0 + spec_.polydispersity * (uniform01(rng) - 0.5));
+    const double drop_x = uniform01(rng) * length_x_;
+
+    auto overlaps = [&](double x, double y) {
+      bool hit = false;
+      grid.for_each_near(x, y, [&](int k) {
+        const double dx = nearest_image(x - disks_[k].x, length_x_), dy = y - disks_[k].y;
+        const double contact = (r + disks_[k].radius) * (1.0 - touch_slack);
+        hit = hit || dx * dx + dy * dy < contact * contact;
+      });
+      return hit;
+    };
+
+    cd::Disk landed{0.0, std::numeric_limits<double>::infinity(), r};
+    auto consider = [&](double x, double y, double window) {
+      if (y < r * (1.0 - touch_slack) || y >= landed.y) return;
+      if (std::abs(nearest_image(x - drop_x, length_x_)) > window || overlaps(x, y)) return;
+      landed.x = x;
+      landed.y = y;
+    };
+
+    // The lowest pocket within the window, among disks near the local surface; widen the
+    // window if every pocket there is blocked.
+    for (double window = spec_.rain_window * d; !std::isfinite(landed.y); window *= 2.0) {
+      if (window > 2.0 * length_x_) throw std::runtime_error("granular bed: no pocket for disk " + std::to_string(n));
+      const double reach = window + r + r_max;
+      const int first = grid.column(drop_x - reach);
+      const int span = std::min(grid.columns(), static_cast<int>(std::ceil(2.0 * reach / grid.cell_width())) + 2);
+      // Each column's top cells, down to below its neighbours' tops: a pocket's supports.
+      surface.clear();
+      const int columns = grid.columns();
+      for (int c = first; c < first + span; c++) {
+        const int top = grid.top_row(c % columns);
+        const int lowest = std::min({grid.top_row((c + columns - 1) % columns), top,
+                                     grid.top_row((c + 1) % columns)});
+        for (int row = lowest - 2; row <= top; row++)
+          for (int k : grid.cell(c, row)) surface.push_back(k);
+      }
+
+      consider(drop_x, r, window);
+      for (std::size_t s = 0; s < surface.size(); s++) {
+        cd::Disk i = disks_[surface[s]];
+        i.x = drop_x + nearest_image(i.x - drop_x, length_x_);
+        const double height = i.y - r, reach_i = i.radius + r;
+        if (std::abs(height) < reach_i) {
+          const double side = std::sqrt(reach_i * reach_i - height * height);
+          consider(i.x - side, r, window);
+          consider(i.x + side, r, window);
+        }
+        for (std::size_t t = s + 1; t < surface.size(); t++) {
+          cd::Disk j = disks_[surface[t]];
+          j.x = i.x + nearest_image(j.x - i.x, length_x_);
+          double x, y;
+          if (rest_on_pair(i, j, r, x, y)) consider(x, y, window);
+        }
+      }
+    }
+    landed.x -= length_x_ * std::floor(landed.x / length_x_);
+    grid.insert(n, landed);
+    disks_.push_back(landed);
+  }
+}
+
+std::vector<NeighbourPair> GranularBed::find_neighbour_pairs(const std::vector<cd::Disk>& at) const
+{
+  const double d = spec_.mean_diameter;
+  const double r_max = 0.5 * d * (1.0 + 0.5 * spec_.polydispersity);
+  const double skin = spec_.skin * d;
+  CellGrid grid(length_x_, 2.0 * r_max + skin);
+  for (std::size_t k = 0; k < at.size(); k++) {
+    cd::Disk wrapped = at[k];
+    wrapped.x -= length_x_ * std::floor(wrapped.x / length_x_);
+    wrapped.y = std::max(wrapped.y, 0.0);
+    grid.insert(static_cast<int>(k), wrapped);
+  }
+
+  std::vector<NeighbourPair> pairs, walls;
+  for (std::size_t i = 0; i < at.size(); i++) {
+    const cd::Disk& a = at[i];
+    const double wrapped_x = a.x - length_x_ * std::floor(a.x / length_x_);
+    grid.for_each_near(wrapped_x, std::max(a.y, 0.0), [&](int j) {
+      if (j <= static_cast<int>(i)) return;
+      const cd::Disk& b = at[j];
+      const double dx = nearest_image(a.x - b.x, length_x_), dy = a.y - b.y;
+      const double reach = a.radius + b.radius + skin;
+      if (dx * dx + dy * dy >= reach * reach) return;
+      NeighbourPair c;
+      c.a = static_cast<int>(i) + 1;
+      c.b = j + 1;
+      c.b_shift_x = (a.x - dx) - b.x;
+      pairs.push_back(c);
+    });
+    if (a.y - a.radius < skin) {
+      NeighbourPair c;
+      c.a = static_cast<int>(i) + 1;
+      c.b = cd::world_body;
+      walls.push_back(c);
+    }
+  }
+  // Pairs in the order of their first disk, then the wall contacts, as the fix collects them.
+  pairs.insert(pairs.end(), walls.begin(), walls.end());
+  return pairs;
+}
+
+FrozenStep GranularBed::freeze() const
+{
+  FrozenStep frozen;
+  frozen.step = {spec_.dt, spec_.theta};
+  const int count = static_cast<int>(disks_.size());
+  frozen.bodies.reset(1 + count);
+  frozen.predicted = disks_;
+  const double lead = (1.0 - spec_.theta) * spec_.dt;
+  for (int k = 0; k < count; k++) {
+    frozen.bodies.inertia[1 + k] = inertia_[k];
+    frozen.bodies.start_velocity[1 + k] = velocity_[k];
+    cd::BodyVelocity free = velocity_[k];
+    free.vy -= spec_.dt * spec_.gravity;
+    frozen.bodies.velocity[1 + k] = free;
+    frozen.predicted[k].x += lead * velocity_[k].vx;
+    frozen.predicted[k].y += lead * velocity_[k].vy;
+  }
+  frozen.pairs = find_neighbour_pairs(frozen.predicted);
+  for (NeighbourPair& c : frozen.pairs) {
+    const auto carried = carried_.find(pair_key(c.a, c.b));
+    if (carried != carried_.end()) c.warm_impulse = carried->second;
+  }
+  frozen.grain_law = spec_.grain_law;
+  frozen.floor.shape = cd::Wall::Shape::line;
+  frozen.floor.ax = 0.0;
+  frozen.floor.bx = length_x_;  // normal to the left of a -> b: +y
+  frozen.floor.law = spec_.wall_law;
+  frozen.box.periodic_x = true;
+  frozen.box.length_x = length_x_;
+  frozen.wall_alert = spec_.skin * spec_.mean_diameter;
+  frozen.alert = spec_.alert * spec_.mean_diameter;
+  return frozen;
+}
+
+cd::SolveReport GranularBed::step()
+{
+  const FrozenStep frozen = freeze();
+  std::vector<cd::Contact> contacts;
+  prepare_contacts(frozen, true, contacts);
+  std::vector<cd::BodyVelocity> velocity = frozen.bodies.velocity;
+  cd::apply_impulses(contacts, velocity);
+  const cd::SolveReport report = cd::solve_gauss_seidel(contacts, velocity, spec_.solver);
+
+  carried_.clear();
+  for (const cd::Contact& c : contacts)
+    if (c.impulse.n > 0.0) carried_[pair_key(c.body_a, c.body_b)] = c.impulse;
+  const double advance = spec_.theta * spec_.dt;
+  for (std::size_t k = 0; k < disks_.size(); k++) {
+    velocity_[k] = velocity[1 + k];
+    cd::Disk& disk = disks_[k];
+    disk.x = frozen.predicted[k].x + advance * velocity_[k].vx;
+    disk.y = frozen.predicted[k].y + advance * velocity_[k].vy;
+    disk.x -= length_x_ * std::floor(disk.x / length_x_);
+  }
+  return report;
+}
+
+double GranularBed::kinetic_energy() const
+{
+  double energy = 0.0;
+  for (std::size_t k = 0; k < disks_.size(); k++) {
+    const cd::BodyVelocity& v = velocity_[k];
+    energy += 0.5 * (v.vx * v.vx + v.vy * v.vy) / inertia_[k].inv_mass +
+              0.5 * v.spin * v.spin / inertia_[k].inv_inertia;
+  }
+  return energy;
+}
+
+double GranularBed::max_speed() const
+{
+  double fastest = 0.0;
+  for (const cd::BodyVelocity& v : velocity_) fastest = std::max(fastest, std::hypot(v.vx, v.vy));
+  return fastest;
+}
+
+}  // namespace bench

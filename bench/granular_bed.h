@@ -1,0 +1,95 @@
+// A dense polydisperse bed of rigid disks resting under gravity, built deterministically
+// without LAMMPS, and one Moreau–Jean step of the solver core frozen at that state so that a
+// benchmark can replay it as often as it likes.
+//
+// The bed is made as the scene makes it, by rain: disks are dropped one at a time into the
+// lowest pocket near a random abscissa (touching two disks, or a disk and the floor), then the
+// whole packing settles for a few steps under gravity with the solver core itself, so that
+// contacts carry their weight and the warm-start impulses are those of a real step.
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "cd/gauss_seidel.h"
+
+namespace bench {
+
+struct BedSpec {
+  int disk_count = 4000;
+  double mean_diameter = 5.0e-4;   // d (m)
+  double polydispersity = 0.4;     // (dmax - dmin) / d, diameters uniform
+  double cell_length = 45.0;       // periodic length in x, in d (the scene's default cell)
+  double density = 2500.0;         // kg/m^2: disk mass pi r^2 rho
+  double gravity = 9.81;           // m/s^2, along -y
+  double dt = 1.0e-5;              // s
+  double theta = 0.5;
+  double skin = 0.2;               // neighbour pairs: gap below skin d (a LAMMPS size list)
+  double alert = 0.01;             // solved pairs: cd::is_candidate alert, in d (the fix's default)
+  double rain_window = 1.0;        // a disk lands within this many d of its drop abscissa
+  int settle_steps = 200;          // Moreau–Jean steps under gravity after the rain
+  std::uint64_t seed = 20240601;
+  cd::ContactLaw grain_law{0.5, 0.5};
+  cd::ContactLaw wall_law{0.5, 0.5};  // the floor y = 0
+  cd::SolverSettings solver{1.0e-4, 1000, 1.0, cd::ConvergenceNorm::quadratic};
+};
+
+// A pair the neighbour list would hand to the fix: body b is a disk seen at its periodic image
+// nearest to a (b_shift_x added to its x), or the floor (b = world body).
+struct NeighbourPair {
+  int a = 0;  // body index (disk k is body k + 1)
+  int b = 0;
+  double b_shift_x = 0.0;   // m
+  cd::Local2 warm_impulse;  // impulse this pair carried at the end of the previous step (N s)
+};
+
+// Everything one step of the core reads, frozen at the predicted configuration x_m.
+struct FrozenStep {
+  cd::StepParameters step;
+  cd::BodySet bodies;               // inertia, v_n, free velocity v_n + dt g
+  std::vector<cd::Disk> predicted;  // x_m = x_n + (1 - theta) dt v_n, per disk
+  std::vector<NeighbourPair> pairs;
+  cd::ContactLaw grain_law;
+  cd::Wall floor;
+  cd::PeriodicBox box;
+  double wall_alert = 0.0;  // m: the fix passes its neighbour skin to cd::wall_contact
+  double alert = 0.0;       // m: cd::is_candidate
+};
+
+// The core's part of a step before the solve, in the fix's order: geometry, frame and
+// selection (cd::is_candidate) of every neighbour pair, mechanics of the selected ones, then
+// (if warm) the impulses carried over. The caller applies those impulses to a copy of the free velocity and solves.
+void prepare_contacts(const FrozenStep& frozen, bool warm, std::vector<cd::Contact>& contacts);
+
+class GranularBed {
+ public:
+  explicit GranularBed(const BedSpec& spec);  // rains and settles
+
+  // Advances the bed by one step with the core; returns the solver's report.
+  cd::SolveReport step();
+
+  // The next step, frozen (the bed does not move).
+  FrozenStep freeze() const;
+
+  const BedSpec& spec() const { return spec_; }
+  const std::vector<cd::Disk>& disks() const { return disks_; }
+  const std::vector<cd::SolveReport>& settle_reports() const { return settle_reports_; }
+  double length_x() const { return length_x_; }
+  double kinetic_energy() const;  // J, translation + spin (areal density rho)
+  double max_speed() const;       // m/s
+
+ private:
+  void rain();
+  std::vector<NeighbourPair> find_neighbour_pairs(const std::vector<cd::Disk>& at) const;
+
+  BedSpec spec_;
+  double length_x_ = 0.0;
+  std::vector<cd::Disk> disks_;
+  std::vector<cd::BodyVelocity> velocity_;
+  std::vector<cd::BodyInertia> inertia_;
+  std::unordered_map<std::uint64_t, cd::Local2> carried_;  // loaded pairs' impulses, by pair key
+  std::vector<cd::SolveReport> settle_reports_;
+};
+
+}  // namespace bench
