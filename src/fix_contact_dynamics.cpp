@@ -297,6 +297,11 @@ void FixContactDynamics::init()
     error->all(FLERR, "Fix contact/dynamics requires ghost velocities: use comm_modify vel yes");
   if (atom->map_style == Atom::MAP_NONE)
     error->all(FLERR, "Fix contact/dynamics requires an atom map: use atom_modify map array");
+  // The per-step displacement limit (half the skin) keeps every contact in the list only if
+  // the list is rebuilt as soon as a grain has moved that far.
+  if (neighbor->every != 1 || neighbor->delay != 0 || !neighbor->dist_check)
+    error->all(FLERR, "Fix contact/dynamics requires neighbour lists checked every step: use "
+               "neigh_modify delay 0 every 1 check yes");
   if (utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "Fix contact/dynamics does not support run_style respa");
   if (atom->ntypes + 1 != static_cast<int>(std::sqrt(static_cast<double>(type_laws.size()))))
@@ -460,17 +465,14 @@ void FixContactDynamics::final_integrate()
   gather_bodies();
   contacts.clear();
   records.clear();
-  inactive.clear();
+  watched.clear();
   collect_pair_contacts();
   collect_wall_contacts();
   if (order == ContactOrder::shuffled) shuffle_contacts();
   if (warm_start) load_warm_start();
 
   cd::apply_impulses(contacts, bodies.velocity);
-  RankExchange exchange(*this);
-  if (distributed) exchange.synchronise_velocities();
-  last_report = cd::solve_gauss_seidel(contacts, bodies.velocity, solver_settings,
-                                       distributed ? &exchange : nullptr);
+  solve_contacts();
 
   store_warm_start();
   write_back_motion();
@@ -489,6 +491,44 @@ void FixContactDynamics::final_integrate()
                      "{} step(s) unconverged so far", solver_settings.max_iterations,
                      update->ntimestep, last_report.residual, count);
   }
+}
+
+// Solves, then lets pairs that the solution would drive into overlap join and solves again
+// from where it stopped; a few rounds settle it (each round only adds contacts).
+void FixContactDynamics::solve_contacts()
+{
+  constexpr int max_rounds = 10;
+  RankExchange exchange(*this);
+  if (distributed) exchange.synchronise_velocities();
+  cd::SweepExchange *across_ranks = distributed ? &exchange : nullptr;
+  last_report = cd::solve_gauss_seidel(contacts, bodies.velocity, solver_settings, across_ranks);
+  for (int round = 1; round < max_rounds; round++) {
+    int promoted_local = promote_closing_pairs() ? 1 : 0, promoted = promoted_local;
+    if (distributed) MPI_Allreduce(&promoted_local, &promoted, 1, MPI_INT, MPI_MAX, world);
+    if (!promoted) break;
+    const cd::SolveReport more = cd::solve_gauss_seidel(contacts, bodies.velocity, solver_settings, across_ranks);
+    last_report.iterations += more.iterations;
+    last_report.residual = more.residual;
+    last_report.converged = more.converged;
+  }
+}
+
+bool FixContactDynamics::promote_closing_pairs()
+{
+  const cd::StepParameters step{update->dt, theta};
+  const std::size_t before = contacts.size();
+  std::size_t kept = 0;
+  for (WatchedPair &pair : watched) {
+    if (!cd::closes_after_solve(pair.frame, bodies.velocity, step)) {
+      watched[kept++] = pair;
+      continue;
+    }
+    cd::prepare_mechanics(pair.frame, pair.law, bodies, step);
+    contacts.push_back(pair.frame);
+    records.push_back(pair.record);
+  }
+  watched.resize(kept);
+  return contacts.size() > before;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -560,7 +600,7 @@ void FixContactDynamics::add_candidate(const cd::ContactGeometry &geometry, cons
   cd::Contact contact = cd::contact_frame(geometry);
   const cd::StepParameters step{update->dt, theta};
   if (!cd::is_candidate(contact, bodies, step, alert_distance)) {
-    inactive.push_back(contact);
+    watched.push_back({contact, contact_law, record});
     return;
   }
   cd::prepare_mechanics(contact, contact_law, bodies, step);
@@ -688,7 +728,11 @@ void FixContactDynamics::store_warm_start()
 
 void FixContactDynamics::write_back_motion()
 {
-  const double advance = theta * update->dt;
+  const double dt = update->dt;
+  const double advance = theta * dt;
+  // Neighbour lists are rebuilt once a grain has moved half the skin; a grain moving more than
+  // that in one step could pass through a pair the list does not hold.
+  const double step_limit_sq = 0.25 * neighbor->skin * neighbor->skin;
   double **x = atom->x;
   double **v = atom->v;
   double **omega = atom->omega;
@@ -699,6 +743,13 @@ void FixContactDynamics::write_back_motion()
     if (!std::isfinite(velocity.vx) || !std::isfinite(velocity.vy) || !std::isfinite(velocity.spin))
       error->one(FLERR, "Fix contact/dynamics: non-finite velocity of atom {} at step {}", atom->tag[i],
                  update->ntimestep);
+    const cd::BodyVelocity &start = bodies.start_velocity[1 + i];
+    const double dx = dt * ((1.0 - theta) * start.vx + theta * velocity.vx);
+    const double dy = dt * ((1.0 - theta) * start.vy + theta * velocity.vy);
+    if (dx * dx + dy * dy > step_limit_sq)
+      error->one(FLERR, "Fix contact/dynamics: atom {} moved {} in step {}, more than half the "
+                 "neighbour skin {}; reduce the time step or raise the skin", atom->tag[i],
+                 std::sqrt(dx * dx + dy * dy), update->ntimestep, neighbor->skin);
     v[i][0] = velocity.vx;
     v[i][1] = velocity.vy;
     omega[i][2] = velocity.spin;
@@ -708,7 +759,7 @@ void FixContactDynamics::write_back_motion()
 }
 
 // Interpenetration at the end of the step, linearised: gap + theta dt u_n^+, over the active
-// contacts and the inactive candidates (which other impulses may have pushed together).
+// contacts and the watched pairs.
 void FixContactDynamics::measure_overlaps()
 {
   const cd::StepParameters step{update->dt, theta};
@@ -722,7 +773,7 @@ void FixContactDynamics::measure_overlaps()
     deepest = std::max(deepest, overlap);
     total += overlap;
   }
-  for (const cd::Contact &c : inactive) deepest = std::max(deepest, overlap_of(c));
+  for (const WatchedPair &pair : watched) deepest = std::max(deepest, overlap_of(pair.frame));
   max_overlap = deepest;
   mean_overlap = total;
 }
@@ -946,7 +997,7 @@ int FixContactDynamics::maxsize_restart()
 double FixContactDynamics::memory_usage()
 {
   double bytes = static_cast<double>(atom->nmax) * history_width * sizeof(double);
-  bytes += contacts.capacity() * sizeof(cd::Contact) + inactive.capacity() * sizeof(cd::Contact);
+  bytes += contacts.capacity() * sizeof(cd::Contact) + watched.capacity() * sizeof(WatchedPair);
   bytes += records.capacity() * sizeof(ContactRecord);
   bytes += bodies.velocity.capacity() * (2 * sizeof(cd::BodyVelocity) + sizeof(cd::BodyInertia));
   bytes += static_cast<double>(local_rows_allocated) * output_columns * sizeof(double);

@@ -103,7 +103,13 @@ class FixContactDynamics : public Fix {
   bool distributed;                     // more than one rank: exchange every sweep
   std::vector<cd::Contact> contacts;
   std::vector<ContactRecord> records;
-  std::vector<cd::Contact> inactive;  // candidate pairs without impulse, watched for overlap
+  // A listed pair left out of the solve: watched for overlap, promoted if it would overlap.
+  struct WatchedPair {
+    cd::Contact frame;
+    cd::ContactLaw law;
+    ContactRecord record;
+  };
+  std::vector<WatchedPair> watched;
   cd::SolveReport last_report;
   double max_overlap, mean_overlap;  // in units of the mean diameter, over all ranks
   double solved_contacts_total, loaded_contacts_total;  // over all ranks
@@ -136,6 +142,8 @@ class FixContactDynamics : public Fix {
   void collect_wall_contacts();
   void add_candidate(const cd::ContactGeometry &, const cd::ContactLaw &, const ContactRecord &);
   void shuffle_contacts();
+  void solve_contacts();
+  bool promote_closing_pairs();
   void load_warm_start();
   void store_warm_start();
   void append_history(int atom_index, double key, cd::Local2 impulse);

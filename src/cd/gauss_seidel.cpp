@@ -135,4 +135,11 @@ double end_of_step_gap(double gap, double normal_velocity, const StepParameters&
   return gap + step.theta * step.dt * normal_velocity;
 }
 
+bool closes_after_solve(const Contact& frame, const std::vector<BodyVelocity>& velocity,
+                        const StepParameters& step)
+{
+  const double u_n = relative_velocity(frame, velocity[frame.body_a], velocity[frame.body_b]).n;
+  return end_of_step_gap(frame.gap, u_n, step) < 0.0;
+}
+
 }  // namespace cd

@@ -112,4 +112,10 @@ SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyV
 // Linearised gap at the end of the step: gap + theta dt u_n^+ (m).
 double end_of_step_gap(double gap, double normal_velocity, const StepParameters& step);
 
+// True if a pair left out of the solve would overlap at the end of the step with the solved
+// velocities: other impulses (a grain stopped by the floor, say) drove it shut faster than
+// the candidate selection foresaw. Such pairs join the contacts and the solve continues.
+bool closes_after_solve(const Contact& frame, const std::vector<BodyVelocity>& velocity,
+                        const StepParameters& step);
+
 }  // namespace cd

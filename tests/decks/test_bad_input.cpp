@@ -47,6 +47,7 @@ dimension 2
 atom_style sphere
 atom_modify map array
 comm_modify vel yes
+neigh_modify delay 0
 boundary p f p
 region box block 0 0.01 0 0.01 -0.0003 0.0003
 create_box 2 box
@@ -120,6 +121,16 @@ const BadCase bad_cases[] = {
        return deck;
      }(),
      "requires an atom map"},
+    {"neighbour_delay",
+     [] {
+       std::string deck = with_fix("0.5 0.5");
+       deck.replace(deck.find("neigh_modify delay 0"), 20, "neigh_modify delay 5");
+       return deck;
+     }(),
+     "use neigh_modify delay 0 every 1 check yes"},
+    {"step_longer_than_half_skin",
+     preamble + "set atom 1 vx 20.0\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
+     "atom 1 moved 0.0002 in step 1, more than half the neighbour skin 0.0001"},
     {"second_integrator", preamble + "fix nve all nve/sphere\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
      "fix nve (nve/sphere) also integrates atoms of group all"},
     {"sphere_masses",
@@ -144,7 +155,7 @@ TEST(MultipleRanks, SubdomainsThinnerThanTheContactCutoffAreRefused)
 {
   // Two ranks along x on a box 2 d wide: each subdomain (1 d) is thinner than 2 d_max + skin.
   const std::string deck = "units si\ndimension 2\natom_style sphere\natom_modify map array\n"
-                           "comm_modify vel yes\nprocessors 2 1 1\nboundary p f p\n"
+                           "comm_modify vel yes\nneigh_modify delay 0\nprocessors 2 1 1\nboundary p f p\n"
                            "region box block 0 0.001 0 0.01 -0.0003 0.0003\ncreate_box 1 box\n"
                            "create_atoms 1 single 0.0005 0.00025 0\n"
                            "set group all diameter 5e-4 density/disc 2500\nneighbor 1e-4 bin\n"

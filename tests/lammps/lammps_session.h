@@ -13,14 +13,15 @@
 
 namespace cdtest {
 
-// Lines common to every 2D deck: SI units, disks, the atom map and ghost velocities the fix
-// requires.
+// Lines common to every 2D deck: SI units, disks, and the atom map, ghost velocities and
+// per-step neighbour checks the fix requires.
 inline const char* disk_preamble = R"(
 units si
 dimension 2
 atom_style sphere
 atom_modify map array
 comm_modify vel yes
+neigh_modify delay 0 every 1 check yes
 )";
 
 class LammpsSession {

@@ -117,6 +117,7 @@ class Restart : public ::testing::Test {
     s.commands(R"(
 neighbor 1e-4 bin
 comm_modify vel yes
+neigh_modify delay 0 every 1 check yes
 fix grav all gravity 9.81 vector 0 -1 0
 fix cd all contact/dynamics 0.5 0.5 wall yplane 0.0 0.5 0.5 tolerance 1e-10 max_iterations 100000 )" +
                fix_options + R"(

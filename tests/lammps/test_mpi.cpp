@@ -204,6 +204,7 @@ TEST_F(TwoRanks, RestartWrittenOnTwoRanksContinuesOnOne)
   one.commands(fmt::format(R"(
 neighbor {skin} bin
 comm_modify vel yes
+neigh_modify delay 0 every 1 check yes
 fix grav all gravity 9.81 vector 0 -1 0
 fix cd all contact/dynamics 0.5 0.5 wall yplane 0.0 0.5 0.5 {options}
 fix 2d all enforce2d
