@@ -1,0 +1,375 @@
+#!/usr/bin/env python3
+"""Deck-level tests of inputs/in.chute and scripts/chute_campaign.py, run by ctest.
+
+    test_chute.py CASE --lmp build/lmp_cd --work DIR
+
+Each case runs lmp_cd (or the runner) on a tiny erodible-bed cell (10 d long, 200 grains,
+walls 8 d high, so the flowing layer is about 12 d thick) and checks physics on its output.
+The packing made by the case 'deposition' is the start of the cases that need one (a ctest
+fixture). Standard library only.
+"""
+
+import argparse
+import gzip
+import math
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOP = os.path.dirname(os.path.dirname(HERE))
+DECK = os.path.join(TOP, "inputs", "in.chute")
+RUNNER = os.path.join(TOP, "scripts", "chute_campaign.py")
+
+D = 5.0e-4                      # mean diameter (m), the deck's default
+G = 9.81
+SQRT_GD = math.sqrt(G * D)
+CELL = dict(L="10", grains="200", wall_height="8")
+WALL_TOP = 8 * D
+
+
+class Failure(Exception):
+    pass
+
+
+def check(condition, message):
+    if not condition:
+        raise Failure(message)
+
+
+def run_lmp(lmp, folder, variables, expect_ok=True):
+    """Run in.chute in folder with -var NAME VALUE; returns (exit status, screen text)."""
+    os.makedirs(folder, exist_ok=True)
+    cmd = [lmp, "-in", DECK, "-log", "log.lammps"]
+    for key, value in variables.items():
+        cmd += ["-var", key, str(value)]
+    result = subprocess.run(cmd, cwd=folder, capture_output=True, text=True)
+    output = result.stdout + result.stderr
+    if expect_ok and result.returncode != 0:
+        errors = [l for l in output.splitlines() if "ERROR" in l]
+        raise Failure(f"lmp_cd failed in {folder}: {errors[:1] or output[-500:]}")
+    return result.returncode, output
+
+
+def summary(output, tag):
+    """The 'TAG key value ...' line the deck prints, as a dict of floats."""
+    line = next((l for l in output.splitlines() if l.startswith(tag + " ")), None)
+    check(line is not None, f"no {tag} line in the output")
+    fields = line.split()[1:]
+    return {k: float(v) for k, v in zip(fields[0::2], fields[1::2])}
+
+
+def read_dump(path):
+    """Frames of a LAMMPS dump (plain or gzip): [(timestep, box, {id: {column: value}})]."""
+    opener = gzip.open if path.endswith(".gz") else open
+    with opener(path, "rt") as src:
+        lines = src.read().split("\n")
+    frames, i = [], 0
+    while i < len(lines):
+        if lines[i] != "ITEM: TIMESTEP":
+            i += 1
+            continue
+        step = int(lines[i + 1])
+        count = int(lines[i + 3])
+        box = [tuple(map(float, lines[i + 5 + k].split()[:2])) for k in range(3)]
+        columns = lines[i + 8].split()[2:]
+        atoms = {}
+        for row in lines[i + 9:i + 9 + count]:
+            values = dict(zip(columns, map(float, row.split())))
+            atoms[int(values["id"])] = values
+        frames.append((step, box, atoms))
+        i += 9 + count
+    return frames
+
+
+def read_time_file(path):
+    """fix ave/time file -> list of dict by the column names of its last header line."""
+    names, rows = None, []
+    with open(path) as src:
+        for line in src:
+            if line.startswith("#"):
+                names = line[1:].split()
+                continue
+            rows.append(dict(zip(names, map(float, line.split()))))
+    return rows
+
+
+def mean(values):
+    values = list(values)
+    return sum(values) / len(values)
+
+
+# ----------------------------------------------------------------------------------------
+# Cases
+# ----------------------------------------------------------------------------------------
+
+def largest_overlap(atoms, box):
+    """Largest interpenetration r_i + r_j - |x_i - x_j| over all pairs (m), x periodic."""
+    length = box[0][1] - box[0][0]
+    grains = list(atoms.values())
+    worst = -math.inf
+    for i, a in enumerate(grains):
+        for b in grains[i + 1:]:
+            dx = a["x"] - b["x"]
+            dx -= length * round(dx / length)
+            worst = max(worst, a["radius"] + b["radius"] - math.hypot(dx, a["y"] - b["y"]))
+    return worst
+
+
+def surface_height(atoms, box, column_width=2 * D):
+    """Mean over columns of the top of the highest grain whose centre is in the column (m)."""
+    length = box[0][1] - box[0][0]
+    columns = max(1, int(length / column_width))
+    tops = [0.0] * columns
+    for a in atoms.values():
+        c = int((a["x"] - box[0][0]) / length * columns) % columns
+        tops[c] = max(tops[c], a["y"] + a["radius"])
+    return mean(tops)
+
+
+def case_deposition(args):
+    """The rain settles (kinetic energy criterion) into a packing with no interpenetration
+    above 0.005 d, a packing fraction of a random 2D polydisperse deposit, and a surface at
+    the height its grain area and packing fraction imply."""
+    folder = os.path.join(args.work, "deposition")
+    shutil.rmtree(folder, ignore_errors=True)
+    _, output = run_lmp(args.lmp, folder, dict(CELL, stage="deposition"))
+    result = summary(output, "DEPOSITION")
+    for name in ("deposition.restart", "deposition.data", "deposition.dump"):
+        check(os.path.exists(os.path.join(folder, name)), f"{name} not written")
+    check(result["grains"] == 200, f"{result['grains']} grains, expected 200")
+    check(result["ke_per_grain"] < 1e-4, f"not settled: KE per grain {result['ke_per_grain']} m g d")
+    check(result["max_interpenetration_d"] < 0.005,
+          f"the fix reports an interpenetration of {result['max_interpenetration_d']} d")
+
+    (_, box, atoms), = read_dump(os.path.join(folder, "deposition.dump"))
+    overlap = largest_overlap(atoms, box) / D
+    check(overlap < 0.005, f"two grains interpenetrate by {overlap:.4f} d")
+    check(0.78 <= result["phi_bed"] <= 0.86,
+          f"packing fraction of the bed {result['phi_bed']}, expected 0.78-0.86 for a random deposit")
+    # Expected height: total grain area / (L phi_bed), computed here from the dump.
+    area = sum(math.pi * a["radius"] ** 2 for a in atoms.values())
+    length = box[0][1] - box[0][0]
+    expected = area / (length * result["phi_bed"]) / D
+    surface = surface_height(atoms, box) / D
+    check(abs(surface - expected) < 1.5,
+          f"surface at {surface:.2f} d, expected {expected:.2f} d from the packing fraction")
+    check(surface > 8 + 5, f"the bed top {surface:.2f} d is not well above the 8 d walls")
+    low = [a for a in atoms.values() if a["y"] - a["radius"] < -1e-9 * D]
+    check(not low, f"{len(low)} grains below the floor")
+    print(f"deposition: phi_bed {result['phi_bed']:.4f}, surface {surface:.2f} d, expected "
+          f"{expected:.2f} d, largest overlap {overlap:.2e} d, settled at {result['time_s']} s")
+
+
+def case_reproducible(args):
+    """The same seed gives the same packing; another seed another one."""
+    reference = read_dump(os.path.join(args.work, "deposition", "deposition.dump"))[0][2]
+    again = os.path.join(args.work, "deposition_again")
+    other = os.path.join(args.work, "deposition_other_seed")
+    for folder in (again, other):
+        shutil.rmtree(folder, ignore_errors=True)
+    run_lmp(args.lmp, again, dict(CELL, stage="deposition"))
+    run_lmp(args.lmp, other, dict(CELL, stage="deposition", seed=12345))
+    same = read_dump(os.path.join(again, "deposition.dump"))[0][2]
+    different = read_dump(os.path.join(other, "deposition.dump"))[0][2]
+    moved = max(math.hypot(same[i]["x"] - a["x"], same[i]["y"] - a["y"]) for i, a in reference.items())
+    check(moved == 0.0, f"same seed, but a grain is {moved / D:.3g} d away")
+    shifted = mean(math.hypot(different[i]["x"] - a["x"], different[i]["y"] - a["y"])
+                   for i, a in reference.items())
+    check(shifted > 0.5 * D, f"another seed moved the grains by only {shifted / D:.3g} d on average")
+    print(f"reproducible: identical with the same seed; mean shift {shifted / D:.1f} d with another")
+
+
+def chute(args, name, theta, duration, **extra):
+    folder = os.path.join(args.work, name)
+    shutil.rmtree(folder, ignore_errors=True)
+    start = os.path.join(args.work, "deposition", "deposition.restart")
+    variables = dict(CELL, stage="flow", start=start, theta=theta, duration=duration)
+    variables.update(extra)
+    _, output = run_lmp(args.lmp, folder, variables)
+    return folder, output
+
+
+FLOW_THETA, FLOW_DURATION, FLOW_FRAME = 24, 0.8, 0.004
+
+
+def case_flow_run(args):
+    """The flow that steady_flow and walls_trap analyse: 24 degrees for 0.8 s, a dump frame
+    every 4 ms."""
+    chute(args, "flow", FLOW_THETA, FLOW_DURATION, snapshot_interval=FLOW_FRAME)
+    print("flow run written")
+
+
+def case_walls_trap(args):
+    """Grains that stay below the wall tops never cross the periodic boundary; grains of the
+    flowing layer do, and only with their centre above the wall tops."""
+    folder = os.path.join(args.work, "flow")
+    frames = [f[2] for f in read_dump(os.path.join(folder, "dump.chute.gz"))]
+    expected = int(round(FLOW_DURATION / FLOW_FRAME)) + 1
+    check(len(frames) == expected, f"{len(frames)} frames, expected {expected}")
+    first = frames[0]
+    buried = [i for i in first if all(f[i]["y"] < WALL_TOP for f in frames)]
+    crossed = [i for i in first if any(f[i]["ix"] != first[i]["ix"] for f in frames)]
+    check(len(buried) > 50, f"only {len(buried)} grains stayed below the wall tops")
+    trapped_crossers = sorted(set(buried) & set(crossed))
+    check(not trapped_crossers, f"grains below the wall tops crossed the boundary: {trapped_crossers[:10]}")
+    check(len(crossed) > 20, f"only {len(crossed)} grains crossed the boundary: no flow above the walls")
+    lowest = math.inf
+    for before, after in zip(frames, frames[1:]):
+        for i in before:
+            if before[i]["ix"] != after[i]["ix"]:
+                lowest = min(lowest, before[i]["y"], after[i]["y"])
+    check(lowest > WALL_TOP, f"a grain crossed with its centre {(lowest - WALL_TOP) / D:.3f} d from the wall top")
+    print(f"walls: {len(buried)} grains stayed below the wall tops and none crossed; {len(crossed)} "
+          f"grains crossed, the lowest at z = {(lowest - WALL_TOP) / D:.2f} d")
+
+
+def case_steady_flow(args):
+    """Tilted by 24 degrees, the layer above the walls flows and its mean velocity stops
+    growing: U over the last 0.2 s matches U over the 0.2 s before within 20 %, far below
+    the frictionless acceleration g sin(theta) t."""
+    folder = os.path.join(args.work, "flow")
+    rows = read_time_file(os.path.join(folder, "flow.time"))
+    u_flow = lambda a, b: mean(r["v_u_flow"] for r in rows if a <= r["v_time"] < b) / SQRT_GD
+    early, late = u_flow(0.4, 0.6), u_flow(0.6, 0.8)
+    check(late > 0.5, f"U = {late:.3f} sqrt(g d) over 0.6-0.8 s: the layer does not flow")
+    check(abs(late - early) < 0.2 * late, f"U = {early:.3f} then {late:.3f} sqrt(g d): not steady")
+    free = G * math.sin(math.radians(FLOW_THETA)) * FLOW_DURATION / SQRT_GD
+    check(late < 0.2 * free, f"U = {late:.3f} sqrt(g d) is not far below free acceleration ({free:.1f})")
+    h = mean(r["v_h"] for r in rows if r["v_time"] >= 0.6) / D
+    check(8 < h < 16, f"flowing layer {h:.1f} d thick, expected about 12 d")
+    diagnostics = read_time_file(os.path.join(folder, "solver.time"))
+    capped = 1 - mean(r["f_cd[7]"] for r in diagnostics)
+    check(capped < 0.05, f"{capped:.1%} of the steps hit the iteration cap")
+    print(f"steady flow: U = {early:.3f}, {late:.3f} sqrt(g d) over 0.4-0.6, 0.6-0.8 s; h = {h:.1f} d; "
+          f"{capped:.2%} capped steps")
+
+
+def case_static(args):
+    """Without tilt the packing stays at rest: no grain moves 0.02 d in 0.1 s and the mean
+    velocities stay below 0.01 sqrt(g d) (the solver's noise is ~ g dt)."""
+    folder, output = chute(args, "static", 0, 0.1)
+    frames = read_dump(os.path.join(folder, "dump.chute.gz"))
+    first, last = frames[0][2], frames[-1][2]
+    check(frames[-1][0] > frames[0][0], "a single dump frame")
+    moved = max(math.hypot(last[i]["x"] - a["x"], last[i]["y"] - a["y"]) for i, a in first.items()) / D
+    check(moved < 0.02, f"a grain moved {moved:.4f} d without tilt")
+    rows = read_time_file(os.path.join(folder, "flow.time"))
+    u_all = max(abs(r["v_u_all"]) for r in rows) / SQRT_GD
+    u_flow = max(abs(r["v_u_flow"]) for r in rows) / SQRT_GD
+    v_flow = max(abs(r["v_v_flow"]) for r in rows) / SQRT_GD
+    check(max(u_all, u_flow, v_flow) < 0.01,
+          f"mean velocities {u_all:.2e}, {u_flow:.2e}, {v_flow:.2e} sqrt(g d) without tilt")
+    print(f"static: largest displacement {moved:.2e} d, largest mean velocity {max(u_all, u_flow, v_flow):.2e} sqrt(g d)")
+
+
+BAD_VARS = [
+    ("mu", "-0.1", "-var mu -0.1"),
+    ("mu", "abc", "mu_is_not_a_number"),
+    ("theta", "95", "-var theta 95"),
+    ("L", "2", "-var L 2"),
+    ("dt", "0", "-var dt 0"),
+    ("e", "1.5", "-var e 1.5"),
+    ("grains", "10.5", "-var grains 10.5"),
+    ("tolerance", "0.1x", "tolerance_is_not_a_number"),
+    ("sample_rate", "3000", "-var sample_rate 3000"),
+    ("stage", "chute", "-var stage chute"),
+    ("restart_interval", "0.015", "-var restart_interval 0.015"),
+]
+
+
+def case_bad_var(args):
+    """Every bad -var value stops lmp_cd with exit status 1 and one ERROR line naming it."""
+    folder = os.path.join(args.work, "bad_var")
+    problems = []
+    for name, value, expected in BAD_VARS:
+        status, output = run_lmp(args.lmp, folder, {name: value, "stage": "flow"} if name != "stage"
+                                 else {name: value}, expect_ok=False)
+        errors = [l for l in output.splitlines() if l.startswith("ERROR")]
+        if status == 0 or len(errors) != 1 or expected not in errors[0] or "Setting up" in output:
+            problems.append(f"-var {name} {value}: status {status}, errors {errors}")
+    check(not problems, "; ".join(problems))
+    print(f"bad -var: {len(BAD_VARS)} values stopped with one ERROR line naming the variable")
+
+
+def case_runner_resume(args):
+    """The runner, killed in the middle of a run, continues it from its restart when started
+    again; the spliced outputs are continuous; a finished run is not run again."""
+    out = os.path.join(args.work, "campaign")
+    shutil.rmtree(out, ignore_errors=True)
+    cmd = [sys.executable, RUNNER, "--out", out, "--lmp", args.lmp, "--cdpost", "none",
+           "--series", "mu0.5", "--only", "mu0.5_theta24_*", "--var", "L=8", "--var", "grains=80",
+           "--var", "wall_height=4", "--var", "restart_interval=0.02", "--var", "profile_interval=0.01",
+           "--duration", "0.3", "--progress-interval", "2"]
+    run = os.path.join(out, "runs", "mu0.5_theta24_L8")
+    runner = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    deadline = time.time() + 120
+    leg0 = os.path.join(run, "legs", "00")
+    while time.time() < deadline and not os.path.exists(os.path.join(leg0, "restart.b")):
+        time.sleep(0.2)
+    check(os.path.exists(os.path.join(leg0, "restart.b")), "no periodic restart within 120 s")
+    runner.send_signal(signal.SIGTERM)
+    first_output = runner.communicate(timeout=60)[0]
+    check("interrupted" in first_output, "the runner did not report the interruption:\n" + first_output)
+    check(not os.path.exists(os.path.join(run, "DONE")), "the run finished before the interruption")
+
+    second = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    check(second.returncode == 0, "second invocation failed:\n" + second.stdout + second.stderr)
+    check("restart." in second.stdout, "the run did not continue from a restart:\n" + second.stdout)
+    check(os.path.exists(os.path.join(run, "DONE")), "the run is not finished")
+    legs = sorted(os.listdir(os.path.join(run, "legs")))
+    check(len(legs) == 2, f"legs {legs}, expected 2")
+
+    rows = read_time_file(os.path.join(run, "flow.time"))
+    steps = [int(r["TimeStep"]) for r in rows]
+    every = steps[1] - steps[0]
+    check(steps[0] == 0 and steps[-1] == int(round(0.3 / 2e-5)),
+          f"flow.time covers steps {steps[0]}..{steps[-1]}")
+    check(all(b - a == every for a, b in zip(steps, steps[1:])), "flow.time has gaps or repeats")
+    times = [r["v_time"] for r in rows]
+    check(abs(times[-1] - 0.3) < 1e-9, f"flow.time ends at {times[-1]} s")
+    for name in ("params.json", "cost.json", "chute.restart", "profile.chunk", "layers.chunk",
+                 "packing.chunk", "solver.time", "dump.chute.gz"):
+        check(os.path.exists(os.path.join(run, name)), f"{name} missing from the run folder")
+
+    third = subprocess.run(cmd, capture_output=True, text=True, timeout=60)
+    check(third.returncode == 0 and "start run" not in third.stdout,
+          "a finished run was started again:\n" + third.stdout)
+    check(sorted(os.listdir(os.path.join(run, "legs"))) == legs, "a new leg appeared")
+    print(f"runner: interrupted, continued in leg 01, {len(steps)} samples without gap; finished run skipped")
+
+
+CASES = {
+    "deposition": case_deposition,
+    "reproducible": case_reproducible,
+    "flow_run": case_flow_run,
+    "walls_trap": case_walls_trap,
+    "steady_flow": case_steady_flow,
+    "static": case_static,
+    "bad_var": case_bad_var,
+    "runner_resume": case_runner_resume,
+}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("case", choices=sorted(CASES))
+    parser.add_argument("--lmp", required=True)
+    parser.add_argument("--work", required=True)
+    args = parser.parse_args()
+    args.lmp = os.path.abspath(args.lmp)
+    args.work = os.path.abspath(args.work)
+    os.makedirs(args.work, exist_ok=True)
+    try:
+        CASES[args.case](args)
+    except Failure as failure:
+        print(f"FAILED {args.case}: {failure}")
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
