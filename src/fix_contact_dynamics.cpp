@@ -63,6 +63,7 @@ FixContactDynamics::FixContactDynamics(LAMMPS *lmp, int narg, char **arg) :
   extvector = 0;
   local_flag = 1;
   size_local_cols = output_columns;
+  size_local_rows = 0;    // no contact until the first step is solved
   local_freq = 1;
   restart_global = 1;
   restart_peratom = 1;
@@ -469,6 +470,7 @@ void FixContactDynamics::final_integrate()
   collect_pair_contacts();
   collect_wall_contacts();
   if (order == ContactOrder::shuffled) shuffle_contacts();
+  else interleave_contacts();
   if (warm_start) load_warm_start();
 
   cd::apply_impulses(contacts, bodies.velocity);
@@ -663,6 +665,19 @@ void FixContactDynamics::collect_wall_contacts()
                      touch->geometry.point_y});
     }
   }
+}
+
+void FixContactDynamics::interleave_contacts()
+{
+  const std::vector<int> permutation = cd::interleaved_order(contacts, static_cast<int>(bodies.velocity.size()));
+  reordered_contacts.clear();
+  reordered_records.clear();
+  for (int k : permutation) {
+    reordered_contacts.push_back(contacts[k]);
+    reordered_records.push_back(records[k]);
+  }
+  contacts.swap(reordered_contacts);
+  records.swap(reordered_records);
 }
 
 void FixContactDynamics::shuffle_contacts()

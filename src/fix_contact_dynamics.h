@@ -103,6 +103,8 @@ class FixContactDynamics : public Fix {
   bool distributed;                     // more than one rank: exchange every sweep
   std::vector<cd::Contact> contacts;
   std::vector<ContactRecord> records;
+  std::vector<cd::Contact> reordered_contacts;       // scratch of interleave_contacts
+  std::vector<ContactRecord> reordered_records;
   // A listed pair left out of the solve: watched for overlap, promoted if it would overlap.
   struct WatchedPair {
     cd::Contact frame;
@@ -142,6 +144,7 @@ class FixContactDynamics : public Fix {
   void collect_wall_contacts();
   void add_candidate(const cd::ContactGeometry &, const cd::ContactLaw &, const ContactRecord &);
   void shuffle_contacts();
+  void interleave_contacts();
   void solve_contacts();
   bool promote_closing_pairs();
   void load_warm_start();

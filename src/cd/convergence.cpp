@@ -6,17 +6,6 @@
 
 namespace cd {
 
-void SweepChange::add(Local2 velocity_change, Local2 velocity_scale)
-{
-  const double change_sq = velocity_change.n * velocity_change.n + velocity_change.t * velocity_change.t;
-  const double scale_sq = velocity_scale.n * velocity_scale.n + velocity_scale.t * velocity_scale.t;
-  sum_change_sq += change_sq;
-  sum_scale_sq += scale_sq;
-  max_change = std::max(max_change, std::sqrt(change_sq));
-  sum_scale += std::sqrt(scale_sq);
-  contacts += 1.0;
-}
-
 void SweepChange::merge(const SweepChange& other)
 {
   sum_change_sq += other.sum_change_sq;

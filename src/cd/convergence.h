@@ -1,6 +1,9 @@
 // Convergence measures of the Gauss–Seidel sweep, kept apart from the sweep: they are physics.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "cd/coulomb_local.h"
 
 namespace cd {
@@ -21,7 +24,17 @@ struct SweepChange {
   double sum_scale = 0.0;      // sum |W p|
   double contacts = 0.0;       // number of contacts visited
 
-  void add(Local2 velocity_change, Local2 velocity_scale);
+  // Inline: called once per contact update in the sweep.
+  void add(Local2 velocity_change, Local2 velocity_scale)
+  {
+    const double change_sq = velocity_change.n * velocity_change.n + velocity_change.t * velocity_change.t;
+    const double scale_sq = velocity_scale.n * velocity_scale.n + velocity_scale.t * velocity_scale.t;
+    sum_change_sq += change_sq;
+    sum_scale_sq += scale_sq;
+    max_change = std::max(max_change, std::sqrt(change_sq));
+    sum_scale += std::sqrt(scale_sq);
+    contacts += 1.0;
+  }
   void merge(const SweepChange& other);
 
   // The chosen norm; 0 when nothing changed, infinite when impulses changed but all vanished.

@@ -1,6 +1,7 @@
 #include "cd/gauss_seidel.h"
 
 #include <algorithm>
+#include <deque>
 
 namespace cd {
 
@@ -9,14 +10,6 @@ void BodySet::reset(int body_count)
   inertia.assign(body_count, BodyInertia{});
   start_velocity.assign(body_count, BodyVelocity{});
   velocity.assign(body_count, BodyVelocity{});
-}
-
-Local2 relative_velocity(const Contact& c, const BodyVelocity& a, const BodyVelocity& b)
-{
-  const double dvx = a.vx - b.vx;
-  const double dvy = a.vy - b.vy;
-  return {dvx * c.normal_x + dvy * c.normal_y,
-          -dvx * c.normal_y + dvy * c.normal_x - c.lever_a * a.spin - c.lever_b * b.spin};
 }
 
 namespace {
@@ -47,8 +40,10 @@ inline void update_contact(Contact& c, std::vector<BodyVelocity>& velocity, doub
   const Local2 u_free{u.n + c.velocity_bias - own.n, u.t - own.t};
 
   Local2 p = solve_coulomb_local(c.delassus, u_free, c.mu).impulse;
-  p.n = relaxation * p.n + (1.0 - relaxation) * c.impulse.n;
-  p.t = relaxation * p.t + (1.0 - relaxation) * c.impulse.t;
+  if (relaxation != 1.0) {
+    p.n = relaxation * p.n + (1.0 - relaxation) * c.impulse.n;
+    p.t = relaxation * p.t + (1.0 - relaxation) * c.impulse.t;
+  }
   const Local2 dp{p.n - c.impulse.n, p.t - c.impulse.t};
   c.impulse = p;
   apply_impulse(c, dp, a, b);
@@ -97,6 +92,34 @@ void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies,
   const double advance = step.theta * step.dt;
   const bool impact = c.gap <= 0.0 || c.gap + advance * u_start <= 0.0;
   c.velocity_bias = impact ? law.restitution * std::min(u_start, 0.0) : c.gap / advance;
+}
+
+std::vector<int> interleaved_order(const std::vector<Contact>& contacts, int body_count, int spacing)
+{
+  // Greedy: each slot takes the first waiting contact whose bodies were last used at least
+  // `spacing` slots ago, looking a bounded distance ahead; otherwise the oldest waiting one.
+  constexpr std::size_t lookahead = 16;
+  std::vector<int> last_slot(body_count, -spacing);
+  std::deque<int> waiting;
+  for (std::size_t k = 0; k < contacts.size(); k++) waiting.push_back(static_cast<int>(k));
+  std::vector<int> order;
+  order.reserve(contacts.size());
+  while (!waiting.empty()) {
+    const int slot = static_cast<int>(order.size());
+    std::size_t chosen = 0;
+    for (std::size_t k = 0; k < waiting.size() && k < lookahead; k++) {
+      const Contact& c = contacts[waiting[k]];
+      if (slot - last_slot[c.body_a] >= spacing && slot - last_slot[c.body_b] >= spacing) {
+        chosen = k;
+        break;
+      }
+    }
+    const Contact& c = contacts[waiting[chosen]];
+    last_slot[c.body_a] = last_slot[c.body_b] = slot;
+    order.push_back(waiting[chosen]);
+    waiting.erase(waiting.begin() + static_cast<std::ptrdiff_t>(chosen));
+  }
+  return order;
 }
 
 void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity)

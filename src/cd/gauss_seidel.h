@@ -54,7 +54,14 @@ struct Contact {
 };
 
 // Relative velocity of a with respect to b at the contact point, in the local frame.
-Local2 relative_velocity(const Contact& c, const BodyVelocity& a, const BodyVelocity& b);
+// Inline: the sweep calls it for every contact update.
+inline Local2 relative_velocity(const Contact& c, const BodyVelocity& a, const BodyVelocity& b)
+{
+  const double dvx = a.vx - b.vx;
+  const double dvy = a.vy - b.vy;
+  return {dvx * c.normal_x + dvy * c.normal_y,
+          -dvx * c.normal_y + dvy * c.normal_x - c.lever_a * a.spin - c.lever_b * b.spin};
+}
 
 // The frame of a candidate contact: bodies, normal, levers and gap; no mechanics yet.
 Contact contact_frame(const ContactGeometry& geometry);
@@ -75,6 +82,11 @@ bool is_candidate(const Contact& frame, const BodySet& bodies, const StepParamet
 // keeps contacts that close gently from overlapping; it adds no restitution.
 void prepare_mechanics(Contact& contact, const ContactLaw& law, const BodySet& bodies,
                        const StepParameters& step);
+
+// A permutation of the contacts in their order, except that contacts sharing a body are kept
+// at least `spacing` places apart where a nearby contact can fill the gap: a sweep then never
+// waits for the previous update of the same body, and runs ~25% faster (doc/benchmarks.md).
+std::vector<int> interleaved_order(const std::vector<Contact>& contacts, int body_count, int spacing = 4);
 
 // Adds the contacts' impulses (e.g. the warm start) to the body velocities.
 void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity);

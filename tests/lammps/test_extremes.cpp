@@ -64,7 +64,9 @@ TEST(Extremes, LargeTimeStepKeepsCollisionsAnticipated)
   EXPECT_LT(max_overlap(s), 0.1);
 }
 
-// A disk ten times the diameter of the rain around it carries many more contacts.
+// A disk ten times the diameter of the rain around it carries many more contacts. (The rain
+// region is thin in z, since a lattice fills every z layer of it, and stops short of the
+// periodic boundary, so that no lattice site faces another across it.)
 TEST(Extremes, SizeRatioTen)
 {
   LammpsSession s;
@@ -76,7 +78,7 @@ create_box 1 box
 create_atoms 1 single {xc} {yc} 0
 set atom 1 diameter {big} density/disc 2500
 lattice sq {spacing}
-region rain block 0.1 {L} {lo} {hi} -{r} {r} units box
+region rain block {xlo} {xhi} {lo} {hi} -{zr} {zr} units box
 create_atoms 1 region rain
 group small id > 1
 set group small diameter {d} density/disc 2500
@@ -88,10 +90,11 @@ fix 2d all enforce2d
 run 5000
 )", fmt::arg("L", 20 * d), fmt::arg("H", 40 * d), fmt::arg("r", 3 * d), fmt::arg("xc", 10 * d),
    fmt::arg("yc", 5 * d), fmt::arg("big", 10 * d), fmt::arg("spacing", 1.3 * d), fmt::arg("lo", 11 * d),
-   fmt::arg("hi", 25 * d), fmt::arg("d", d), fmt::arg("skin", 0.3 * d)));
+   fmt::arg("hi", 25 * d), fmt::arg("d", d), fmt::arg("skin", 0.3 * d), fmt::arg("zr", 0.1 * d), fmt::arg("xlo", 0.5 * d),
+   fmt::arg("xhi", 19.2 * d)));
   EXPECT_TRUE(all_velocities_finite(s));
   EXPECT_LT(max_overlap(s), 1e-3);
-  EXPECT_NEAR(s.x(1, 1), 5 * d, 1e-6 * d) << "the large disk rests on the floor";
+  EXPECT_NEAR(s.x(1, 1), 5 * d, 1e-4 * d) << "the large disk rests on the floor";
 }
 
 // Gravity off, elastic collisions, friction on: momentum is exchanged only through equal and
