@@ -32,6 +32,8 @@ constexpr double uniform_ratio_tolerance = 1.0e-6;
 // Default alert distance, in mean diameters: pairs this close are solved even when their free
 // motion does not close them (see cd::is_candidate).
 constexpr double default_alert_fraction = 0.01;
+// Overlaps deeper than this, in mean diameters, at the start of a run are reported.
+constexpr double initial_overlap_warning = 0.01;
 
 // Keys of wall contacts in the per-atom store are negative, atom IDs positive.
 double wall_key(int wall_index, cd::WallPart part)
@@ -414,6 +416,43 @@ void FixContactDynamics::setup(int)
   if (disc_density > 0.0) assign_disc_masses();
   check_disk_masses();
   check_subdomains();
+  warn_initial_overlaps();
+}
+
+// Rigid contacts never push overlapping grains apart: grains created overlapping (random
+// placement, a lattice that does not fit the periodic cell) stay so. Say it at the start.
+void FixContactDynamics::warn_initial_overlaps()
+{
+  const double threshold = initial_overlap_warning * mean_diameter;
+  double **x = atom->x;
+  const double *radius = atom->radius;
+  const tagint *tag = atom->tag;
+  double local[2] = {0.0, 0.0};    // count, deepest
+  auto note = [&](double gap) {
+    if (-gap <= threshold) return;
+    local[0] += 1.0;
+    local[1] = std::max(local[1], -gap);
+  };
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      const int j = list->firstneigh[i][jj] & NEIGHMASK;
+      if (j >= atom->nlocal && tag[i] > tag[j]) continue;
+      note(cd::disk_disk_geometry(0, {x[i][0], x[i][1], radius[i]}, 0, {x[j][0], x[j][1], radius[j]}).gap);
+    }
+  }
+  const cd::PeriodicBox box = periodic_box();
+  for (int i = 0; i < atom->nlocal; i++)
+    for (const cd::Wall &wall : walls)
+      if (const auto touch = cd::wall_contact(wall, 0, {x[i][0], x[i][1], radius[i]}, 0.0, box))
+        note(touch->geometry.gap);
+  double global[2];
+  MPI_Allreduce(&local[0], &global[0], 1, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(&local[1], &global[1], 1, MPI_DOUBLE, MPI_MAX, world);
+  if (global[0] > 0.0 && comm->me == 0)
+    error->warning(FLERR, "Fix contact/dynamics: {} contacts overlap by up to {:.3g} mean diameters "
+                   "at the start of the run; rigid contacts keep such overlaps, create the grains "
+                   "apart", static_cast<bigint>(global[0]), global[1] / mean_diameter);
 }
 
 // A ghost must be one hop from its owner: the exchange sends each ghost's velocity change
@@ -644,14 +683,15 @@ void FixContactDynamics::collect_pair_contacts()
   }
 }
 
+cd::PeriodicBox FixContactDynamics::periodic_box() const
+{
+  return {domain->xperiodic != 0, domain->yperiodic != 0, domain->xprd, domain->yprd};
+}
+
 void FixContactDynamics::collect_wall_contacts()
 {
   if (walls.empty()) return;
-  cd::PeriodicBox box;
-  box.periodic_x = domain->xperiodic;
-  box.periodic_y = domain->yperiodic;
-  box.length_x = domain->xprd;
-  box.length_y = domain->yprd;
+  const cd::PeriodicBox box = periodic_box();
   const double alert = neighbor->skin;
   double **x = atom->x;
   for (int i = 0; i < atom->nlocal; i++) {

@@ -137,6 +137,8 @@ class FixContactDynamics : public Fix {
 
   const cd::ContactLaw &law(int itype, int jtype) const;
   void check_subdomains();
+  void warn_initial_overlaps();
+  cd::PeriodicBox periodic_box() const;
   void map_bodies();
   void gather_bodies();
   cd::BodyVelocity velocity_change_of_ghost(int ghost) const;

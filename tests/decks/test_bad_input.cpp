@@ -151,6 +151,18 @@ const BadCase bad_cases[] = {
 INSTANTIATE_TEST_SUITE_P(Decks, BadInput, ::testing::ValuesIn(bad_cases),
                          [](const auto& info) { return std::string(info.param.name); });
 
+TEST(Warnings, OverlapsAtTheStartOfARunAreReported)
+{
+  // Two grains 0.4 d apart, centre to centre: rigid contacts would keep that overlap.
+  const RunResult overlapping = run_deck("initial_overlap", preamble + "set atom 2 x 0.0052\n"
+                                         "fix cd all contact/dynamics 0.5 0.5\nrun 0\n");
+  EXPECT_EQ(overlapping.exit_status, 0) << overlapping.output;
+  EXPECT_NE(overlapping.output.find("1 contacts overlap by up to 0.6 mean diameters at the start"),
+            std::string::npos) << overlapping.output;
+  const RunResult apart = run_deck("no_initial_overlap", with_fix("0.5 0.5"));
+  EXPECT_EQ(apart.output.find("overlap by up to"), std::string::npos) << apart.output;
+}
+
 TEST(MultipleRanks, SubdomainsThinnerThanTheContactCutoffAreRefused)
 {
   // Two ranks along x on a box 2 d wide: each subdomain (1 d) is thinner than 2 d_max + skin.
