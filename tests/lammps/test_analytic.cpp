@@ -6,6 +6,7 @@
 
 #include "fmt/format.h"
 #include "lammps_session.h"
+#include "shared_decks.h"
 
 namespace {
 
@@ -73,24 +74,8 @@ TEST(PeriodicBoundary, ImpactAcrossTheBoundaryFollowsNewtonRestitution)
 {
   LammpsSession s;
   s.commands(cdtest::disk_preamble);
-  const double L = 10 * d, v = 0.2, e = 0.5;
-  s.commands(fmt::format(R"(
-boundary p p p
-region box block 0 {L} 0 {L} -{r} {r}
-create_box 1 box
-create_atoms 1 single {xa} {y} 0
-create_atoms 1 single {xb} {y} 0
-set group all diameter {d} density/disc 2500
-velocity all set {v} 0 0 sum no units box
-set atom 2 vx 0
-neighbor {skin} bin
-timestep 1e-5
-fix cd all contact/dynamics 0.3 {e} tolerance 1e-12
-fix 2d all enforce2d
-run 1
-)", fmt::arg("L", L), fmt::arg("r", r), fmt::arg("xa", L - r), fmt::arg("xb", r),
-   fmt::arg("y", 0.5 * L), fmt::arg("d", d), fmt::arg("v", v), fmt::arg("skin", 0.2 * d),
-   fmt::arg("e", e)));
+  const double v = 0.2, e = 0.5;
+  s.commands(cdtest::periodic_impact_deck(d, v, e));
   EXPECT_NEAR(s.v(1, 0), v * (1 - e) / 2, 1e-12);
   EXPECT_NEAR(s.v(2, 0), v * (1 + e) / 2, 1e-12);
   EXPECT_EQ(s.fix("cd")->compute_vector(2), 1.0) << "the pair must be found exactly once";

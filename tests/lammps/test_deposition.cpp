@@ -10,6 +10,7 @@
 #include "domain.h"
 #include "variable.h"
 #include "lammps_session.h"
+#include "shared_decks.h"
 #include "small_deposition.h"
 
 namespace {
@@ -59,22 +60,6 @@ TEST(Deposition, SettlesWithoutInterpenetration)
 }
 
 constexpr int restart_step = 4000;
-
-// Values after the restart step from a fix ave/time file (its setup line repeats that step).
-std::vector<double> values_after_restart(const std::string& path)
-{
-  std::ifstream in(path);
-  std::vector<double> values;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    double step, value;
-    fields >> step >> value;
-    if (step > restart_step) values.push_back(value);
-  }
-  return values;
-}
 
 struct Snapshot {
   std::vector<double> x, y;
@@ -140,8 +125,8 @@ run 100
 TEST_F(Restart, ContinuesTheUnbrokenRunWithItsWarmStart)
 {
   const Snapshot restarted = restarted_run("");
-  const std::vector<double> before = values_after_restart(unbroken_iterations);
-  const std::vector<double> after = values_after_restart(restarted_iterations);
+  const std::vector<double> before = cdtest::ave_time_values_after(unbroken_iterations, restart_step);
+  const std::vector<double> after = cdtest::ave_time_values_after(restarted_iterations, restart_step);
   ASSERT_EQ(before.size(), 100u);
   ASSERT_EQ(after.size(), 100u);
   // The warm start survives: the first steps need no more iterations than unbroken (the

@@ -14,6 +14,7 @@
 
 #include "comm.h"
 #include "lammps_session.h"
+#include "shared_decks.h"
 #include "small_deposition.h"
 
 namespace {
@@ -172,21 +173,6 @@ TEST_F(TwoRanks, SameRankCountIsBitwiseReproducible)
   EXPECT_EQ(first.vx, second.vx);
 }
 
-std::vector<double> iterations_after(const std::string& path, int step)
-{
-  std::ifstream in(path);
-  std::vector<double> values;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    double at, value;
-    fields >> at >> value;
-    if (at > step) values.push_back(value);
-  }
-  return values;
-}
-
 TEST_F(TwoRanks, RestartWrittenOnTwoRanksContinuesOnOne)
 {
   const std::string restart = "test_mpi.restart", unbroken = "test_mpi.unbroken", restarted = "test_mpi.restarted";
@@ -213,8 +199,8 @@ run 20
 unfix iters
 )", fmt::arg("skin", 0.2 * d), fmt::arg("options", options), fmt::arg("file", restarted)));
   on_one = state_of(one);
-  const std::vector<double> before = iterations_after(unbroken, 100);
-  const std::vector<double> after = iterations_after(restarted, 100);
+  const std::vector<double> before = cdtest::ave_time_values_after(unbroken, 100);
+  const std::vector<double> after = cdtest::ave_time_values_after(restarted, 100);
   ASSERT_EQ(before.size(), 20u);
   ASSERT_EQ(after.size(), 20u);
   // The warm start crossed the change of rank count: no extra sweeps beyond a few.
@@ -228,24 +214,8 @@ TEST(TwoRanksAnalytic, ImpactBetweenRanksFollowsNewtonRestitution)
 {
   LammpsSession s(MPI_COMM_WORLD);
   s.commands(cdtest::disk_preamble);
-  const double L = 10 * d, r = 0.5 * d, v = 0.2, e = 0.5;
-  s.commands(fmt::format(R"(
-processors 2 1 1
-boundary p p p
-region box block 0 {L} 0 {L} -{r} {r}
-create_box 1 box
-create_atoms 1 single {xa} {y} 0
-create_atoms 1 single {xb} {y} 0
-set group all diameter {d} density/disc 2500
-velocity all set {v} 0 0 sum no units box
-set atom 2 vx 0
-neighbor {skin} bin
-timestep 1e-5
-fix cd all contact/dynamics 0.3 {e} tolerance 1e-12
-fix 2d all enforce2d
-run 1
-)", fmt::arg("L", L), fmt::arg("r", r), fmt::arg("xa", L - r), fmt::arg("xb", r), fmt::arg("y", 0.5 * L),
-   fmt::arg("d", d), fmt::arg("v", v), fmt::arg("skin", 0.2 * d), fmt::arg("e", e)));
+  const double v = 0.2, e = 0.5;
+  s.commands(cdtest::periodic_impact_deck(d, v, e, "processors 2 1 1"));
   const auto* atom = s.lmp->atom;
   const std::vector<double> vx = by_id(s, [&](int i) { return atom->v[i][0]; });
   const std::vector<double> owner = by_id(s, [&](int) { return static_cast<double>(world_rank()); });
