@@ -52,9 +52,9 @@ ANALYSES = {
     "L_series": lambda job: float(job.vars["mu"]) == 0.5 and float(job.vars["theta"]) == 22,
 }
 
-# Deck variables that shape the deposition (a run's packing is shared by every run with the
-# same values).
-DEPOSITION_VARS = ("L", "grains", "wall_height", "mu", "mu_wall", "e", "e_wall", "seed", "d",
+# Deck variables that shape the deposition: one packing serves every run with the same
+# values (by default one per L, deposited with mu_deposition = 0.5, for all three mu).
+DEPOSITION_VARS = ("L", "grains", "wall_height", "mu_deposition", "e", "e_wall", "seed", "d",
                    "dispersity", "density", "g", "dt_deposition", "tolerance_deposition",
                    "rain_fill", "settle_ke", "settle_max", "max_iterations")
 
@@ -377,6 +377,12 @@ class Job:
         return files
 
     # -- launching --
+    @property
+    def deck(self):
+        """The job's own copy of in.chute, taken at its first launch: every leg of a run uses
+        the same deck, and editing inputs/in.chute never changes a run under way."""
+        return os.path.join(self.folder, "in.chute")
+
     def command(self, args, start_file):
         variables = dict(self.vars)
         if self.kind == "deposition":
@@ -384,13 +390,16 @@ class Job:
         else:
             variables["stage"] = "flow"
             variables["start"] = start_file
-        cmd = list(args.launcher) + [args.lmp, "-in", DECK, "-log", "log.lammps", "-screen", "screen.txt"]
+        cmd = list(args.launcher) + [args.lmp, "-in", self.deck, "-log", "log.lammps", "-screen", "screen.txt"]
         for key in sorted(variables):
             cmd += ["-var", key, str(variables[key])]
         return cmd
 
     def launch(self, args):
         os.makedirs(self.folder, exist_ok=True)
+        if not os.path.exists(self.deck):
+            shutil.copy2(DECK, self.deck + ".tmp")
+            os.replace(self.deck + ".tmp", self.deck)
         if self.kind == "deposition":
             leg = self.folder
             start_file = None
@@ -597,7 +606,7 @@ def build_jobs(args):
             if args.only and not any(fnmatch.fnmatch(name, p) for p in args.only):
                 continue
             dep_vars = {k: variables[k] for k in DEPOSITION_VARS}
-            dep_name = f"mu{dep_vars['mu']}_L{dep_vars['L']}_seed{dep_vars['seed']}"
+            dep_name = f"mu{dep_vars['mu_deposition']}_L{dep_vars['L']}_seed{dep_vars['seed']}"
             if dep_name not in depositions:
                 depositions[dep_name] = Job("deposition", dep_name,
                                             os.path.join(args.out, "depositions", dep_name), dep_vars)
@@ -645,7 +654,7 @@ def record_params(job, args):
     path = os.path.join(job.folder, "params.json")
     os.makedirs(job.folder, exist_ok=True)
     data = read_json(path, {})
-    data.update(name=job.name, kind=job.kind, vars=job.vars, deck=DECK, lmp=args.lmp,
+    data.update(name=job.name, kind=job.kind, vars=job.vars, deck=job.deck, deck_source=DECK, lmp=args.lmp,
                 launcher=args.launcher, commit=data.get("commit", git_commit()),
                 units="SI: m, s, kg; L, wall_height in d; theta in degrees",
                 y_top=float(job.vars["wall_height"]) * float(job.vars["d"]),
