@@ -517,9 +517,8 @@ void FixContactDynamics::final_integrate()
 
   store_warm_start();
   write_back_motion();
-  measure_overlaps();
   fill_local_output();
-  reduce_step_outputs();
+  reduce_step_outputs(measure_overlaps());
 
   total_iterations += last_report.iterations;
   total_steps += 1.0;
@@ -813,35 +812,33 @@ void FixContactDynamics::write_back_motion()
   }
 }
 
-// Interpenetration at the end of the step, linearised: gap + theta dt u_n^+, over the active
-// contacts and the watched pairs.
-void FixContactDynamics::measure_overlaps()
+// Interpenetration at the end of the step on this rank, linearised: gap + theta dt u_n^+,
+// over the solved contacts (deepest and sum) and the watched pairs (deepest).
+FixContactDynamics::OverlapSums FixContactDynamics::measure_overlaps() const
 {
   const cd::StepParameters step{update->dt, theta};
-  double deepest = 0.0, total = 0.0;
   auto overlap_of = [&](const cd::Contact &c) {
     const double u_n = cd::relative_velocity(c, bodies.velocity[c.body_a], bodies.velocity[c.body_b]).n;
     return std::max(0.0, -cd::end_of_step_gap(c.gap, u_n, step));
   };
+  OverlapSums sums;
   for (const cd::Contact &c : contacts) {
     const double overlap = overlap_of(c);
-    deepest = std::max(deepest, overlap);
-    total += overlap;
+    sums.deepest = std::max(sums.deepest, overlap);
+    sums.total += overlap;
   }
-  for (const WatchedPair &pair : watched) deepest = std::max(deepest, overlap_of(pair.frame));
-  max_overlap = deepest;
-  mean_overlap = total;
+  for (const WatchedPair &pair : watched) sums.deepest = std::max(sums.deepest, overlap_of(pair.frame));
+  return sums;
 }
 
-// Global values of the step for the output vector: sums and maxima over ranks.
-void FixContactDynamics::reduce_step_outputs()
+// The step's output vector: sums and maxima over ranks.
+void FixContactDynamics::reduce_step_outputs(const OverlapSums &overlaps)
 {
   const double local_sums[3] = {static_cast<double>(contacts.size()), static_cast<double>(loaded_contacts),
-                                mean_overlap};
-  double sums[3];
+                                overlaps.total};
+  double sums[3], deepest = 0.0;
   MPI_Allreduce(local_sums, sums, 3, MPI_DOUBLE, MPI_SUM, world);
-  double deepest = 0.0;
-  MPI_Allreduce(&max_overlap, &deepest, 1, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(&overlaps.deepest, &deepest, 1, MPI_DOUBLE, MPI_MAX, world);
   solved_contacts_total = sums[0];
   loaded_contacts_total = sums[1];
   max_overlap = deepest / mean_diameter;

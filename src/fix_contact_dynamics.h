@@ -153,8 +153,12 @@ class FixContactDynamics : public Fix {
   void store_warm_start();
   void append_history(int atom_index, double key, cd::Local2 impulse);
   void write_back_motion();
-  void measure_overlaps();
-  void reduce_step_outputs();
+  struct OverlapSums {
+    double deepest = 0.0;  // m
+    double total = 0.0;    // m, over the solved contacts
+  };
+  OverlapSums measure_overlaps() const;
+  void reduce_step_outputs(const OverlapSums &overlaps);
   void fill_local_output();
 };
 
