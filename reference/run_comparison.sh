@@ -24,6 +24,8 @@ usage: reference/run_comparison.sh [options] OUT
   --hertz "A .."       LAMMPS GRANULAR Hertz runs at these overlaps (default 1e-3; "" for none)
   --rigid-tolerances "T .."  rigid runs (default 1e-3; "" for none)
   --rigid-dt S         rigid time step (default 1e-5)
+  --rigid-parts N      run each rigid flow as N restarted parts of flow/N (default 1): keeps
+                       each lmp_cd process short; the parts' outputs are appended
   --deposit S          deposition time of the shared packing (default 0.2)
   --deposit-overlap A  stiffness of that deposition, as a target overlap (default 1e-4: the
                        rigid runs inherit its overlaps)
@@ -31,6 +33,7 @@ usage: reference/run_comparison.sh [options] OUT
   --flow S             chute time (default 1.0)
   --sample S           longest sampling interval of flow.time (default 1e-4)
   --segment S          spectrum segment (default 0.25)
+  --compare "ARGS"     more options for cdref compare, e.g. "--t-start 0.55" (a common window)
   --read-only          do not run anything; compare the runs already in OUT/runs
   --lmp PATH --liggghts PATH --lmp-cd PATH --cdref PATH   executables
                        (defaults: lmp, liggghts, BUILD/lmp_cd, BUILD/reference/cdref with
@@ -43,8 +46,8 @@ here=$(cd "$(dirname "$0")" && pwd)
 top=$(cd "$here/.." && pwd)
 build=${BUILD_DIR:-$top/build}
 mu=0.5 theta=24 cells=16 grains=320 bed_walls=10
-overlaps="1e-2 1e-3 1e-4" codes="granular liggghts" hertz="1e-3" rigid_tolerances="1e-3" rigid_dt=1e-5
-deposit=0.2 deposit_overlap=1e-4 settle=0.05 flow=1.0 sample=1e-4 segment=0.25 read_only=0
+overlaps="1e-2 1e-3 1e-4" codes="granular liggghts" hertz="1e-3" rigid_tolerances="1e-3" rigid_dt=1e-5 rigid_parts=1
+deposit=0.2 deposit_overlap=1e-4 settle=0.05 flow=1.0 sample=1e-4 segment=0.25 read_only=0 compare_args=""
 lmp=lmp liggghts=liggghts lmp_cd=$build/lmp_cd cdref=""
 out=""
 while [ $# -gt 0 ]; do
@@ -59,12 +62,14 @@ while [ $# -gt 0 ]; do
     --hertz) hertz=$2; shift 2 ;;
     --rigid-tolerances) rigid_tolerances=$2; shift 2 ;;
     --rigid-dt) rigid_dt=$2; shift 2 ;;
+    --rigid-parts) rigid_parts=$2; shift 2 ;;
     --deposit) deposit=$2; shift 2 ;;
     --deposit-overlap) deposit_overlap=$2; shift 2 ;;
     --settle) settle=$2; shift 2 ;;
     --flow) flow=$2; shift 2 ;;
     --sample) sample=$2; shift 2 ;;
     --segment) segment=$2; shift 2 ;;
+    --compare) compare_args=$2; shift 2 ;;
     --read-only) read_only=1; shift ;;
     --lmp) lmp=$2; shift 2 ;;
     --liggghts) liggghts=$2; shift 2 ;;
@@ -107,6 +112,21 @@ run() {
   touch "$dir/done"
 }
 
+# append_part DIR PART: appends the outputs of the continued run DIR/PART to those of DIR,
+# dropping what PART wrote at or before DIR's last timestep (its setup step repeats it).
+append_part() {
+  local dir=$1 part=$2 last
+  last=$(awk '!/^#/ && NF { step = $1 } END { print step }' "$dir/flow.time")
+  for f in flow.time solver.time; do
+    awk -v last="$last" '!/^#/ && NF && $1 > last' "$dir/$part/$f" >> "$dir/$f"
+  done
+  for f in profile.chunk layers.chunk; do
+    awk -v last="$last" '/^#/ { next } /^[0-9]/ { keep = ($1 > last) } keep' "$dir/$part/$f" >> "$dir/$f"
+  done
+  awk -v last="$last" '/^ITEM: TIMESTEP/ { getline step; keep = (step > last); if (keep) print "ITEM: TIMESTEP"; if (keep) print step; next } keep' \
+    "$dir/$part/dump.chute" >> "$dir/dump.chute"
+}
+
 : > "$commands"
 echo "# reference/run_comparison.sh $arguments (mu $mu, theta $theta, L $cells d, $grains grains, walls $bed_walls d)" >> "$commands"
 
@@ -128,10 +148,22 @@ echo "cd deposition && lmp -in reference/in.chute_granular -var data ../rain.dat
 
 dirs=()
 packing=(-var data ../../packing.data -var settle "$settle")
+rigid_flow=$(awk -v f="$flow" -v n="$rigid_parts" 'BEGIN { print f / n }')
 for tolerance in $rigid_tolerances; do
-  run "rigid-tol$tolerance" "$lmp_cd" "$here/in.chute_rigid" log.lammps "${packing[@]}" "${common[@]}" \
-    -var tolerance "$tolerance" -var dt "$rigid_dt"
-  dirs+=("$out/runs/rigid-tol$tolerance")
+  name="rigid-tol$tolerance"
+  rigid=(-var mu "$mu" -var theta "$theta" -var bed_walls "$bed_walls" -var flow "$rigid_flow" -var sample_max "$sample"
+         -var tolerance "$tolerance" -var dt "$rigid_dt")
+  run "$name" "$lmp_cd" "$here/in.chute_rigid" log.lammps "${packing[@]}" "${rigid[@]}"
+  for ((p = 2; p <= rigid_parts; p++)); do
+    previous=..; [ "$p" -eq 2 ] || previous=../part$((p - 1))
+    run "$name/part$p" "$lmp_cd" "$here/in.chute_rigid" log.lammps -var part "$p" -var restart_in "$previous/flow.restart" "${rigid[@]}"
+    if [ ! -f "$out/runs/$name/part$p/appended" ]; then
+      append_part "$out/runs/$name" "part$p"
+      touch "$out/runs/$name/part$p/appended"
+    fi
+    echo "(append the outputs of runs/$name/part$p to runs/$name: run_comparison.sh's append_part)" >> "$commands"
+  done
+  dirs+=("$out/runs/$name")
 done
 for overlap in $overlaps; do
   for code in $codes; do
@@ -160,5 +192,6 @@ for overlap in $hertz; do
   dirs+=("$out/runs/granular-hertz-$overlap")
 done
 
-echo "cdref compare runs/* --out comparison --segment $segment --commands commands.txt" >> "$commands"
-"$cdref" compare "${dirs[@]}" --out "$out/comparison" --segment "$segment" --commands "$commands"
+echo "cdref compare runs/* --out comparison --segment $segment $compare_args --commands commands.txt" >> "$commands"
+# shellcheck disable=SC2086  # compare_args is a list of options
+"$cdref" compare "${dirs[@]}" --out "$out/comparison" --segment "$segment" $compare_args --commands "$commands"

@@ -57,7 +57,8 @@ int command_compare(const std::vector<std::string>& arguments) {
       {"high-frequency", "HZ", "A_mean is the mean amplitude above this (default 100)"},
       {"flow-band", "HZ", "upper end of the flow band (default 500)"},
       {"contact-band", "LOW:HIGH", "contact band in multiples of f_contact (default 0.25:4)"},
-      {"peak-excess", "RATIO", "a contact-band peak stands this far above the band's power law (default 2)"},
+      {"smoothing", "FRACTION", "contact band: smooth the spectrum over +-FRACTION x f (default 0.1)"},
+      {"peak-excess", "RATIO", "a contact-band peak stands this far above the band's power law (default 1.5)"},
       {"dump-name", "FILE", "dump file in each run directory for the overlaps (default dump.chute)"},
       {"commands", "FILE", "text file with the commands that made the runs, quoted in the report"},
       {"progress", "", "name each run on stderr as it is analysed"}};
@@ -95,6 +96,8 @@ int command_compare(const std::vector<std::string>& arguments) {
       throw UsageError("cdref compare: --contact-band needs 0 < LOW < HIGH");
   }
   s.peak_excess = options->number("peak-excess").value_or(s.peak_excess);
+  s.smoothing = options->number("smoothing").value_or(s.smoothing);
+  if (!(s.smoothing >= 0 && s.smoothing < 1)) throw UsageError("cdref compare: --smoothing must be in [0, 1)");
   s.dump_name = options->text("dump-name").value_or(s.dump_name);
   s.commands_file = options->text("commands").value_or("");
   if (!(run.units.d_m > 0 && run.units.g_mps2 > 0)) throw UsageError("cdref compare: --d and --g must be positive");

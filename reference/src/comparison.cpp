@@ -171,31 +171,45 @@ std::optional<cdpost::SpectralPeak> band_peak(const cdpost::Spectrum& spectrum, 
   return cdpost::find_peak(spectrum, lo, hi);
 }
 
-// The contact band's most prominent bin against a power law A = c f^b fitted (log-log least
-// squares) to the band: a falling broadband spectrum reads about 1, a resonance well above.
+// The contact band's most prominent feature: the spectrum is smoothed over a relative
+// bandwidth (each bin averaged over |f' - f| <= smoothing f, which keeps a resonance as broad
+// as a damped contact's, Q ~ 2, and averages out the scatter of a few Welch segments), a power
+// law A = c f^b is fitted to the smoothed band (log-log least squares), and the largest ratio
+// of smoothed amplitude to that law is returned: a falling broadband spectrum reads about 1.
 struct BandExcess {
   double ratio = 0;
   double frequency_hz = 0;
 };
-std::optional<BandExcess> band_excess(const cdpost::Spectrum& spectrum, double lo, double hi) {
+std::optional<BandExcess> band_excess(const cdpost::Spectrum& spectrum, double lo, double hi, double smoothing) {
   const auto& f = spectrum.frequency_hz;
   const auto& a = spectrum.amplitude;
-  std::vector<size_t> bins;
-  for (size_t k = 0; k < f.size(); ++k)
-    if (f[k] >= lo && f[k] <= hi && f[k] > 0 && a[k] > 0) bins.push_back(k);
-  if (bins.size() < 5) return std::nullopt;
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (size_t k : bins) {
-    const double x = std::log(f[k]), y = std::log(a[k]);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  std::vector<double> x, y;
+  for (size_t k = 0; k < f.size(); ++k) {
+    if (f[k] < lo || f[k] > hi || f[k] <= 0) continue;
+    double sum = 0;
+    int n = 0;
+    for (size_t j = 0; j < f.size(); ++j)
+      if (std::abs(f[j] - f[k]) <= smoothing * f[k]) {
+        sum += a[j];
+        ++n;
+      }
+    if (sum <= 0) continue;
+    x.push_back(f[k]);
+    y.push_back(sum / n);
   }
-  const double n = static_cast<double>(bins.size());
+  if (x.size() < 5) return std::nullopt;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    const double lx = std::log(x[i]), ly = std::log(y[i]);
+    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+  }
+  const double n = static_cast<double>(x.size());
   const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
   const double intercept = (sy - slope * sx) / n;
   BandExcess best;
-  for (size_t k : bins) {
-    const double ratio = a[k] / std::exp(intercept + slope * std::log(f[k]));
-    if (ratio > best.ratio) best = {ratio, f[k]};
+  for (size_t i = 0; i < x.size(); ++i) {
+    const double ratio = y[i] / std::exp(intercept + slope * std::log(x[i]));
+    if (ratio > best.ratio) best = {ratio, x[i]};
   }
   return best;
 }
@@ -208,13 +222,13 @@ void find_band_peaks(ComparedRun& run, const CompareSettings& settings) {
   if (!run.f_contact_hz) return;
   const double lo = settings.contact_band_low * *run.f_contact_hz;
   const double hi = std::min(settings.contact_band_high * *run.f_contact_hz, nyquist);
-  auto excess = band_excess(spectrum, lo, hi);
+  auto excess = band_excess(spectrum, lo, hi, settings.smoothing);
   if (!excess) return;
   run.contact_excess = excess->ratio;
   if (excess->ratio < settings.peak_excess) return;
-  // Refine around the most prominent bin: its own neighbourhood of +-2 bins.
-  const double r = spectrum.resolution_hz;
-  run.contact_peak = cdpost::find_peak(spectrum, std::max(lo, excess->frequency_hz - 2.5 * r), std::min(hi, excess->frequency_hz + 2.5 * r));
+  // The peak itself: the highest bin within the smoothing bandwidth of the feature.
+  const double half = std::max(settings.smoothing * excess->frequency_hz, 2.5 * spectrum.resolution_hz);
+  run.contact_peak = cdpost::find_peak(spectrum, std::max(lo, excess->frequency_hz - half), std::min(hi, excess->frequency_hz + half));
 }
 
 ComparedRun analyse_one(const std::string& dir, const CompareSettings& settings, std::vector<std::string>& warnings) {
@@ -625,8 +639,10 @@ std::string method_text(const CompareSettings& settings, const Comparison& c) {
     << " Hz; f_flow, A_flow: highest peak in [" << short_number(s.peak_fmin_hz) << ", " << short_number(settings.flow_band_max_hz)
     << "] Hz; f_contact_band, A_contact_band: highest peak in [" << short_number(settings.contact_band_low) << ", "
     << short_number(settings.contact_band_high)
-    << "] x f_contact (capped at the Nyquist frequency): the bin most above a power law fitted to the band "
-       "(log-log), contact_excess being that ratio, reported as a peak when contact_excess >= "
+    << "] x f_contact (capped at the Nyquist frequency): the spectrum smoothed over +-"
+    << short_number(100 * settings.smoothing) << "% in frequency is compared with a power law fitted to it over the band "
+       "(log-log); contact_excess is the largest ratio, and a peak (the highest bin of that feature) is reported when "
+       "contact_excess >= "
     << short_number(settings.peak_excess) << ". A band maximum at an end of the flow band is no peak and is left out (\"-\"). f_contact = sqrt(2k/m)/(2 pi) with m the mass of a grain of diameter d "
        "and k the deck's stiffness (Hertz: the secant stiffness at the target overlap). Overlaps: every contact of every dump "
        "frame inside the window (grain pairs with the minimum image along x, grains and the floor), in d. Wall time per "

@@ -21,7 +21,8 @@ struct CompareSettings {
   double flow_band_max_hz = 500;         // the flow's own oscillation is sought in [fmin, this]
   double contact_band_low = 0.25;        // the contact band is [low, high] x f_contact
   double contact_band_high = 4.0;
-  double peak_excess = 2.0;              // a contact-band peak stands this far above the band's power law
+  double smoothing = 0.1;                // contact band: relative half-width of the smoothing
+  double peak_excess = 1.5;              // a contact-band peak stands this far above the band's power law
   std::string dump_name = "dump.chute";  // in each run directory; overlaps skipped if absent
   std::string commands_file;             // optional: the commands that made the runs, quoted in the report
 };

@@ -190,8 +190,9 @@ TEST(Collision, RestitutionAndContactSteps) {
 namespace {
 
 // A run directory as the decks write it (no time column, like LIGGGHTS): U(t) relaxing to
-// `u` sqrt(g d), v(t) carrying a tone of `tone_amplitude` sqrt(g d) at `tone_hz` over noise,
-// layers, profile, dump and a log with the flow stage's loop time.
+// `u` sqrt(g d); v(t) white noise plus a resonance at `tone_hz` of quality factor 5 (an AR(2)
+// process driven by noise of `tone_amplitude`, as broad as a damped contact's), layers,
+// profile, dump and a log with the flow stage's loop time.
 struct FakeRun {
   std::string code = "lammps-granular", model = "hooke";
   double dt = 2e-5;         // s
@@ -215,6 +216,9 @@ void write_fake_run(const fs::path& dir, const FakeRun& run) {
   std::mt19937 rng(run.seed);
   std::normal_distribution<double> gauss(0, 1);
   const long steps = static_cast<long>(run.duration / run.dt);
+  const double fs = 1 / (run.dt * run.sample_every), pole = std::exp(-M_PI * run.tone_hz / 5 / fs);
+  const double a1 = 2 * pole * std::cos(2 * M_PI * run.tone_hz / fs), a2 = -pole * pole;
+  double r1 = 0, r2 = 0;  // the resonance's last two values
   std::ostringstream flow, layers, profile;
   flow.precision(10);
   flow << "# Time-averaged data for fix flowout\n# TimeStep v_u_all v_u_flow v_v_flow v_phi_flow v_h\n";
@@ -223,7 +227,10 @@ void write_fake_run(const fs::path& dir, const FakeRun& run) {
   for (long step = run.sample_every; step <= steps; step += run.sample_every) {
     const double t = step * run.dt;
     const double u = run.u * (1 - std::exp(-t / 0.1));
-    const double v = run.tone_amplitude * std::sin(2 * M_PI * run.tone_hz * t) + run.noise * gauss(rng);
+    const double resonance = a1 * r1 + a2 * r2 + run.tone_amplitude * gauss(rng);
+    r2 = r1;
+    r1 = resonance;
+    const double v = resonance + run.noise * gauss(rng);
     flow << step << ' ' << 0.6 * u * v0 << ' ' << (u + 0.02 * gauss(rng)) * v0 << ' ' << v * v0 << ' ' << 0.7 + 0.003 * gauss(rng)
          << ' ' << (10 + 0.1 * gauss(rng)) * d << '\n';
     layers << step << " 2 300\n  1 " << ytop - 2.5 * d << " 150 " << 0.1 * v * v0 << "\n  2 " << ytop + 2.5 * d << " 150 " << v * v0 << '\n';
@@ -277,8 +284,8 @@ TEST(Compare, FindsTheContactPeakTheOverlapsAndTheCost) {
   EXPECT_EQ(s.label, "granular hooke 1e-3");
   EXPECT_TRUE(r.stationary && s.stationary);
   ASSERT_TRUE(s.contact_peak);
-  EXPECT_NEAR(s.contact_peak->frequency_hz, 1200, s.contact_peak->frequency_error_hz + 4);
-  EXPECT_GT(*s.contact_excess, 5);
+  EXPECT_NEAR(s.contact_peak->frequency_hz, 1200, 120) << "within the resonance's half width (Q = 5)";
+  EXPECT_GT(*s.contact_excess, 2);
   EXPECT_FALSE(r.contact_peak);
   ASSERT_TRUE(s.overlaps);
   EXPECT_NEAR(s.overlaps->max, 0.003, 1e-9);
@@ -286,7 +293,7 @@ TEST(Compare, FindsTheContactPeakTheOverlapsAndTheCost) {
   EXPECT_NEAR(*s.wall_per_physical_second(), 20.0, 0.01);
   EXPECT_NEAR(*r.wall_per_physical_second(), 400.0, 0.2);
   EXPECT_NEAR(r.analysis.results.find("U")->value, 3.0, 0.05);
-  EXPECT_NEAR(comparison.fits.find("contact_peak_ratio_granular hooke 1e-3")->value, 1.2, 0.01);
+  EXPECT_NEAR(comparison.fits.find("contact_peak_ratio_granular hooke 1e-3")->value, 1.2, 0.1);
 
   auto out = dir / "comparison";
   cdref::write_comparison(comparison, settings_for({}), out.string());
@@ -335,7 +342,7 @@ TEST(Compare, PeakShiftWithStiffnessAndNonStationaryRuns) {
   auto comparison = cdref::compare_runs(settings_for(dirs));
   const auto* exponent = comparison.fits.find("contact_exponent_lammps-granular_hooke");
   ASSERT_NE(exponent, nullptr);
-  EXPECT_NEAR(exponent->value, 0.5, 0.02);
+  EXPECT_NEAR(exponent->value, 0.5, 0.05);
   EXPECT_FALSE(comparison.runs.back().stationary);
   EXPECT_NE(comparison.runs.back().window_note.find("NOT STATIONARY"), std::string::npos);
   EXPECT_NE(comparison.runs.back().label.find("(growing)"), std::string::npos) << "duplicate labels are made unique";

@@ -67,6 +67,12 @@ class ReferenceDecks : public ::testing::Test {
   }
 };
 fs::path ReferenceDecks::root;
+// Stops the calling test when `name` did not run (skipped, or failed with its screen output).
+#define REQUIRE_RUN(name)                              \
+  do {                                                 \
+    require(name);                                     \
+    if (HasFatalFailure() || IsSkipped()) return;      \
+  } while (0)
 std::map<std::string, int> ReferenceDecks::status;
 
 // The files of doc/postproc.md, with sane contents: every grain kept, wall grains unmoved,
@@ -111,25 +117,25 @@ cdref::CollisionResult collide(const fs::path& dir, const std::string& command) 
 }  // namespace
 
 TEST_F(ReferenceDecks, RainHoldsTheGrainsAndTheWallColumn) {
-  require("rain");
+  REQUIRE_RUN("rain");
   const auto text = read_file(root / "rain.data");
   EXPECT_NE(text.find(std::to_string(kGrains + kWallGrains) + " atoms"), std::string::npos);
   EXPECT_NE(text.find("2 atom types"), std::string::npos);
 }
 
 TEST_F(ReferenceDecks, LammpsGranularHookeChute) {
-  require("granular-hooke");
+  REQUIRE_RUN("granular-hooke");
   check_chute_outputs(root / "granular-hooke", "lammps-granular");
   EXPECT_NO_THROW(cdpost::read_ave_chunk((root / "granular-hooke" / "profile.chunk").string()));
 }
 
 TEST_F(ReferenceDecks, LammpsGranularHertzChute) {
-  require("granular-hertz");
+  REQUIRE_RUN("granular-hertz");
   check_chute_outputs(root / "granular-hertz", "lammps-granular");
 }
 
 TEST_F(ReferenceDecks, LiggghtsChuteAndItsConvertedChunks) {
-  require("liggghts");
+  REQUIRE_RUN("liggghts");
   const auto dir = root / "liggghts";
   for (const char* f : {"profile", "layers"})
     cdref::spatial_to_chunk((dir / (std::string(f) + ".spatial")).string(), (dir / (std::string(f) + ".chunk")).string());
@@ -137,14 +143,14 @@ TEST_F(ReferenceDecks, LiggghtsChuteAndItsConvertedChunks) {
 }
 
 TEST_F(ReferenceDecks, RigidCounterpart) {
-  require("rigid");
+  REQUIRE_RUN("rigid");
   check_chute_outputs(root / "rigid", "lmp_cd");
 }
 
 // The damping gives e = 0.5 and the time step resolves the lightest pair's contact in about
 // steps_per_contact = 50 steps, with each chute deck's own parameters.
 TEST_F(ReferenceDecks, CollisionsCheckRestitutionAndTimeStep) {
-  require("granular-hooke");
+  REQUIRE_RUN("granular-hooke");
   auto info = cdref::read_run_info((root / "granular-hooke" / "run.info").string());
   const std::string args = " -var kn " + *info.text("k_n") + " -var eT " + *info.text("e_tsuji") + " -var dt " + *info.text("dt");
   auto light = collide(root / "collision-hooke", lmp + " -in " + reference_dir + "/in.collision_granular -log none" + args);
@@ -154,7 +160,7 @@ TEST_F(ReferenceDecks, CollisionsCheckRestitutionAndTimeStep) {
                                                       " -var d1 1 -var d2 1");
   EXPECT_NEAR(mean.restitution, 0.5, 0.015);
 
-  require("granular-hertz");
+  REQUIRE_RUN("granular-hertz");
   info = cdref::read_run_info((root / "granular-hertz" / "run.info").string());
   auto hertz = collide(root / "collision-hertz", lmp + " -in " + reference_dir + "/in.collision_granular -log none -var model hertz" +
                                                      " -var kn " + *info.text("k_n") + " -var eT " + *info.text("e_tsuji") +
@@ -162,7 +168,7 @@ TEST_F(ReferenceDecks, CollisionsCheckRestitutionAndTimeStep) {
   EXPECT_NEAR(hertz.restitution, 0.5, 0.015);
   EXPECT_GE(hertz.contact_steps, 45) << "at the impact speed v_ref = 1 m/s";
 
-  require("liggghts");
+  REQUIRE_RUN("liggghts");
   info = cdref::read_run_info((root / "liggghts" / "run.info").string());
   const std::string largs = " -var Y " + *info.text("youngs_modulus") + " -var dt " + *info.text("dt");
   auto lig = collide(root / "collision-liggghts", "stdbuf -o0 " + liggghts + " -in " + reference_dir +
@@ -176,8 +182,8 @@ TEST_F(ReferenceDecks, CollisionsCheckRestitutionAndTimeStep) {
 }
 
 TEST_F(ReferenceDecks, CompareTheSmallRuns) {
-  require("granular-hooke");
-  require("granular-hertz");
+  REQUIRE_RUN("granular-hooke");
+  REQUIRE_RUN("granular-hertz");
   std::string dirs = " granular-hooke granular-hertz";
   if (!liggghts.empty() && status["liggghts"] == 0) {
     for (const char* f : {"profile", "layers"})
