@@ -105,37 +105,52 @@ std::optional<std::string> find_log(const std::string& dir) {
   return std::nullopt;
 }
 
+// (user + sys)/wall of a process from run_comparison.sh's timing.txt ("wall user sys").
+std::optional<double> process_share(const fs::path& dir) {
+  const auto timing = dir / "timing.txt";
+  if (!fs::exists(timing)) return std::nullopt;
+  cdpost::LineSource source(timing.string());
+  std::string line;
+  if (!source.next(line)) return std::nullopt;
+  auto tokens = cdpost::split_whitespace(line);
+  if (tokens.size() != 3) source.fail("expected 'wall user sys' seconds");
+  const double wall = cdpost::parse_number(tokens[0], source, "wall");
+  const double cpu = cdpost::parse_number(tokens[1], source, "user") + cdpost::parse_number(tokens[2], source, "sys");
+  if (!(wall > 0)) return std::nullopt;
+  return std::min(1.0, cpu / wall);
+}
+
+// The run's own flow stage (the last loop of its log) plus those of the continuation runs
+// in its part2, part3, ... subdirectories (in.chute_rigid in parts).
 void read_cost(ComparedRun& run, const Samples& samples, double time_unit_s, std::vector<std::string>& warnings) {
-  auto log = find_log(run.directory);
-  if (!log) {
-    warnings.push_back(run.label + ": no log.lammps or log.liggghts: no wall time");
-    return;
-  }
-  auto loops = read_loop_times(*log);
-  if (loops.empty() || samples.timestep.size() < 2) {
-    warnings.push_back(run.label + ": no 'Loop time' in " + *log + ": no wall time");
-    return;
-  }
-  // The flow stage is the deck's last run; its duration in seconds from the step size of flow.time.
+  if (samples.timestep.size() < 2) return;
   const double seconds_per_step = (samples.time.back() - samples.time.front()) /
                                   (samples.timestep.back() - samples.timestep.front()) * time_unit_s;
-  const auto& flow = loops.back();
-  run.loop_seconds = flow.seconds;
-  run.physical_seconds = flow.steps * seconds_per_step;
-  run.cpu_percent = flow.cpu_percent;
-  // timing.txt (run_comparison.sh): "wall user sys" seconds of the whole process.
-  const auto timing = fs::path(run.directory) / "timing.txt";
-  if (fs::exists(timing)) {
-    cdpost::LineSource source(timing.string());
-    std::string line;
-    if (source.next(line)) {
-      auto tokens = cdpost::split_whitespace(line);
-      if (tokens.size() != 3) source.fail("expected 'wall user sys' seconds");
-      const double wall = cdpost::parse_number(tokens[0], source, "wall");
-      const double cpu = cdpost::parse_number(tokens[1], source, "user") + cdpost::parse_number(tokens[2], source, "sys");
-      if (wall > 0) run.process_cpu_share = cpu / wall;
+  double wall = 0, cpu = 0, physical = 0;
+  bool cpu_known = true;
+  for (int part = 1;; ++part) {
+    const fs::path dir = part == 1 ? fs::path(run.directory) : fs::path(run.directory) / ("part" + std::to_string(part));
+    if (part > 1 && !fs::is_directory(dir)) break;
+    auto log = find_log(dir.string());
+    auto loops = log ? read_loop_times(*log) : std::vector<LoopTime>{};
+    if (loops.empty()) {
+      warnings.push_back(run.label + ": no 'Loop time' in a log of " + dir.string() + ": no wall time");
+      return;
     }
+    const auto& flow = loops.back();
+    wall += flow.seconds;
+    physical += flow.steps * seconds_per_step;
+    auto share = process_share(dir);
+    if (!share && flow.cpu_percent) share = std::min(1.0, *flow.cpu_percent / 100);
+    if (share)
+      cpu += flow.seconds * *share;
+    else
+      cpu_known = false;
+    if (part == 1) run.cpu_percent = flow.cpu_percent;
   }
+  run.loop_seconds = wall;
+  run.physical_seconds = physical;
+  if (cpu_known && wall > 0) run.process_cpu_share = cpu / wall;
 }
 
 void read_overlaps(ComparedRun& run, const CompareSettings& settings, const cdpost::RunSettings& s, const Samples& samples,
@@ -627,7 +642,7 @@ void write_long_csvs(const Comparison& c, const std::string& out) {
     }
 }
 
-std::string method_text(const CompareSettings& settings, const Comparison& c) {
+std::string method_text(const CompareSettings& settings) {
   std::ostringstream m;
   const auto& s = settings.run;
   m << "Each run directory is analysed as by `cdpost run` (doc/postproc.md): window = detected stationary regime "
@@ -646,10 +661,10 @@ std::string method_text(const CompareSettings& settings, const Comparison& c) {
     << short_number(settings.peak_excess) << ". A band maximum at an end of the flow band is no peak and is left out (\"-\"). f_contact = sqrt(2k/m)/(2 pi) with m the mass of a grain of diameter d "
        "and k the deck's stiffness (Hertz: the secant stiffness at the target overlap). Overlaps: every contact of every dump "
        "frame inside the window (grain pairs with the minimum image along x, grains and the floor), in d. Wall time per "
-       "physical second: the last `Loop time` of the run's log (its flow stage) over the simulated time of that stage. "
-       "cpu_per_physical_s: the same times the process's CPU share, (user + sys)/wall from timing.txt (else LAMMPS's own "
-       "CPU-use line): what the run would cost on a core of its own when other jobs shared the machine.";
-  (void)c;
+       "physical second: the last `Loop time` of the run's log (its flow stage; summed with those of the continuation "
+       "runs in part2, part3, ... when the flow was run in parts) over the simulated time of those stages. "
+       "cpu_per_physical_s: each loop's wall time times its process's CPU share, (user + sys)/wall from timing.txt (else "
+       "LAMMPS's own CPU-use line): what the run would cost on a core of its own when other jobs shared the machine.";
   return m.str();
 }
 
@@ -686,7 +701,7 @@ void write_comparison(Comparison& comparison, const CompareSettings& settings, c
   figures.push_back(cost_figure(comparison));
 
   cdpost::MarkdownReport report("Rigid and soft-sphere runs of the chute, side by side");
-  report.paragraph(method_text(settings, comparison));
+  report.paragraph(method_text(settings));
   report.heading("Table");
   report.paragraph(markdown_table(comparison));
   report.heading("How the peaks move with k");

@@ -276,6 +276,12 @@ TEST(Compare, FindsTheContactPeakTheOverlapsAndTheCost) {
   rigid.loop_seconds = 400;
   write_fake_run(dir / "soft", soft);
   write_fake_run(dir / "rigid", rigid);
+  // The rigid flow's second part (a continuation run) took 200 s for as many steps, at half
+  // a core; the first part had a core of its own.
+  fs::create_directories(dir / "rigid" / "part2");
+  write_file(dir / "rigid" / "part2" / "log.lammps", "Loop time of 200 on 1 procs for 49999 steps with 3 atoms\n");
+  write_file(dir / "rigid" / "part2" / "timing.txt", "210 100 5\n");
+  write_file(dir / "rigid" / "timing.txt", "410 405 5\n");
   auto comparison = cdref::compare_runs(settings_for({dir / "rigid", dir / "soft"}));
   ASSERT_EQ(comparison.runs.size(), 2u);
   const auto& r = comparison.runs[0];
@@ -291,7 +297,8 @@ TEST(Compare, FindsTheContactPeakTheOverlapsAndTheCost) {
   EXPECT_NEAR(s.overlaps->max, 0.003, 1e-9);
   EXPECT_EQ(r.overlaps->contacts, 0);
   EXPECT_NEAR(*s.wall_per_physical_second(), 20.0, 0.01);
-  EXPECT_NEAR(*r.wall_per_physical_second(), 400.0, 0.2);
+  EXPECT_NEAR(*r.wall_per_physical_second(), 300.0, 0.2) << "(400 s + 200 s) for two parts of 1 s";
+  EXPECT_NEAR(*r.cpu_per_physical_second(), (400 * 1.0 + 200 * 0.5) / 2, 0.2);
   EXPECT_NEAR(r.analysis.results.find("U")->value, 3.0, 0.05);
   EXPECT_NEAR(comparison.fits.find("contact_peak_ratio_granular hooke 1e-3")->value, 1.2, 0.1);
 
