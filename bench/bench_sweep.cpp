@@ -20,10 +20,10 @@ namespace {
 
 constexpr std::uint64_t shuffle_seed = 12345;
 
-// Contact orders of a sweep. fixed: as collected, the pairs of each disk together (the fix's
-// `order fixed`); shuffled: a random permutation (the fix's `order shuffle`); interleaved:
-// the fixed order locally permuted so that contacts a few places apart share no body
-// (interleave below), an order proposed for the fix in doc/benchmarks.md.
+// Contact orders of a sweep. fixed: as collected, the pairs of each disk together; shuffled:
+// a random permutation (the fix's `order shuffle`); interleaved: the collected order locally
+// permuted so that contacts a few places apart share no body (cd::interleaved_order, what
+// the fix's `order fixed` does).
 enum Order : int { fixed_order = 0, shuffled_order = 1, interleaved_order = 2 };
 
 void shuffle(std::vector<cd::Contact>& contacts, std::mt19937_64& rng)
@@ -34,35 +34,12 @@ void shuffle(std::vector<cd::Contact>& contacts, std::mt19937_64& rng)
   }
 }
 
-// Consecutive contacts that share a body chain each local solve to the previous one through
-// that body's velocity (a store, then a load of the same address), so the CPU cannot overlap
-// them. This greedy pass keeps the fixed order within a window of `lookahead` contacts but
-// emits at each place the first pending contact whose bodies none of the last `distance`
-// emitted contacts touched. The world body counts like a disk: the sweep writes its (zero)
-// velocity change as well.
-void interleave(std::vector<cd::Contact>& contacts, int body_count, std::size_t lookahead = 32,
-                std::size_t distance = 4)
+// The core's interleaving (what the fix's `order fixed` applies to the collected order).
+void interleave(std::vector<cd::Contact>& contacts, int body_count)
 {
-  std::vector<std::size_t> last_use(body_count, 0);  // 1 + output position of the body's last contact
-  std::vector<std::size_t> pending;                   // indices into `contacts`, in fixed order
   std::vector<cd::Contact> out;
   out.reserve(contacts.size());
-  std::size_t next = 0;
-  auto independent = [&](const cd::Contact& c) {
-    const std::size_t here = out.size() + 1;
-    return (last_use[c.body_a] == 0 || here - last_use[c.body_a] > distance) &&
-           (last_use[c.body_b] == 0 || here - last_use[c.body_b] > distance);
-  };
-  while (out.size() < contacts.size()) {
-    while (pending.size() < lookahead && next < contacts.size()) pending.push_back(next++);
-    std::size_t pick = 0;
-    while (pick < pending.size() && !independent(contacts[pending[pick]])) pick++;
-    if (pick == pending.size()) pick = 0;  // nothing independent in reach: keep the order
-    const cd::Contact& c = contacts[pending[pick]];
-    out.push_back(c);
-    last_use[c.body_a] = last_use[c.body_b] = out.size();
-    pending.erase(pending.begin() + static_cast<std::ptrdiff_t>(pick));
-  }
+  for (int k : cd::interleaved_order(contacts, body_count)) out.push_back(contacts[k]);
   contacts.swap(out);
 }
 
