@@ -427,6 +427,17 @@ class Job:
         self.rate_samples = []
         return start_file
 
+    def last_leg_complete(self):
+        """True if the newest leg ran to the run's duration (finished but not spliced)."""
+        legs = self.legs()
+        if not legs or not os.path.exists(os.path.join(legs[-1], "chute.restart")):
+            return False
+        _, _, _, summary = leg_progress(legs[-1])
+        if not summary:
+            return False
+        reached = parse_summary(summary).get("time_s", 0.0)
+        return reached >= float(self.vars["duration"]) - 0.5 * float(self.vars["dt"])
+
     def live_leg(self):
         """A leg whose lmp_cd still runs (started by a runner that did not stop it), or None."""
         folders = self.legs() if self.kind == "run" else [self.folder]
@@ -702,6 +713,27 @@ def measured_rate(jobs):
     return seconds / grain_steps if grain_steps > 0 else None
 
 
+def after_run(job, args, cdpost, pending):
+    """Report a finished run, postprocess it, and extend it when it is not stationary."""
+    line = f"done run {job.name}"
+    cost = read_json(os.path.join(job.folder, "cost.json"), {})
+    if cost.get("cpu_per_physical_second"):
+        line += (f": {cost['cpu_per_physical_second']:.0f} CPU s ({cost['wall_per_physical_second']:.0f}"
+                 " wall s) per physical second")
+    if cdpost:
+        ok, message = postprocess_run(job, cdpost, args)
+        line += "; cdpost " + ("done" if ok else "failed: " + message)
+        if not ok and "stationary" in message and args.max_duration > float(job.vars["duration"]) + 1e-9:
+            new = min(float(job.vars["duration"]) + args.extend, args.max_duration)
+            job.vars["duration"] = fmt_number(new)
+            os.remove(os.path.join(job.folder, "DONE"))
+            record_params(job, args)
+            job.restart_candidates = []
+            pending.insert(0, job)
+            line += f"; extended to {fmt_number(new)} s"
+    print(line, flush=True)
+
+
 def run_campaign(args):
     jobs = build_jobs(args)
     if args.list:
@@ -763,10 +795,18 @@ def run_campaign(args):
             if len(running) >= args.jobs:
                 break
             if job.kind == "run" and not job.deposition.done:
-                if job.deposition.failed:
-                    job.failed = "its deposition failed"
+                blocked = job.deposition not in pending and job.deposition not in running
+                if job.deposition.failed or blocked:
+                    job.failed = "its deposition " + ("failed" if job.deposition.failed else "is not available")
+                    print(f"FAILED run {job.name}: {job.failed}", flush=True)
                     pending.remove(job)
                     failures += 1
+                continue
+            if job.kind == "run" and job.last_leg_complete():
+                # The runner stopped between the end of the last leg and the splicing.
+                pending.remove(job)
+                finish_run(job, args)
+                after_run(job, args, cdpost, pending)
                 continue
             record_params(job, args)
             start = job.launch(args)
@@ -800,27 +840,12 @@ def run_campaign(args):
                 failures += 1
                 print(f"FAILED {job.kind} {job.name}: {problem}", flush=True)
                 continue
-            line = f"done {job.kind} {job.name}"
             if job.kind == "run":
-                cost = read_json(os.path.join(job.folder, "cost.json"), {})
-                if cost.get("wall_per_physical_second"):
-                    line += f": {cost['wall_per_physical_second']:.0f} s of wall time per physical second"
-                if cdpost:
-                    ok, message = postprocess_run(job, cdpost, args)
-                    line += "; cdpost " + ("done" if ok else "failed: " + message)
-                    if not ok and "stationary" in message and args.max_duration > float(job.vars["duration"]) + 1e-9:
-                        new = min(float(job.vars["duration"]) + args.extend, args.max_duration)
-                        job.vars["duration"] = fmt_number(new)
-                        os.remove(os.path.join(job.folder, "DONE"))
-                        record_params(job, args)
-                        job.restart_candidates = []
-                        pending.insert(0, job)
-                        line += f"; extended to {fmt_number(new)} s"
+                after_run(job, args, cdpost, pending)
             else:
                 result = read_json(os.path.join(job.folder, "result.json"), {})
-                line += (f": phi_bed {result.get('phi_bed')}, bed top {result.get('expected_height_d')} d,"
-                         f" {result.get('time_s')} s")
-            print(line, flush=True)
+                print(f"done deposition {job.name}: phi_bed {result.get('phi_bed')}, bed top "
+                      f"{result.get('expected_height_d')} d, settled at {result.get('time_s')} s", flush=True)
         # Progress.
         now = time.time()
         if now - last_report >= args.progress_interval and (running or pending):
@@ -881,8 +906,9 @@ def parse_args(argv):
                         help="only runs whose name matches, e.g. 'mu0.5_theta2[45]_*' (repeatable)")
     parser.add_argument("--duration", type=float, default=10.0,
                         help="chute time of each run in s (default 10)")
-    parser.add_argument("--max-duration", type=float, default=0.0,
-                        help="extend a run that cdpost finds not stationary, up to this chute time (s)")
+    parser.add_argument("--max-duration", type=float, default=20.0,
+                        help="extend a run that cdpost finds not stationary, up to this chute time "
+                             "in s (default 20; at most --duration disables)")
     parser.add_argument("--extend", type=float, default=5.0, help="extension step in s (default 5)")
     parser.add_argument("--var", action="append", default=[], metavar="NAME=VALUE",
                         help="deck variable for every run, e.g. --var tolerance=1e-4 (repeatable)")
