@@ -66,7 +66,7 @@ LEG_OUTPUTS = (("flow.time", "time"), ("solver.time", "time"), ("profile.chunk",
 # Prior cost model for the time-left estimate before any run has been measured: wall seconds
 # per grain and per step at the default dt and tolerance (doc/chute.md, "Cost"); replaced by
 # the measured rate of finished and running legs as soon as there is one.
-PRIOR_SECONDS_PER_GRAIN_STEP = 6.0e-6
+PRIOR_SECONDS_PER_GRAIN_STEP = 5.0e-6
 
 
 def die_with_parent():

@@ -193,12 +193,12 @@ def chute(args, name, theta, duration, **extra):
     return folder, output
 
 
-FLOW_THETA, FLOW_DURATION, FLOW_FRAME = 24, 0.8, 0.004
+FLOW_THETA, FLOW_DURATION, FLOW_FRAME = 24, 1.2, 0.004
 
 
 def case_flow_run(args):
-    """The flow that steady_flow and walls_trap analyse: 24 degrees for 0.8 s, a dump frame
-    every 4 ms."""
+    """The flow that steady_flow and walls_trap analyse: 24 degrees (the thin layer stops at
+    23) for 1.2 s, a dump frame every 4 ms."""
     chute(args, "flow", FLOW_THETA, FLOW_DURATION, snapshot_interval=FLOW_FRAME)
     print("flow run written")
 
@@ -229,22 +229,27 @@ def case_walls_trap(args):
 
 def case_steady_flow(args):
     """Tilted by 24 degrees, the layer above the walls flows and its mean velocity stops
-    growing: U over the last 0.2 s matches U over the 0.2 s before within 20 %, far below
-    the frictionless acceleration g sin(theta) t."""
+    growing: U over the last 0.2 s matches U over the 0.2 s before within 15 % (its
+    fluctuations over 0.2 s are ~5 %; it grew from 0 to ~1.5 sqrt(g d) in the first 0.4 s),
+    far below the frictionless acceleration g sin(theta) t."""
     folder = os.path.join(args.work, "flow")
     rows = read_time_file(os.path.join(folder, "flow.time"))
     u_flow = lambda a, b: mean(r["v_u_flow"] for r in rows if a <= r["v_time"] < b) / SQRT_GD
-    early, late = u_flow(0.4, 0.6), u_flow(0.6, 0.8)
-    check(late > 0.5, f"U = {late:.3f} sqrt(g d) over 0.6-0.8 s: the layer does not flow")
-    check(abs(late - early) < 0.2 * late, f"U = {early:.3f} then {late:.3f} sqrt(g d): not steady")
+    end = FLOW_DURATION
+    early, late = u_flow(end - 0.4, end - 0.2), u_flow(end - 0.2, end + 1)
+    start = u_flow(0.0, 0.1)
+    check(late > 0.5, f"U = {late:.3f} sqrt(g d) over the last 0.2 s: the layer does not flow")
+    check(late > 5 * start, f"U = {start:.3f} in the first 0.1 s, {late:.3f} at the end: no acceleration phase")
+    check(abs(late - early) < 0.15 * late, f"U = {early:.3f} then {late:.3f} sqrt(g d): not steady")
     free = G * math.sin(math.radians(FLOW_THETA)) * FLOW_DURATION / SQRT_GD
     check(late < 0.2 * free, f"U = {late:.3f} sqrt(g d) is not far below free acceleration ({free:.1f})")
-    h = mean(r["v_h"] for r in rows if r["v_time"] >= 0.6) / D
+    h = mean(r["v_h"] for r in rows if r["v_time"] >= end - 0.4) / D
     check(8 < h < 16, f"flowing layer {h:.1f} d thick, expected about 12 d")
     diagnostics = read_time_file(os.path.join(folder, "solver.time"))
     capped = 1 - mean(r["f_cd[7]"] for r in diagnostics)
     check(capped < 0.05, f"{capped:.1%} of the steps hit the iteration cap")
-    print(f"steady flow: U = {early:.3f}, {late:.3f} sqrt(g d) over 0.4-0.6, 0.6-0.8 s; h = {h:.1f} d; "
+    print(f"steady flow: U = {start:.3f}, {early:.3f}, {late:.3f} sqrt(g d) over the first 0.1 s and "
+          f"the two last 0.2 s; h = {h:.1f} d; "
           f"{capped:.2%} capped steps")
 
 
