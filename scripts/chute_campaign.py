@@ -741,7 +741,10 @@ def run_campaign(args):
             state = "done" if job.done else ("started" if job.kind == "run" and job.legs() else "pending")
             extra = ""
             if job.kind == "run":
-                extra = f"  {job.steps_done() * float(job.vars['dt']):.3f}/{job.vars['duration']} s"
+                reached = job.steps_done() * float(job.vars["dt"])
+                extra = f"  {reached:.3f}/{job.vars['duration']} s"
+                if job.done and reached < float(job.vars["duration"]) - 1e-9:
+                    state = "to extend"
             print(f"{job.kind:10s} {job.name:28s} {job.grains():6d} grains  {state}{extra}")
         return 0
     for job in jobs:
@@ -939,7 +942,11 @@ def parse_args(argv):
     if args.jobs < 1 or args.mpi < 1:
         parser.error("--jobs and --mpi must be >= 1")
     if args.launcher is None:
-        args.launcher = ["mpirun", "-np", str(args.mpi)] if args.mpi > 1 else []
+        args.launcher = []
+        if args.mpi > 1:
+            args.launcher = ["mpirun", "-np", str(args.mpi)]
+            if os.geteuid() == 0:
+                args.launcher.append("--allow-run-as-root")    # Open MPI refuses root otherwise
     else:
         args.launcher = shlex.split(args.launcher)
     args.out = os.path.abspath(args.out)
