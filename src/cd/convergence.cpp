@@ -6,15 +6,6 @@
 
 namespace cd {
 
-void SweepChange::merge(const SweepChange& other)
-{
-  sum_change_sq += other.sum_change_sq;
-  sum_scale_sq += other.sum_scale_sq;
-  max_change = std::max(max_change, other.max_change);
-  sum_scale += other.sum_scale;
-  contacts += other.contacts;
-}
-
 double SweepChange::residual(ConvergenceNorm norm) const
 {
   if (sum_change_sq == 0.0) return 0.0;

@@ -16,7 +16,8 @@ enum class ConvergenceNorm {
   maximum     // max |W dp| / mean |W p|: the worst contact
 };
 
-// Sums over the contacts of one sweep; plain fields so that ranks can reduce them.
+// Sums over the contacts of one sweep; plain fields so that ranks can reduce them (sums with
+// MPI_SUM, max_change with MPI_MAX).
 struct SweepChange {
   double sum_change_sq = 0.0;  // sum |W dp|^2
   double sum_scale_sq = 0.0;   // sum |W p|^2
@@ -35,7 +36,6 @@ struct SweepChange {
     sum_scale += std::sqrt(scale_sq);
     contacts += 1.0;
   }
-  void merge(const SweepChange& other);
 
   // The chosen norm; 0 when nothing changed, infinite when impulses changed but all vanished.
   double residual(ConvergenceNorm norm) const;

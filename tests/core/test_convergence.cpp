@@ -26,18 +26,6 @@ TEST(ConvergenceNorm, EdgeCases)
   EXPECT_TRUE(std::isinf(released.residual(cd::ConvergenceNorm::maximum)));
 }
 
-TEST(ConvergenceNorm, MergeEqualsOneAccumulation)
-{
-  cd::SweepChange whole, left, right;
-  whole.add({1, 2}, {3, 4});
-  whole.add({0.5, 0}, {1, 1});
-  left.add({1, 2}, {3, 4});
-  right.add({0.5, 0}, {1, 1});
-  left.merge(right);
-  for (auto norm : {cd::ConvergenceNorm::quadratic, cd::ConvergenceNorm::maximum})
-    EXPECT_DOUBLE_EQ(left.residual(norm), whole.residual(norm));
-}
-
 // The same column problem in SI and in scaled units needs the same iterations and residual.
 TEST(ConvergenceNorm, ScaleFreeAcrossUnits)
 {
