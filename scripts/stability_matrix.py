@@ -39,7 +39,7 @@ TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CHUTE_DECK = os.path.join(TOP, "inputs", "in.chute")
 sys.path[:0] = [os.path.join(TOP, "scripts"), os.path.join(TOP, "tests", "chute")]
 from chute_campaign import parse_summary            # noqa: E402  'TAG key value ...' lines
-from test_chute import read_dump, read_time_file    # noqa: E402  dumps, fix ave/time files
+from test_chute import read_dump, read_time_file, unwrapped    # noqa: E402  dumps, ave/time files
 
 D = 5.0e-4          # mean diameter (m)
 G = 9.81            # gravity (m/s^2)
@@ -181,15 +181,25 @@ run {steps}
 # Running and reading
 # ---------------------------------------------------------------------------------------
 
-def run_process(folder, command, timeout):
-    """Runs command in folder with stdout+stderr in folder/screen.txt; returns
-    (exit status or 'timeout', CPU seconds, screen text)."""
-    os.makedirs(folder, exist_ok=True)
+def run_process(args, folder, command, deck=None):
+    """Runs command in a fresh folder (with `deck` written to in.case) under nice, stdout and
+    stderr in folder/screen.txt; returns (exit status or 'timeout', CPU seconds, screen text).
+    With --reuse a folder holding a finished screen.txt is read instead (CPU time None)."""
     screen_path = os.path.join(folder, "screen.txt")
+    if args.reuse and os.path.exists(screen_path):
+        with open(screen_path, errors="replace") as screen:
+            text = screen.read()
+        if "Total wall time" in text or "ERROR" in text:
+            return (0 if "Total wall time" in text else 1), None, text
+    shutil.rmtree(folder, ignore_errors=True)
+    os.makedirs(folder)
+    if deck is not None:
+        with open(os.path.join(folder, "in.case"), "w") as out:
+            out.write(deck)
     with open(screen_path, "w") as screen:
         process = subprocess.Popen(["nice", "-n", "19"] + command, cwd=folder, stdout=screen,
                                    stderr=subprocess.STDOUT)
-        timer = threading.Timer(timeout, process.kill)
+        timer = threading.Timer(CASE_TIMEOUT, process.kill)
         timer.start()
         _, status, usage = os.wait4(process.pid, 0)
         timer.cancel()
@@ -262,11 +272,7 @@ def result(status, overlap_max=None, overlap_mean=None, finite=None, sweeps=None
 
 def generic_case(args, folder, deck, specific):
     """Runs a generic deck; `specific(summary, text)` gives the case's own check text."""
-    shutil.rmtree(folder, ignore_errors=True)
-    os.makedirs(folder)
-    with open(os.path.join(folder, "in.case"), "w") as out:
-        out.write(deck)
-    status, cpu, text = run_process(folder, [args.lmp, "-in", "in.case", "-log", "log.lammps"], CASE_TIMEOUT)
+    status, cpu, text = run_process(args, folder, [args.lmp, "-in", "in.case", "-log", "log.lammps"], deck)
     error = error_line(text)
     summary = tagged_line(text, "SUMMARY")
     finite = not has_non_finite("\n".join(l for l in text.splitlines() if not l.startswith("ERROR")))
@@ -334,11 +340,10 @@ def gas_case(mu, spacing):
 
 def chute_deposition_case(name, variables):
     def run(args, folder):
-        shutil.rmtree(folder, ignore_errors=True)
         command = [args.lmp, "-in", CHUTE_DECK, "-log", "log.lammps", "-var", "stage", "deposition"]
         for key, value in variables.items():
             command += ["-var", key, str(value)]
-        status, cpu, text = run_process(folder, command, CASE_TIMEOUT)
+        status, cpu, text = run_process(args, folder, command)
         summary = tagged_line(text, "DEPOSITION")
         if status != 0 or summary is None:
             error = error_line(text)
@@ -357,13 +362,12 @@ def chute_deposition_case(name, variables):
 def chute_flow(args, folder, deposition, variables):
     """Runs in.chute stage flow with per-step solver.time rows; returns (result or None,
     status, cpu, text)."""
-    shutil.rmtree(folder, ignore_errors=True)
     command = [args.lmp, "-in", CHUTE_DECK, "-log", "log.lammps", "-var", "stage", "flow",
                "-var", "start", os.path.join(args.out, deposition, "deposition.restart")]
     every_step = dict(solver_interval=variables.get("dt", 2e-5), snapshot_interval=0.1, restart_interval=0.1)
     for key, value in dict(every_step, **variables).items():
         command += ["-var", key, str(value)]
-    status, cpu, text = run_process(folder, command, CASE_TIMEOUT)
+    status, cpu, text = run_process(args, folder, command)
     chute = tagged_line(text, "CHUTE")
     if status != 0 or chute is None:
         error = error_line(text)
@@ -383,8 +387,7 @@ def tilt_case(mu, theta, duration, deposition, cell):
         if chute is None:
             return base
         flow = read_time_file(os.path.join(folder, "flow.time"))
-        frames = [(step, {i: (a["x"], a["y"]) for i, a in atoms.items()})
-                  for step, _, atoms in read_dump(os.path.join(folder, "dump.chute.gz"))]
+        frames = [(frame[0], unwrapped(frame)) for frame in read_dump(os.path.join(folder, "dump.chute.gz"))]
         half = duration / 2
         late = [r for r in flow if r["v_time"] >= half]
         ts = [r["v_time"] for r in late]
@@ -392,13 +395,17 @@ def tilt_case(mu, theta, duration, deposition, cell):
         slope_all, _ = least_squares_slope(ts, [r["v_u_all"] for r in late])
         gs = G * math.sin(math.radians(theta))
         u_end = flow[-1]["v_u_flow"] / SQRT_GD
-        # Displacement over the second half: the frames at duration/2 and at the end.
+        # Displacement over the second half: the frames at duration/2 and at the end; the mean
+        # downslope displacement in each frame interval (0.1 s).
         start = min(frames, key=lambda f: abs(f[0] * 2e-5 - half))[1]
         end = frames[-1][1]
         moved = sorted(math.hypot(end[i][0] - p[0], end[i][1] - p[1]) for i, p in start.items())
+        creep = [sum(b[i][0] - a[i][0] for i in a) / len(a) / D
+                 for (_, a), (_, b) in zip(frames, frames[1:])]
         base["check"] = (f"2nd half: du_flow/dt = {slope_flow / gs:.3f} g sin(theta) (R^2 {r2:.2f}), "
                          f"du_all/dt = {slope_all / gs:.3f} g sin(theta); U end {u_end:.3g} sqrt(g d); "
-                         f"displacement max {moved[-1] / D:.3g} d, median {moved[len(moved) // 2] / D:.3g} d")
+                         f"displacement max {moved[-1] / D:.3g} d, median {moved[len(moved) // 2] / D:.3g} d; "
+                         f"mean downslope per 0.1 s: {', '.join(f'{c:.2g}' for c in creep)} d")
         base["acceleration_flow"] = slope_flow / gs
         base["displacement_max_d"] = moved[-1] / D
         return base
@@ -477,6 +484,8 @@ def main():
     parser.add_argument("--jobs", type=int, default=1, help="cases run at once (each under nice -n 19)")
     parser.add_argument("--only", action="append", help="run only cases matching this glob (repeatable)")
     parser.add_argument("--list", action="store_true", help="list the cases and exit")
+    parser.add_argument("--reuse", action="store_true",
+                        help="analyse the finished runs already in --out again instead of running them")
     args = parser.parse_args()
     args.lmp, args.out = os.path.abspath(args.lmp), os.path.abspath(args.out)
 
@@ -508,6 +517,8 @@ def main():
                 outcome = case.run(args, os.path.join(args.out, case.name))
         else:
             outcome = case.run(args, os.path.join(args.out, case.name))
+        if outcome["cpu"] is None and case.name in previous:
+            outcome["cpu"] = previous[case.name]["cpu"]
         with lock:
             results[case.name] = outcome
             print(f"[{time.time() - started:7.0f} s] {case.name}: {outcome['status']} "
