@@ -497,8 +497,10 @@ def main():
     cases = all_cases()
     if args.only:
         wanted = {c.name for c in cases if any(fnmatch.fnmatch(c.name, p) for p in args.only)}
-        wanted |= {c.needs for c in cases if c.name in wanted and c.needs}
-        cases = [c for c in cases if c.name in wanted]
+        implied = {c.needs for c in cases if c.name in wanted and c.needs} - wanted
+        cases = [c for c in cases if c.name in wanted | implied]
+    else:
+        implied = set()
     if args.list:
         for case in cases:
             print(f"{case.name:28s} {case.describe}")
@@ -519,8 +521,10 @@ def main():
         if case.needs and results[case.needs]["status"] != "ok":
             outcome = result(f"skipped: {case.needs} did not finish")
         else:
+            # A deposition added only because a chosen case needs it is reused when finished.
+            case_args = argparse.Namespace(**dict(vars(args), reuse=args.reuse or case.name in implied))
             try:
-                outcome = case.run(args, os.path.join(args.out, case.name))
+                outcome = case.run(case_args, os.path.join(args.out, case.name))
             except Exception as failure:    # a broken analysis must not lose the other cases
                 outcome = result(f"analysis failed: {failure!r}")
         if outcome["cpu"] is None and case.name in previous:
@@ -543,9 +547,10 @@ def main():
         if case.name not in results and case.name in previous:
             results[case.name] = {k: v for k, v in previous[case.name].items() if k != "describe"}
     cases = [c for c in every_case if c.name in results]
-    header = (f"Stability matrix: {len(results)} cases, lmp_cd {args.lmp}, "
-              f"{time.time() - started:.0f} s wall with --jobs {args.jobs}, "
-              f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}\n\n")
+    cpu_total = sum(r["cpu"] for r in results.values() if r.get("cpu"))
+    header = (f"Stability matrix: {len(results)} cases, {cpu_total:.0f} CPU s in all, lmp_cd {args.lmp}, "
+              f"table made {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} "
+              f"(this invocation: {len(futures)} cases, {time.time() - started:.0f} s wall, --jobs {args.jobs})\n\n")
     with open(os.path.join(args.out, "results.md"), "w") as out:
         out.write(header + table(cases, results))
     with open(os.path.join(args.out, "results.json"), "w") as out:
