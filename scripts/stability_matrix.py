@@ -475,9 +475,9 @@ def table(cases, results):
         if r is None:
             continue
         finite = "–" if r["finite"] is None else ("yes" if r["finite"] else "**NO**")
-        status = r["status"].replace("|", "\\|")
+        status, check = (r[k].replace("|", "\\|") for k in ("status", "check"))
         lines.append(f"| {case.name} | {case.describe} | {status} | {cell(r['overlap_max'])} | "
-                     f"{cell(r['overlap_mean'])} | {finite} | {cell(r['sweeps'], 3)} | {r['check']} | "
+                     f"{cell(r['overlap_mean'])} | {finite} | {cell(r['sweeps'], 3)} | {check} | "
                      f"{cell(r['cpu'], 3)} |")
     return "\n".join(lines) + "\n"
 
