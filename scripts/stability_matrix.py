@@ -37,6 +37,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CHUTE_DECK = os.path.join(TOP, "inputs", "in.chute")
+sys.dont_write_bytecode = True    # no __pycache__ in the source tree from the imports below
 sys.path[:0] = [os.path.join(TOP, "scripts"), os.path.join(TOP, "tests", "chute")]
 from chute_campaign import parse_summary            # noqa: E402  'TAG key value ...' lines
 from test_chute import read_dump, read_time_file, unwrapped    # noqa: E402  dumps, ave/time files
