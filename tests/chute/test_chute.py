@@ -309,6 +309,71 @@ def case_static(args):
     print(f"static: largest displacement {moved:.2e} d, largest mean velocity {max(u_all, u_flow, v_flow):.2e} sqrt(g d)")
 
 
+STATIC_TILT, STATIC_DURATION, SETTLE_TIME = 12, 0.4, 0.1
+
+
+def unwrapped(frame):
+    """{id: (x, y)} of a dump frame with x unwrapped through the periodic image count ix."""
+    _, box, atoms = frame
+    length = box[0][1] - box[0][0]
+    return {i: (a["x"] + a["ix"] * length, a["y"]) for i, a in atoms.items()}
+
+
+def case_static_tilt(args):
+    """Tilted by 12 degrees, well below the 23 degrees at which the flow of this layer stops
+    (mu = 0.5), the packing stays at rest after a short readjustment (0.1 s), without creeping.
+    A solver stopped at tolerance 1e-3 leaves velocity errors ~ 1e-3 g dt that do not add up
+    from step to step (each step re-solves the contacts), hence a drift of at most
+    ~ 1e-3 g dt T = 1.2e-4 d over T = 0.3 s: the mean downslope displacement must stay below
+    1e-3 d and no grain may move 0.01 d. (A creep at the solver's velocity noise g dt, e.g. a
+    restitution or contact-detection error, would carry grains g dt T = 0.12 d.) The mean
+    velocities must stay below g dt = 0.0028 sqrt(g d) over the last 0.1 s."""
+    folder, _ = chute(args, "static_tilt", STATIC_TILT, STATIC_DURATION, snapshot_interval=0.05)
+    frames = read_dump(os.path.join(folder, "dump.chute.gz"))
+    settled = unwrapped(next(f for f in frames if f[0] * 2e-5 >= SETTLE_TIME - 1e-9))
+    last = unwrapped(frames[-1])
+    moved = max(math.hypot(last[i][0] - x, last[i][1] - y) for i, (x, y) in settled.items()) / D
+    creep = mean(last[i][0] - x for i, (x, _) in settled.items()) / D
+    check(moved < 0.01, f"a grain moved {moved:.4f} d in {STATIC_DURATION - SETTLE_TIME:g} s at {STATIC_TILT} degrees")
+    check(abs(creep) < 1e-3, f"the packing crept {creep:.2e} d downslope")
+    rows = [r for r in read_time_file(os.path.join(folder, "flow.time")) if r["v_time"] > STATIC_DURATION - 0.1]
+    speed = max(max(abs(r["v_u_all"]), abs(r["v_u_flow"]), abs(r["v_v_flow"])) for r in rows) / SQRT_GD
+    noise = G * 2e-5 / SQRT_GD
+    check(speed < noise, f"mean velocity {speed:.2e} sqrt(g d) at rest, above g dt = {noise:.2e}")
+    print(f"static tilt {STATIC_TILT} deg: largest displacement {moved:.2e} d, mean downslope {creep:.2e} d "
+          f"over {STATIC_DURATION - SETTLE_TIME:g} s; largest mean velocity {speed:.2e} sqrt(g d)")
+
+
+RUNAWAY_MU, RUNAWAY_THETA, RUNAWAY_DURATION = 0.05, 40, 0.4
+
+
+def case_runaway(args):
+    """At mu = 0.05 and 40 degrees, far beyond the angles at which such flows are steady
+    (16-22 degrees), the layer accelerates without bound: its mean velocity grows in every
+    0.05 s window, at a rate below the frictionless g sin(theta) and still at least half the
+    early rate at the end (no approach to a steady state); the dilute flow stays finite and
+    the fix's largest interpenetration stays below 0.005 d."""
+    folder, output = chute(args, "runaway", RUNAWAY_THETA, RUNAWAY_DURATION, mu=RUNAWAY_MU)
+    rows = read_time_file(os.path.join(folder, "flow.time"))
+    windows = [mean(r["v_u_flow"] for r in rows if k * 0.05 < r["v_time"] <= (k + 1) * 0.05)
+               for k in range(int(round(RUNAWAY_DURATION / 0.05)))]
+    check(all(math.isfinite(u) for u in windows), f"non-finite mean velocity: {windows}")
+    check(all(b > a for a, b in zip(windows, windows[1:])), f"U does not grow in every window: {windows}")
+    free = G * math.sin(math.radians(RUNAWAY_THETA))
+    early = (windows[3] - windows[0]) / 0.15
+    late = (windows[-1] - windows[-4]) / 0.15
+    check(early < free, f"early acceleration {early:.2f} m/s^2 above g sin(theta) = {free:.2f}")
+    check(late > 0.5 * early, f"acceleration fell from {early:.2f} to {late:.2f} m/s^2: not a runaway")
+    diagnostics = read_time_file(os.path.join(folder, "solver.time"))
+    overlap = max(r["f_cd[5]"] for r in diagnostics)
+    check(overlap < 0.005, f"interpenetration up to {overlap:.4f} d")
+    result = summary(output, "CHUTE")
+    check(result["phi"] < 0.75, f"packing fraction {result['phi']:.3f}: the flow is not dilute")
+    print(f"runaway: U = {windows[0] / SQRT_GD:.2f} ... {windows[-1] / SQRT_GD:.2f} sqrt(g d), acceleration "
+          f"{early:.2f} then {late:.2f} m/s^2 (g sin(theta) = {free:.2f}); phi {result['phi']:.3f}; "
+          f"largest interpenetration {overlap:.2e} d")
+
+
 BAD_VARS = [
     ("mu", "-0.1", "-var mu -0.1"),
     ("mu", "abc", "mu_is_not_a_number"),
@@ -393,6 +458,8 @@ CASES = {
     "steady_flow": case_steady_flow,
     "flow_two_ranks": case_flow_two_ranks,
     "static": case_static,
+    "static_tilt": case_static_tilt,
+    "runaway": case_runaway,
     "bad_var": case_bad_var,
     "runner_resume": case_runner_resume,
 }

@@ -146,6 +146,16 @@ const BadCase bad_cases[] = {
      preamble + "set atom 2 x 0.005 y 0.00075\nfix g all gravity 9.81 vector 0 -1 0\n"
                 "fix cd all contact/dynamics 0.5 0.5 max_contacts 1 wall yplane 0 0.5 0.5\nrun 1\n",
      "atom 1 has more than 1 loaded contacts; raise max_contacts"},
+    {"cell_shorter_than_a_grain",
+     // An x-periodic cell 0.8 d long: the grain overlaps its own periodic image.
+     [] {
+       std::string deck = preamble;
+       deck.replace(deck.find("block 0 0.01 0 0.01"), 19, "block 0 0.0004 0 0.01");
+       deck.replace(deck.find("create_atoms 1 single 0.005 0.00025 0\ncreate_atoms 1 single 0.006 0.00025 0"), 75,
+                    "create_atoms 1 single 0.0002 0.00025 0");
+       return deck + "fix cd all contact/dynamics 0.5 0.5\nrun 1\n";
+     }(),
+     "atom 1 touches its own periodic image; the cell is too short"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Decks, BadInput, ::testing::ValuesIn(bad_cases),

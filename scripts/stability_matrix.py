@@ -1,0 +1,564 @@
+#!/usr/bin/env python3
+"""Run the stability matrix of fix contact/dynamics and write a Markdown results table.
+
+    scripts/stability_matrix.py --out /work/stab-runs [--lmp build/lmp_cd] [--jobs 1]
+                                [--only PATTERN] [--list]
+
+Every case is one lmp_cd process in its own folder under --out (deck, log, screen output).
+Each case either runs with bounded interpenetration and finite velocities, or stops with an
+ERROR line naming the limit it exceeded; the table reports which, with the largest and mean
+interpenetration, Gauss-Seidel sweeps per step and the case's own check (doc/stability.md).
+
+Families (all SI, d = 5e-4 m, grains of density 2500 kg/m^3):
+  fe_*     friction x restitution: a rain of 144 disks on a floor (20 d cell), 150 ms
+  dt_*     time step: the same rain thrown down at 1 m/s, 20 ms, dt 1e-6 s .. 0.4 d per step
+  size_*   size ratio: large disks dropped onto a rain of small ones (40 d cell), 60 ms
+  long_*   gravity off, e = 1: a periodic gas of 144 disks, 1 s (momentum, energy drift)
+  tilt_*   inputs/in.chute, 20 d cell, 400 grains, 10 d walls: static and runaway tilts, 0.4 s
+  L*       inputs/in.chute, L = 12 .. 152 d, 15 grains per d of length, 6 d walls,
+           mu 0.5, 24 degrees, 0.2 s
+The chute cases start from a deposition of the same cell (cases dep_*), run first.
+
+Results: --out/results.md (the table) and --out/results.json. Standard library only.
+"""
+
+import argparse
+import fnmatch
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import threading
+import time
+from concurrent.futures import ThreadPoolExecutor
+
+TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+CHUTE_DECK = os.path.join(TOP, "inputs", "in.chute")
+sys.dont_write_bytecode = True    # no __pycache__ in the source tree from the imports below
+sys.path[:0] = [os.path.join(TOP, "scripts"), os.path.join(TOP, "tests", "chute")]
+from chute_campaign import parse_summary            # noqa: E402  'TAG key value ...' lines
+from test_chute import read_dump, read_time_file, unwrapped    # noqa: E402  dumps, ave/time files
+
+D = 5.0e-4          # mean diameter (m)
+G = 9.81            # gravity (m/s^2)
+SQRT_GD = math.sqrt(G * D)
+CASE_TIMEOUT = 900  # s of wall time before a case is killed and reported as such
+
+PREAMBLE = """units si
+dimension 2
+atom_style sphere
+atom_modify map array
+comm_modify vel yes
+neigh_modify delay 0 every 1 check yes
+"""
+
+# Appended to the generic decks before their measured run: every step's largest and mean
+# interpenetration (fix vector), and a summary line with the run's extremes.
+MEASURE = """fix overlaps all vector 1 f_cd[5] f_cd[6]
+compute ke_translational all ke
+compute ke_disk_spin all erotate/sphere
+variable ke_total equal c_ke_translational+1.25*c_ke_disk_spin
+compute extent all reduce max x y vx vy
+compute extent_low all reduce min x y vx vy
+"""
+# The summary's computes must be current at the last step: the thermo rows invoke them.
+EXTREMES = ("v_ke_total c_extent[1] c_extent[2] c_extent[3] c_extent[4] "
+            "c_extent_low[1] c_extent_low[2] c_extent_low[3] c_extent_low[4]")
+
+SUMMARY = ('print "SUMMARY overlap_max $(max(f_overlaps[1])) overlap_mean $(ave(f_overlaps[2])) '
+           'sweeps $(f_cd[8]) steps $(f_cd[10]) capped $(f_cd[9]) ke_total $(v_ke_total) '
+           'xmax $(c_extent[1]) ymax $(c_extent[2]) vxmax $(c_extent[3]) vymax $(c_extent[4]) '
+           'xmin $(c_extent_low[1]) ymin $(c_extent_low[2]) vxmin $(c_extent_low[3]) vymin $(c_extent_low[4]) '
+           'grains $(atoms) mass $(mass(all))"\n')
+
+
+def fmt(value):
+    return f"{value:.6g}"
+
+
+# ---------------------------------------------------------------------------------------
+# Decks of the generic families
+# ---------------------------------------------------------------------------------------
+
+def rain_deck(mu, e, dt, duration, throw=0.0, skin=0.2, seed=77):
+    """144 disks (diameters uniform in [0.8, 1.2] d) dropped from a 1.5 d lattice onto a
+    floor in a 20 d x-periodic cell; `throw` (m/s) is an initial downward velocity."""
+    steps = int(round(duration / dt))
+    throw_line = f"velocity all set NULL {-throw} 0 units box\n" if throw else ""
+    return PREAMBLE + f"""boundary p fm p
+region box block 0 {fmt(20 * D)} 0 {fmt(40 * D)} -{fmt(0.6 * D)} {fmt(0.6 * D)}
+create_box 1 box
+lattice sq {fmt(1.5 * D)}
+region fill block {fmt(0.7 * D)} {fmt(18.8 * D)} {fmt(2 * D)} {fmt(19.9 * D)} -{fmt(0.6 * D)} {fmt(0.6 * D)} units box
+create_atoms 1 region fill
+variable diameter atom {fmt(0.8 * D)}+{fmt(0.4 * D)}*random(0,1,{seed})
+variable sideways atom 0.05*normal(0,1,{seed + 1})
+set group all diameter v_diameter
+set group all density/disc 2500
+set group all vx v_sideways
+{throw_line}neighbor {fmt(skin * D)} bin
+timestep {fmt(dt)}
+fix grav all gravity {G} vector 0 -1 0
+fix cd all contact/dynamics {fmt(mu)} {fmt(e)} tolerance 1e-4 wall yplane 0.0 {fmt(mu)} {fmt(e)}
+fix 2d all enforce2d
+{MEASURE}thermo_style custom step time f_cd[1] f_cd[5] f_cd[9] {EXTREMES}
+thermo_modify norm no flush yes
+thermo {max(1, steps // 20)}
+run {steps}
+{SUMMARY}"""
+
+
+def size_ratio_deck(ratio, duration=0.06, dt=1e-5):
+    """Large disks of diameter ratio*d dropped onto a rain of small disks ([0.8, 1.2] d) in a
+    40 d x-periodic cell: the small rain fills 1-16 d, the large disks start above it."""
+    length = 40 * D
+    count = max(1, int(40 // (1.2 * ratio)))
+    spacing = length / count
+    y_big = (17 + 0.6 * ratio) * D
+    height = y_big + ratio * D
+    bigs = "".join(f"create_atoms 1 single {fmt((k + 0.5) * spacing)} {fmt(y_big)} 0\n" for k in range(count))
+    steps = int(round(duration / dt))
+    return PREAMBLE + f"""boundary p fm p
+region box block 0 {fmt(length)} 0 {fmt(height)} -{fmt(0.6 * ratio * D)} {fmt(0.6 * ratio * D)}
+create_box 1 box
+{bigs}group big id <= {count}
+set group big diameter {fmt(ratio * D)}
+lattice sq {fmt(1.3 * D)}
+region rain block {fmt(0.5 * D)} {fmt(length - 0.8 * D)} {fmt(D)} {fmt(16 * D)} -{fmt(0.1 * D)} {fmt(0.1 * D)} units box
+create_atoms 1 region rain
+group small subtract all big
+variable diameter atom {fmt(0.8 * D)}+{fmt(0.4 * D)}*random(0,1,91)
+set group small diameter v_diameter
+set group all density/disc 2500
+neighbor {fmt(0.3 * D)} bin
+timestep {fmt(dt)}
+fix grav all gravity {G} vector 0 -1 0
+fix cd all contact/dynamics 0.5 0.5 tolerance 1e-4 max_contacts 40 wall yplane 0.0 0.5 0.5
+fix 2d all enforce2d
+{MEASURE}thermo_style custom step time f_cd[1] f_cd[5] f_cd[9] {EXTREMES}
+thermo_modify norm no flush yes
+thermo {steps // 20}
+run {steps}
+{SUMMARY}"""
+
+
+def gas_deck(mu, spacing, duration=1.0, dt=1e-5):
+    """Gravity off, e = 1: 144 disks ([0.8, 1.2] d) on a square lattice of the given spacing
+    (in d) in a fully periodic box, random velocities of 0.1 m/s rms. The thermo rows every
+    1000 steps carry the momentum and the total (translational + disk spin) kinetic energy."""
+    side = 12 * spacing * D
+    steps = int(round(duration / dt))
+    return PREAMBLE + f"""boundary p p p
+region box block 0 {fmt(side)} 0 {fmt(side)} -{fmt(0.6 * D)} {fmt(0.6 * D)}
+create_box 1 box
+lattice sq {fmt(spacing * D)}
+create_atoms 1 box
+variable diameter atom {fmt(0.8 * D)}+{fmt(0.4 * D)}*random(0,1,5)
+set group all diameter v_diameter
+set group all density/disc 2500
+variable vx atom 0.1*normal(0,1,9)
+variable vy atom 0.1*normal(0,1,10)
+set group all vx v_vx
+set group all vy v_vy
+variable px equal mass(all)*vcm(all,x)
+variable py equal mass(all)*vcm(all,y)
+variable momentum_of_grain atom mass*sqrt(vx*vx+vy*vy)
+compute momentum_scale all reduce sum v_momentum_of_grain
+neighbor {fmt(0.3 * D)} bin
+timestep {fmt(dt)}
+fix cd all contact/dynamics {fmt(mu)} 1.0 tolerance 1e-6
+fix 2d all enforce2d
+{MEASURE}thermo_style custom step v_px v_py c_momentum_scale f_cd[1] f_cd[5] f_cd[8] {EXTREMES}
+thermo_modify norm no flush yes format float %.17g
+thermo 1000
+run {steps}
+{SUMMARY}"""
+
+
+# ---------------------------------------------------------------------------------------
+# Running and reading
+# ---------------------------------------------------------------------------------------
+
+def run_process(args, folder, command, deck=None):
+    """Runs command in a fresh folder (with `deck` written to in.case) under nice, stdout and
+    stderr in folder/screen.txt; returns (exit status or 'timeout', CPU seconds, screen text).
+    With --reuse a folder holding a finished screen.txt is read instead (CPU time None)."""
+    screen_path = os.path.join(folder, "screen.txt")
+    if args.reuse and os.path.exists(screen_path):
+        with open(screen_path, errors="replace") as screen:
+            text = screen.read()
+        if "Total wall time" in text or "ERROR" in text:
+            return (0 if "Total wall time" in text else 1), None, text
+    shutil.rmtree(folder, ignore_errors=True)
+    os.makedirs(folder)
+    if deck is not None:
+        with open(os.path.join(folder, "in.case"), "w") as out:
+            out.write(deck)
+    with open(screen_path, "w") as screen:
+        process = subprocess.Popen(["nice", "-n", "19"] + command, cwd=folder, stdout=screen,
+                                   stderr=subprocess.STDOUT)
+        timer = threading.Timer(CASE_TIMEOUT, process.kill)
+        timer.start()
+        _, status, usage = os.wait4(process.pid, 0)
+        timer.cancel()
+        process.returncode = os.waitstatus_to_exitcode(status)
+    with open(screen_path, errors="replace") as screen:
+        text = screen.read()
+    exit_status = "timeout" if process.returncode == -9 else process.returncode
+    return exit_status, usage.ru_utime + usage.ru_stime, text
+
+
+def error_line(text):
+    line = next((l for l in text.splitlines() if "ERROR" in l), None)
+    return line.strip() if line else None
+
+
+def tagged_line(text, tag):
+    """'TAG key value ...' -> dict of numbers (nan kept), or None."""
+    line = next((l for l in text.splitlines() if l.startswith(tag + " ")), None)
+    return None if line is None else parse_summary(line)
+
+
+def thermo_rows(text, first_column="Step"):
+    """Rows of every thermo block of a screen text, as dicts by column name."""
+    rows, names = [], None
+    for line in text.splitlines():
+        fields = line.split()
+        if fields and fields[0] == first_column:
+            names = fields
+            continue
+        if names is None:
+            continue
+        if len(fields) != len(names):
+            names = None
+            continue
+        try:
+            rows.append(dict(zip(names, map(float, fields))))
+        except ValueError:
+            names = None
+    return rows
+
+
+def has_non_finite(text):
+    return re.search(r"(?<![A-Za-z_])-?(nan|inf)(?![A-Za-z_])", text, re.IGNORECASE) is not None
+
+
+def least_squares_slope(ts, ys):
+    n = len(ts)
+    mt, my = sum(ts) / n, sum(ys) / n
+    stt = sum((t - mt) ** 2 for t in ts)
+    sty = sum((t - mt) * (y - my) for t, y in zip(ts, ys))
+    slope = sty / stt
+    residual = sum((y - my - slope * (t - mt)) ** 2 for t, y in zip(ts, ys))
+    total = sum((y - my) ** 2 for y in ys)
+    return slope, 1.0 - residual / total if total > 0 else 0.0
+
+
+# ---------------------------------------------------------------------------------------
+# Cases
+# ---------------------------------------------------------------------------------------
+
+class Case:
+    def __init__(self, name, family, describe, run, needs=None):
+        self.name, self.family, self.describe, self.run, self.needs = name, family, describe, run, needs
+
+
+def result(status, overlap_max=None, overlap_mean=None, finite=None, sweeps=None, check="", cpu=None):
+    return dict(status=status, overlap_max=overlap_max, overlap_mean=overlap_mean, finite=finite,
+                sweeps=sweeps, check=check, cpu=cpu)
+
+
+def generic_case(args, folder, deck, specific):
+    """Runs a generic deck; `specific(summary, text)` gives the case's own check text."""
+    status, cpu, text = run_process(args, folder, [args.lmp, "-in", "in.case", "-log", "log.lammps"], deck)
+    error = error_line(text)
+    summary = tagged_line(text, "SUMMARY")
+    finite = not has_non_finite("\n".join(l for l in text.splitlines() if not l.startswith("ERROR")))
+    if status != 0 or summary is None:
+        return result(f"stopped: {error}" if error else f"exit {status}", finite=finite, cpu=cpu,
+                      check="timeout" if status == "timeout" else "")
+    finite = finite and all(math.isfinite(v) for v in summary.values())
+    return result("ok", summary["overlap_max"], summary["overlap_mean"], finite,
+                  summary["sweeps"] / summary["steps"], specific(summary, text), cpu)
+
+
+def ke_per_grain(summary):
+    """Kinetic energy (translation + spin) per grain over m g d, m the mean grain mass."""
+    return summary["ke_total"] / (summary["mass"] * G * D)
+
+
+def friction_restitution_case(mu, e):
+    def run(args, folder):
+        deck = rain_deck(mu, e, dt=1e-5, duration=0.15)
+        return generic_case(args, folder, deck, lambda s, _: f"KE/grain {ke_per_grain(s):.2g} m g d at 150 ms")
+    return Case(f"fe_mu{mu:g}_e{e:g}", "friction x restitution",
+                f"rain of 144 disks, mu = {mu:g}, e = {e:g}, dt 1e-5 s, 150 ms", run)
+
+
+def time_step_case(dt, skin):
+    travel = 1.0 * dt / D    # d per step at the throw velocity
+
+    def run(args, folder):
+        deck = rain_deck(0.5, 0.5, dt=dt, duration=0.02, throw=1.0, skin=skin)
+
+        def check(summary, _):
+            fastest = max(abs(summary[k]) for k in ("vxmax", "vymax", "vxmin", "vymin"))
+            return (f"{travel:.3g} d/step thrown; fastest grain at the end {fastest * dt / D:.3g} d/step; "
+                    f"lowest centre {summary['ymin'] / D:.3f} d")
+        return generic_case(args, folder, deck, check)
+    return Case(f"dt_{dt:g}", "time step",
+                f"rain thrown down at 1 m/s, dt {dt:g} s ({travel:.3g} d per step), skin {skin:g} d, 20 ms", run)
+
+
+def size_ratio_case(ratio):
+    def run(args, folder):
+        return generic_case(args, folder, size_ratio_deck(ratio),
+                            lambda s, _: f"KE/grain {ke_per_grain(s):.2g} m g d at 60 ms; lowest centre {s['ymin'] / D:.3f} d")
+    return Case(f"size_{ratio:g}", "size ratio",
+                f"disks of {ratio:g} d dropped onto a rain of [0.8, 1.2] d disks, 40 d cell, 60 ms", run)
+
+
+def gas_case(mu, spacing, dt=1e-5, duration=1.0):
+    def run(args, folder):
+        def check(summary, text):
+            rows = thermo_rows(text)
+            p0 = (rows[0]["v_px"], rows[0]["v_py"])
+            scale = rows[0]["c_momentum_scale"]
+            drift = max(math.hypot(r["v_px"] - p0[0], r["v_py"] - p0[1]) for r in rows) / scale
+            ke0 = rows[0]["v_ke_total"]
+            ke_peak = max(r["v_ke_total"] for r in rows) / ke0
+            ke_end = rows[-1]["v_ke_total"] / ke0
+            return (f"|P - P0|/sum m|v| <= {drift:.1e}; KE max/KE0 = 1{ke_peak - 1:+.1e}, "
+                    f"KE end/KE0 = {ke_end:.4f}; {int(rows[-1]['f_cd[8]'])} sweeps in {int(rows[-1]['Step'])} steps")
+        return generic_case(args, folder, gas_deck(mu, spacing, duration, dt), check)
+    steps = int(round(duration / dt))
+    suffix = "" if duration == 1.0 else f"_{duration:g}s_dt{dt:g}"
+    return Case(f"long_mu{mu:g}_spacing{spacing:g}{suffix}", "long run, gravity off, e = 1",
+                f"periodic gas of 144 disks, lattice {spacing:g} d, mu = {mu:g}, e = 1, 0.1 m/s rms, "
+                f"dt {dt:g} s, {duration:g} s ({steps:.0e} steps)", run)
+
+
+def chute_deposition_case(name, variables):
+    def run(args, folder):
+        command = [args.lmp, "-in", CHUTE_DECK, "-log", "log.lammps", "-var", "stage", "deposition"]
+        for key, value in variables.items():
+            command += ["-var", key, str(value)]
+        status, cpu, text = run_process(args, folder, command)
+        summary = tagged_line(text, "DEPOSITION")
+        if status != 0 or summary is None:
+            error = error_line(text)
+            return result(f"stopped: {error}" if error else f"exit {status}", cpu=cpu)
+        rows = thermo_rows(text)
+        overlaps = [r["f_cd[5]"] for r in rows if "f_cd[5]" in r]
+        sweeps = [r["f_cd[1]"] for r in rows if "f_cd[1]" in r]
+        finite = not has_non_finite(text)
+        return result("ok", max(overlaps), None, finite, sum(sweeps) / len(sweeps),
+                      f"settled at {summary['time_s']:g} s, phi_bed {summary['phi_bed']:.3f}, "
+                      f"{int(summary['grains'])} grains", cpu)
+    text = ", ".join(f"{k} {v}" for k, v in variables.items())
+    return Case(name, "chute deposition", f"in.chute deposition, {text} (overlap: thermo rows every 0.01 s)", run)
+
+
+def chute_flow(args, folder, deposition, variables):
+    """Runs in.chute stage flow with per-step solver.time rows; returns (result or None,
+    status, cpu, text)."""
+    command = [args.lmp, "-in", CHUTE_DECK, "-log", "log.lammps", "-var", "stage", "flow",
+               "-var", "start", os.path.join(args.out, deposition, "deposition.restart")]
+    every_step = dict(solver_interval=variables.get("dt", 2e-5), snapshot_interval=0.1, restart_interval=0.1)
+    for key, value in dict(every_step, **variables).items():
+        command += ["-var", key, str(value)]
+    status, cpu, text = run_process(args, folder, command)
+    chute = tagged_line(text, "CHUTE")
+    if status != 0 or chute is None:
+        error = error_line(text)
+        return result(f"stopped: {error}" if error else f"exit {status}", cpu=cpu,
+                      finite=not has_non_finite(text)), None
+    solver = read_time_file(os.path.join(folder, "solver.time"))
+    finite = not has_non_finite(text) and all(math.isfinite(v) for v in chute.values())
+    base = result("ok", max(r["f_cd[5]"] for r in solver), sum(r["f_cd[6]"] for r in solver) / len(solver),
+                  finite, chute["sweeps"] / chute["steps_solved"], cpu=cpu)
+    return base, chute
+
+
+def tilt_case(mu, theta, duration, deposition, cell):
+    def run(args, folder):
+        base, chute = chute_flow(args, folder, deposition,
+                                 dict(cell, mu=mu, theta=theta, duration=duration))
+        if chute is None:
+            return base
+        flow = read_time_file(os.path.join(folder, "flow.time"))
+        frames = [(frame[0], unwrapped(frame)) for frame in read_dump(os.path.join(folder, "dump.chute.gz"))]
+        half = duration / 2
+        late = [r for r in flow if r["v_time"] >= half]
+        ts = [r["v_time"] for r in late]
+        slope_flow, r2 = least_squares_slope(ts, [r["v_u_flow"] for r in late])
+        slope_all, _ = least_squares_slope(ts, [r["v_u_all"] for r in late])
+        gs = G * math.sin(math.radians(theta))
+        u_end = flow[-1]["v_u_flow"] / SQRT_GD
+        # Displacement over the second half: the frames at duration/2 and at the end; the mean
+        # downslope displacement in each frame interval (0.1 s).
+        start = min(frames, key=lambda f: abs(f[0] * 2e-5 - half))[1]
+        end = frames[-1][1]
+        moved = sorted(math.hypot(end[i][0] - p[0], end[i][1] - p[1]) for i, p in start.items())
+        creep = [sum(b[i][0] - a[i][0] for i in a) / len(a) / D
+                 for (_, a), (_, b) in zip(frames, frames[1:])]
+        rate = (lambda a: f"{a / gs:.3f} g sin(theta)") if theta else (lambda a: f"{a:.2g} m/s^2")
+        base["check"] = (f"2nd half: du_flow/dt = {rate(slope_flow)} (R^2 {r2:.2f}), "
+                         f"du_all/dt = {rate(slope_all)}; U end {u_end:.3g} sqrt(g d); "
+                         f"displacement max {moved[-1] / D:.3g} d, median {moved[len(moved) // 2] / D:.3g} d; "
+                         f"mean downslope per 0.1 s: {', '.join(f'{c:.2g}' for c in creep)} d")
+        base["acceleration_flow"] = slope_flow    # m/s^2
+        base["displacement_max_d"] = moved[-1] / D
+        return base
+    return Case(f"tilt_mu{mu:g}_theta{theta:g}", "tilt",
+                f"in.chute flow, 20 d cell, mu = {mu:g}, theta = {theta:g} deg, {duration:g} s", run,
+                needs=deposition)
+
+
+def length_case(length, duration, deposition, cell):
+    def run(args, folder):
+        base, chute = chute_flow(args, folder, deposition, dict(cell, theta=24, duration=duration))
+        if chute is None:
+            return base
+        base["check"] = (f"U end {chute['U'] / SQRT_GD:.3g} sqrt(g d), h {chute['h_d']:.1f} d, "
+                         f"{int(chute['steps_capped'])} capped steps of {int(chute['steps_solved'])}")
+        return base
+    return Case(f"L{length:g}", "cell length",
+                f"in.chute flow, L = {length:g} d, {cell['grains']} grains, mu 0.5, 24 deg, {duration:g} s",
+                run, needs=deposition)
+
+
+TILT_CELL = dict(L=20, grains=400, wall_height=10)
+TILT_DURATION = 0.4
+LENGTHS = (12, 22, 45, 152)
+LENGTH_DURATION = 0.2
+
+
+def length_cell(length):
+    return dict(L=length, grains=15 * length, wall_height=6)
+
+
+def all_cases():
+    # The depositions first: the chute flows wait for them.
+    cases = [chute_deposition_case("dep_tilt", TILT_CELL)]
+    cases += [chute_deposition_case(f"dep_L{n}", length_cell(n)) for n in LENGTHS]
+    cases += [friction_restitution_case(mu, e) for mu in (0, 0.05, 0.5, 2, 10, 1e6) for e in (0, 0.5, 1)]
+    # 1 m/s for dt: 1e-6 s is 0.002 d per step, 1e-4 s 0.2 d, 2e-4 s 0.4 d > skin/2 = 0.25 d.
+    cases += [time_step_case(dt, 0.5) for dt in (1e-6, 1e-5, 5e-5, 1e-4, 2e-4)]
+    cases += [size_ratio_case(ratio) for ratio in (1.5, 3, 10)]
+    cases += [gas_case(0, 1.25), gas_case(0.5, 1.25), gas_case(0, 2.5)]
+    # The dissipation at e = 1 against the time step: the dense gas for 0.1 s at 1e-5 and 1e-6 s.
+    cases += [gas_case(0, 1.25, dt, 0.1) for dt in (1e-5, 1e-6)]
+    for theta in (0, 10, 20, 30, 45, 60):
+        cases.append(tilt_case(0.5, theta, TILT_DURATION, "dep_tilt", TILT_CELL))
+    for theta in (10, 20, 30, 45, 60):
+        cases.append(tilt_case(0.05, theta, TILT_DURATION, "dep_tilt", TILT_CELL))
+    cases += [length_case(n, LENGTH_DURATION, f"dep_L{n}", length_cell(n)) for n in LENGTHS]
+    return cases
+
+
+# ---------------------------------------------------------------------------------------
+# Table
+# ---------------------------------------------------------------------------------------
+
+def cell(value, digits=2):
+    return "–" if value is None else f"{value:.{digits}g}"
+
+
+def table(cases, results):
+    lines = ["| case | what | status | max overlap (d) | mean overlap (d) | finite | sweeps/step | check | CPU s |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for case in cases:
+        r = results.get(case.name)
+        if r is None:
+            continue
+        finite = "–" if r["finite"] is None else ("yes" if r["finite"] else "**NO**")
+        status, check = (r[k].replace("|", "\\|") for k in ("status", "check"))
+        lines.append(f"| {case.name} | {case.describe} | {status} | {cell(r['overlap_max'])} | "
+                     f"{cell(r['overlap_mean'])} | {finite} | {cell(r['sweeps'], 3)} | {check} | "
+                     f"{cell(r['cpu'], 3)} |")
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", required=True, help="scratch folder for the runs and the results")
+    parser.add_argument("--lmp", default=os.environ.get("LMP_CD", os.path.join(TOP, "build", "lmp_cd")))
+    parser.add_argument("--jobs", type=int, default=1, help="cases run at once (each under nice -n 19)")
+    parser.add_argument("--only", action="append", help="run only cases matching this glob (repeatable)")
+    parser.add_argument("--list", action="store_true", help="list the cases and exit")
+    parser.add_argument("--reuse", action="store_true",
+                        help="analyse the finished runs already in --out again instead of running them")
+    args = parser.parse_args()
+    args.lmp, args.out = os.path.abspath(args.lmp), os.path.abspath(args.out)
+
+    cases = all_cases()
+    if args.only:
+        wanted = {c.name for c in cases if any(fnmatch.fnmatch(c.name, p) for p in args.only)}
+        implied = {c.needs for c in cases if c.name in wanted and c.needs} - wanted
+        cases = [c for c in cases if c.name in wanted | implied]
+    else:
+        implied = set()
+    if args.list:
+        for case in cases:
+            print(f"{case.name:28s} {case.describe}")
+        return 0
+    if not os.access(args.lmp, os.X_OK):
+        print(f"ERROR: no lmp_cd at {args.lmp} (--lmp or LMP_CD)")
+        return 1
+    os.makedirs(args.out, exist_ok=True)
+    # Results of earlier invocations in the same folder stay in the table unless rerun.
+    previous_path = os.path.join(args.out, "results.json")
+    previous = json.load(open(previous_path)) if os.path.exists(previous_path) else {}
+    results, lock = {}, threading.Lock()
+    started = time.time()
+
+    def run_case(case, dependency):
+        if dependency is not None:
+            dependency.result()
+        if case.needs and results[case.needs]["status"] != "ok":
+            outcome = result(f"skipped: {case.needs} did not finish")
+        else:
+            # A deposition added only because a chosen case needs it is reused when finished.
+            case_args = argparse.Namespace(**dict(vars(args), reuse=args.reuse or case.name in implied))
+            try:
+                outcome = case.run(case_args, os.path.join(args.out, case.name))
+            except Exception as failure:    # a broken analysis must not lose the other cases
+                outcome = result(f"analysis failed: {failure!r}")
+        if outcome["cpu"] is None and case.name in previous:
+            outcome["cpu"] = previous[case.name]["cpu"]
+        with lock:
+            results[case.name] = outcome
+            print(f"[{time.time() - started:7.0f} s] {case.name}: {outcome['status']} "
+                  f"(max overlap {cell(outcome['overlap_max'])} d, {cell(outcome['cpu'], 3)} CPU s) "
+                  f"{outcome['check']}", flush=True)
+
+    futures = {}
+    with ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        for case in cases:    # dependencies are listed, hence submitted and started, first
+            futures[case.name] = pool.submit(run_case, case, futures.get(case.needs))
+    for name, future in futures.items():
+        future.result()
+
+    every_case = all_cases()
+    for case in every_case:
+        if case.name not in results and case.name in previous:
+            results[case.name] = {k: v for k, v in previous[case.name].items() if k != "describe"}
+    cases = [c for c in every_case if c.name in results]
+    cpu_total = sum(r["cpu"] for r in results.values() if r.get("cpu"))
+    header = (f"Stability matrix: {len(results)} cases, {cpu_total:.0f} CPU s in all, lmp_cd {args.lmp}, "
+              f"table made {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} "
+              f"(this invocation: {len(futures)} cases, {time.time() - started:.0f} s wall, --jobs {args.jobs})\n\n")
+    with open(os.path.join(args.out, "results.md"), "w") as out:
+        out.write(header + table(cases, results))
+    with open(os.path.join(args.out, "results.json"), "w") as out:
+        json.dump({c.name: dict(results[c.name], describe=c.describe) for c in cases}, out, indent=1)
+    print(header + table(cases, results))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
