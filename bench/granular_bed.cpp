@@ -128,8 +128,26 @@ void prepare_contacts(const FrozenStep& frozen, bool warm, std::vector<cd::Conta
     cd::Contact contact = cd::contact_frame(geometry);
     if (!cd::is_candidate(contact, frozen.bodies, frozen.step, frozen.alert)) continue;
     cd::prepare_mechanics(contact, *law, frozen.bodies, frozen.step);
-    if (warm) contact.impulse = pair.warm_impulse;
+    if (warm) cd::warm_start(contact, pair.warm_impulse);
     contacts.push_back(contact);
+  }
+}
+
+void drop_pairs_within_layer(FrozenStep& frozen, double height)
+{
+  auto in_layer = [&](int body) { return body == cd::world_body || frozen.predicted[body - 1].y < height; };
+  const auto dropped = std::remove_if(frozen.pairs.begin(), frozen.pairs.end(),
+                                      [&](const NeighbourPair& p) { return in_layer(p.a) && in_layer(p.b); });
+  frozen.pairs.erase(dropped, frozen.pairs.end());
+}
+
+void immobilise_layer(FrozenStep& frozen, double height)
+{
+  for (std::size_t k = 0; k < frozen.predicted.size(); k++) {
+    if (frozen.predicted[k].y >= height) continue;
+    frozen.bodies.inertia[1 + k] = {};
+    frozen.bodies.start_velocity[1 + k] = {};
+    frozen.bodies.velocity[1 + k] = {};
   }
 }
 

@@ -62,6 +62,14 @@ struct FrozenStep {
 // (if warm) the impulses carried over. The caller applies those impulses to a copy of the free velocity and solves.
 void prepare_contacts(const FrozenStep& frozen, bool warm, std::vector<cd::Contact>& contacts);
 
+// Pairs the fix would not collect once the disks whose centre lies below `height` (m) are
+// immobile obstacles (atoms outside its group): pairs of two such disks, and such disks on the
+// floor.
+void drop_pairs_within_layer(FrozenStep& frozen, double height);
+
+// Makes those disks immobile obstacles as the fix does: zero inverse mass and inertia; at rest.
+void immobilise_layer(FrozenStep& frozen, double height);
+
 class GranularBed {
  public:
   explicit GranularBed(const BedSpec& spec);  // rains and settles
