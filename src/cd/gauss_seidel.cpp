@@ -115,6 +115,12 @@ void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies,
   c.mu = law.mu;
   c.impulse = {};
 
+  // A touching pair is an impact whatever its pre-step velocity, and at e = 0 its bias is 0:
+  // nothing to read (doc/benchmarks.md, "Model only what a scene requires").
+  if (c.gap <= 0.0 && law.restitution == 0.0) {
+    c.velocity_bias = 0.0;
+    return;
+  }
   const double u_start =
       relative_velocity(c, bodies.start_velocity[c.body_a], bodies.start_velocity[c.body_b]).n;
   const double advance = step.theta * step.dt;
