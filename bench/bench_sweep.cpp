@@ -132,26 +132,33 @@ enum class Lean {
   immobile_layer,  // settled with the disks centred below 10 d immobile obstacles
 };
 
+// The default bed's next step with e = 0 for grains and floor.
+bench::FrozenStep inelastic_step()
+{
+  bench::FrozenStep frozen = frictional_bed().freeze();
+  frozen.grain_law.restitution = frozen.floor.law.restitution = 0.0;
+  return frozen;
+}
+
+// Built on first use: a bed takes seconds to rain and settle.
 const Scene& lean_scene(Lean kind)
 {
-  static const Scene frictionless{frictionless_bed(), frictionless_bed().freeze()};
-  static const Scene inelastic{frictional_bed(), [] {
-                                 bench::FrozenStep frozen = frictional_bed().freeze();
-                                 frozen.grain_law.restitution = frozen.floor.law.restitution = 0.0;
-                                 return frozen;
-                               }()};
-  static const bench::GranularBed layered{[] {
-    bench::BedSpec spec;
-    spec.immobile_layer = 10.0;
-    return spec;
-  }()};
-  static const Scene immobile_layer{layered, layered.freeze()};
   switch (kind) {
-    case Lean::frictionless: return frictionless;
-    case Lean::inelastic: return inelastic;
-    case Lean::immobile_layer: return immobile_layer;
+    case Lean::frictionless: {
+      static const Scene built{frictionless_bed(), frictionless_bed().freeze()};
+      return built;
+    }
+    case Lean::inelastic: {
+      static const Scene built{frictional_bed(), inelastic_step()};
+      return built;
+    }
+    case Lean::immobile_layer: break;
   }
-  return frictionless;
+  bench::BedSpec spec;
+  spec.immobile_layer = 10.0;
+  static const bench::GranularBed layered{spec};
+  static const Scene built{layered, layered.freeze()};
+  return built;
 }
 
 void set_contact_counters(benchmark::State& state, std::size_t contacts)
