@@ -66,16 +66,15 @@ LocalProblem local_problem(const cd::Contact& c, const std::vector<cd::BodyVeloc
 
 // The bed, its next step frozen, and the solver state at the start of that step's solve.
 struct Scene {
-  bench::GranularBed bed{bench::BedSpec{}};
+  const bench::GranularBed& bed;
   bench::FrozenStep frozen;
   std::vector<cd::Contact> contacts[3];       // prepared and warm-started, in each Order
   std::vector<cd::BodyVelocity> velocity;     // free velocity plus the warm-start impulses
   std::vector<LocalProblem> bed_problems;     // what the first sweep's local solves see
   std::vector<LocalProblem> mixed_problems;   // spread over every branch of the local solver
 
-  Scene()
+  Scene(const bench::GranularBed& settled, bench::FrozenStep step) : bed(settled), frozen(std::move(step))
   {
-    frozen = bed.freeze();
     bench::prepare_contacts(frozen, true, contacts[fixed_order]);
     const int body_count = static_cast<int>(frozen.bodies.velocity.size());
     std::mt19937_64 rng(shuffle_seed);
@@ -100,9 +99,65 @@ struct Scene {
   }
 };
 
+// The default bed: mu = e = 0.5 for grains and floor.
+const bench::GranularBed& frictional_bed()
+{
+  static const bench::GranularBed built{bench::BedSpec{}};
+  return built;
+}
+
+// The same rain settled with mu = 0 everywhere (e = 0.5): a frictionless scene.
+const bench::GranularBed& frictionless_bed()
+{
+  static const bench::GranularBed built{[] {
+    bench::BedSpec spec;
+    spec.grain_law.mu = 0.0;
+    spec.wall_law.mu = 0.0;
+    return spec;
+  }()};
+  return built;
+}
+
 const Scene& scene()
 {
-  static const Scene built;
+  static const Scene built{frictional_bed(), frictional_bed().freeze()};
+  return built;
+}
+
+// Scenes that need less than the default bed, for "model only what a scene requires"
+// (doc/benchmarks.md): each is the default bed's rain with one feature switched off.
+enum class Lean {
+  frictionless,    // settled and solved with mu = 0 everywhere
+  inelastic,       // the default frozen step with e = 0 everywhere
+  immobile_layer,  // settled with the disks centred below 10 d immobile obstacles
+};
+
+// The default bed's next step with e = 0 for grains and floor.
+bench::FrozenStep inelastic_step()
+{
+  bench::FrozenStep frozen = frictional_bed().freeze();
+  frozen.grain_law.restitution = frozen.floor.law.restitution = 0.0;
+  return frozen;
+}
+
+// Built on first use: a bed takes seconds to rain and settle.
+const Scene& lean_scene(Lean kind)
+{
+  switch (kind) {
+    case Lean::frictionless: {
+      static const Scene built{frictionless_bed(), frictionless_bed().freeze()};
+      return built;
+    }
+    case Lean::inelastic: {
+      static const Scene built{frictional_bed(), inelastic_step()};
+      return built;
+    }
+    case Lean::immobile_layer: break;
+  }
+  bench::BedSpec spec;
+  spec.immobile_layer = 10.0;
+  static const bench::GranularBed layered{spec};
+  static const Scene built{layered, layered.freeze()};
   return built;
 }
 
@@ -113,10 +168,9 @@ void set_contact_counters(benchmark::State& state, std::size_t contacts)
 
 // (a) One sweep from the state at the start of the solve; the state is restored, untimed,
 // before each sweep so that every timed sweep does the same work.
-void BM_Sweep(benchmark::State& state)
+void time_restored_sweeps(benchmark::State& state, const Scene& s, Order order, bool frictionless_shortcut)
 {
-  const Scene& s = scene();
-  const std::vector<cd::Contact>& start = s.contacts[state.range(0)];
+  const std::vector<cd::Contact>& start = s.contacts[order];
   std::vector<cd::Contact> contacts = start;
   std::vector<cd::BodyVelocity> velocity = s.velocity;
   for (auto _ : state) {
@@ -124,11 +178,16 @@ void BM_Sweep(benchmark::State& state)
     std::copy(start.begin(), start.end(), contacts.begin());
     std::copy(s.velocity.begin(), s.velocity.end(), velocity.begin());
     state.ResumeTiming();
-    benchmark::DoNotOptimize(cd::sweep(contacts, velocity, 1.0));
+    benchmark::DoNotOptimize(cd::sweep(contacts, velocity, 1.0, frictionless_shortcut));
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(contacts.size()));
   set_contact_counters(state, contacts.size());
+}
+
+void BM_Sweep(benchmark::State& state)
+{
+  time_restored_sweeps(state, scene(), static_cast<Order>(state.range(0)), true);
 }
 BENCHMARK(BM_Sweep)->ArgName("order")->DenseRange(fixed_order, interleaved_order)->Unit(benchmark::kMicrosecond);
 
@@ -171,9 +230,8 @@ BENCHMARK(BM_LocalSolver)->ArgName("mixed")->Arg(0)->Arg(1)->Unit(benchmark::kMi
 
 // The preparation of a step: geometry, frame and selection of every pair of the neighbour
 // list, mechanics of the selected ones, and the warm start read.
-void BM_Prepare(benchmark::State& state)
+void time_prepare(benchmark::State& state, const Scene& s)
 {
-  const Scene& s = scene();
   std::vector<cd::Contact> contacts;
   for (auto _ : state) {
     bench::prepare_contacts(s.frozen, true, contacts);
@@ -183,17 +241,17 @@ void BM_Prepare(benchmark::State& state)
   state.counters["neighbour_pairs"] = static_cast<double>(s.frozen.pairs.size());
   set_contact_counters(state, contacts.size());
 }
+
+void BM_Prepare(benchmark::State& state) { time_prepare(state, scene()); }
 BENCHMARK(BM_Prepare)->Unit(benchmark::kMicrosecond);
 
 // (b) A whole step of the core: prepare, order, warm start, Gauss–Seidel to 1e-4.
 // Counters: sweeps per step, and the contact updates per second of the whole step.
-void BM_WholeStep(benchmark::State& state)
+void time_whole_steps(benchmark::State& state, const Scene& s, bool warm, Order order, bool frictionless_shortcut)
 {
-  const Scene& s = scene();
-  const bool warm = state.range(0) != 0;
-  const auto order = static_cast<Order>(state.range(1));
   const int body_count = static_cast<int>(s.frozen.bodies.velocity.size());
-  const cd::SolverSettings settings = s.bed.spec().solver;
+  cd::SolverSettings settings = s.bed.spec().solver;
+  settings.frictionless_shortcut = frictionless_shortcut;
   std::vector<cd::Contact> contacts;
   std::vector<cd::BodyVelocity> velocity;
   std::mt19937_64 rng(shuffle_seed);
@@ -215,6 +273,11 @@ void BM_WholeStep(benchmark::State& state)
   state.counters["converged"] = converged ? 1.0 : 0.0;
   set_contact_counters(state, contacts.size());
 }
+
+void BM_WholeStep(benchmark::State& state)
+{
+  time_whole_steps(state, scene(), state.range(0) != 0, static_cast<Order>(state.range(1)), true);
+}
 BENCHMARK(BM_WholeStep)
     ->ArgNames({"warm", "order"})
     ->Args({1, fixed_order})
@@ -222,6 +285,49 @@ BENCHMARK(BM_WholeStep)
     ->Args({1, interleaved_order})
     ->Args({0, fixed_order})
     ->Unit(benchmark::kMillisecond);
+
+// "Model only what a scene requires": each feature a scene can do without, timed with and
+// without it on the same bed, in the fix's contact order (interleaved), one name per case:
+//   BM_Lean/{sweep,step}/{frictionless,frictional}/{coulomb,shortcut}: mu = 0 contacts through
+//       the Coulomb local solver or the frictionless shortcut (SolverSettings), on the bed
+//       settled with mu = 0, and the shortcut's branch on the default (mu = 0.5) bed;
+//   BM_Lean/{prepare,step}/{restitution,inelastic}: e = 0.5 (the default) against e = 0;
+//   BM_Lean/{sweep,step}/{all_mobile,immobile_layer}: the default bed, and the bed settled
+//       with its bottom 10 d immobile (fewer contacts: compare items_per_second, per update).
+// Run A and B together, e.g. --benchmark_filter=BM_Lean/sweep/frictionless.
+void register_lean_benchmarks()
+{
+  auto add = [](const std::string& name, auto timed) {
+    benchmark::RegisterBenchmark(("BM_Lean/" + name).c_str(), timed)->Unit(benchmark::kMicrosecond);
+  };
+  for (const bool shortcut : {false, true}) {
+    const std::string path = shortcut ? "/shortcut" : "/coulomb";
+    add("sweep/frictionless" + path, [shortcut](benchmark::State& st) {
+      time_restored_sweeps(st, lean_scene(Lean::frictionless), interleaved_order, shortcut);
+    });
+    add("sweep/frictional" + path,
+        [shortcut](benchmark::State& st) { time_restored_sweeps(st, scene(), interleaved_order, shortcut); });
+    add("step/frictionless" + path, [shortcut](benchmark::State& st) {
+      time_whole_steps(st, lean_scene(Lean::frictionless), true, interleaved_order, shortcut);
+    });
+    add("step/frictional" + path,
+        [shortcut](benchmark::State& st) { time_whole_steps(st, scene(), true, interleaved_order, shortcut); });
+  }
+  add("prepare/restitution", [](benchmark::State& st) { time_prepare(st, scene()); });
+  add("prepare/inelastic", [](benchmark::State& st) { time_prepare(st, lean_scene(Lean::inelastic)); });
+  add("step/restitution", [](benchmark::State& st) { time_whole_steps(st, scene(), true, interleaved_order, true); });
+  add("step/inelastic", [](benchmark::State& st) {
+    time_whole_steps(st, lean_scene(Lean::inelastic), true, interleaved_order, true);
+  });
+  add("sweep/all_mobile", [](benchmark::State& st) { time_restored_sweeps(st, scene(), interleaved_order, true); });
+  add("step/all_mobile", [](benchmark::State& st) { time_whole_steps(st, scene(), true, interleaved_order, true); });
+  add("sweep/immobile_layer", [](benchmark::State& st) {
+    time_restored_sweeps(st, lean_scene(Lean::immobile_layer), interleaved_order, true);
+  });
+  add("step/immobile_layer", [](benchmark::State& st) {
+    time_whole_steps(st, lean_scene(Lean::immobile_layer), true, interleaved_order, true);
+  });
+}
 
 // What the packing is, in the report's context block (console header and JSON).
 void describe_scene()
@@ -292,6 +398,7 @@ int main(int argc, char** argv)
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   describe_scene();
+  register_lean_benchmarks();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -128,7 +128,7 @@ void prepare_contacts(const FrozenStep& frozen, bool warm, std::vector<cd::Conta
     cd::Contact contact = cd::contact_frame(geometry);
     if (!cd::is_candidate(contact, frozen.bodies, frozen.step, frozen.alert)) continue;
     cd::prepare_mechanics(contact, *law, frozen.bodies, frozen.step);
-    if (warm) contact.impulse = pair.warm_impulse;
+    if (warm) cd::warm_start(contact, pair.warm_impulse);
     contacts.push_back(contact);
   }
 }
@@ -261,6 +261,21 @@ std::vector<NeighbourPair> GranularBed::find_neighbour_pairs(const std::vector<c
   return pairs;
 }
 
+void GranularBed::immobilise_layer(FrozenStep& frozen) const
+{
+  const double height = spec_.immobile_layer * spec_.mean_diameter;
+  auto obstacle = [&](int body) { return body == cd::world_body || frozen.predicted[body - 1].y < height; };
+  const auto dropped = std::remove_if(frozen.pairs.begin(), frozen.pairs.end(),
+                                      [&](const NeighbourPair& p) { return obstacle(p.a) && obstacle(p.b); });
+  frozen.pairs.erase(dropped, frozen.pairs.end());
+  for (std::size_t k = 0; k < frozen.predicted.size(); k++)
+    if (obstacle(static_cast<int>(k) + 1)) {
+      frozen.bodies.inertia[1 + k] = {};
+      frozen.bodies.start_velocity[1 + k] = {};
+      frozen.bodies.velocity[1 + k] = {};
+    }
+}
+
 FrozenStep GranularBed::freeze() const
 {
   FrozenStep frozen;
@@ -279,6 +294,7 @@ FrozenStep GranularBed::freeze() const
     frozen.predicted[k].y += lead * velocity_[k].vy;
   }
   frozen.pairs = find_neighbour_pairs(frozen.predicted);
+  immobilise_layer(frozen);
   for (NeighbourPair& c : frozen.pairs) {
     const auto carried = carried_.find(pair_key(c.a, c.b));
     if (carried != carried_.end()) c.warm_impulse = carried->second;

@@ -29,6 +29,7 @@ struct BedSpec {
   double alert = 0.01;             // solved pairs: cd::is_candidate alert, in d (the fix's default)
   double rain_window = 1.0;        // a disk lands within this many d of its drop abscissa
   int settle_steps = 200;          // Moreau–Jean steps under gravity after the rain
+  double immobile_layer = 0.0;     // d: disks centred below this height are immobile obstacles
   std::uint64_t seed = 20240601;
   cd::ContactLaw grain_law{0.5, 0.5};
   cd::ContactLaw wall_law{0.5, 0.5};  // the floor y = 0
@@ -69,7 +70,9 @@ class GranularBed {
   // Advances the bed by one step with the core; returns the solver's report.
   cd::SolveReport step();
 
-  // The next step, frozen (the bed does not move).
+  // The next step, frozen (the bed does not move). Disks of the immobile layer are obstacles as
+  // the fix makes atoms outside its group: zero inverse mass and inertia, at rest, and no pair
+  // of two obstacles (nor an obstacle on the floor) is listed.
   FrozenStep freeze() const;
 
   const BedSpec& spec() const { return spec_; }
@@ -81,6 +84,7 @@ class GranularBed {
 
  private:
   void rain();
+  void immobilise_layer(FrozenStep& frozen) const;
   std::vector<NeighbourPair> find_neighbour_pairs(const std::vector<cd::Disk>& at) const;
 
   BedSpec spec_;

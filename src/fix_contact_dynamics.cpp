@@ -743,7 +743,7 @@ void FixContactDynamics::load_warm_start()
     for (int slot = 0; slot < count; slot++) {
       const double *entry = row + 1 + 3 * slot;
       if (entry[0] != records[k].history_key) continue;
-      contacts[k].impulse = {entry[1], entry[2]};
+      cd::warm_start(contacts[k], {entry[1], entry[2]});
       break;
     }
   }

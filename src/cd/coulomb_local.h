@@ -20,6 +20,7 @@ struct Delassus2 {
   double tt = 0.0;
 
   Local2 times(Local2 p) const { return {nn * p.n + nt * p.t, nt * p.n + tt * p.t}; }
+  Local2 times_normal(double p_n) const { return {nn * p_n, nt * p_n}; }  // W (p_n, 0)
 };
 
 // Which branch of the Coulomb graph the local solution lies on.
@@ -74,6 +75,15 @@ inline LocalSolution solve_coulomb_local(const Delassus2& w, Local2 u_free, doub
   // solution); keep the sliding normal impulse rather than inventing a state.
   const double p_n = std::max(0.0, -u_free.n / w.nn);
   return {{p_n, -likely * mu * p_n}, likely > 0.0 ? ContactStatus::slip_positive : ContactStatus::slip_negative};
+}
+
+// The frictionless (mu = 0) local solution: the cone is the half-line p_t = 0, so Signorini
+// alone decides, p_n = max(0, -u_free.n / W_nn) for any W. It is what solve_coulomb_local
+// returns for mu = 0 (its sliding branch, with normal stiffness W_nn) without trying the
+// stick and slip branches first.
+inline double solve_frictionless_local(const Delassus2& w, double free_normal_velocity)
+{
+  return free_normal_velocity >= 0.0 ? 0.0 : -free_normal_velocity / w.nn;
 }
 
 // Projection of an impulse onto the friction cone {|p_t| <= mu p_n}.

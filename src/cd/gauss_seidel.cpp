@@ -28,10 +28,22 @@ inline void apply_impulse(const Contact& c, Local2 dp, BodyVelocity& a, BodyVelo
   b.spin -= c.spin_gain_b * dp.t;
 }
 
+// The normal part of apply_impulse alone: what a frictionless contact applies. It reads and
+// writes no spin.
+inline void apply_normal_impulse(const Contact& c, double dp_n, BodyVelocity& a, BodyVelocity& b)
+{
+  const double px = dp_n * c.normal_x;
+  const double py = dp_n * c.normal_y;
+  a.vx += c.inv_mass_a * px;
+  a.vy += c.inv_mass_a * py;
+  b.vx -= c.inv_mass_b * px;
+  b.vy -= c.inv_mass_b * py;
+}
+
 // Exact local solve of one contact with every other impulse frozen; returns W dp and W p
 // for the convergence norm.
-inline void update_contact(Contact& c, std::vector<BodyVelocity>& velocity, double relaxation,
-                           SweepChange& change)
+inline void update_frictional(Contact& c, std::vector<BodyVelocity>& velocity, double relaxation,
+                              SweepChange& change)
 {
   BodyVelocity& a = velocity[c.body_a];
   BodyVelocity& b = velocity[c.body_b];
@@ -48,6 +60,22 @@ inline void update_contact(Contact& c, std::vector<BodyVelocity>& velocity, doub
   c.impulse = p;
   apply_impulse(c, dp, a, b);
   change.add(c.delassus.times(dp), c.delassus.times(p));
+}
+
+// update_frictional for mu = 0, where p_t stays 0 (warm_start drops a carried one): the
+// normal velocity, one division and the normal impulse; no tangential solve, no spin.
+inline void update_frictionless(Contact& c, std::vector<BodyVelocity>& velocity, double relaxation,
+                                SweepChange& change)
+{
+  BodyVelocity& a = velocity[c.body_a];
+  BodyVelocity& b = velocity[c.body_b];
+  const double u_free_n = relative_velocity(c, a, b).n + c.velocity_bias - c.delassus.nn * c.impulse.n;
+  double p_n = solve_frictionless_local(c.delassus, u_free_n);
+  if (relaxation != 1.0) p_n = relaxation * p_n + (1.0 - relaxation) * c.impulse.n;
+  const double dp_n = p_n - c.impulse.n;
+  c.impulse.n = p_n;
+  apply_normal_impulse(c, dp_n, a, b);
+  change.add(c.delassus.times_normal(dp_n), c.delassus.times_normal(p_n));
 }
 
 }  // namespace
@@ -87,6 +115,12 @@ void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies,
   c.mu = law.mu;
   c.impulse = {};
 
+  // A touching pair is an impact whatever its pre-step velocity, and at e = 0 its bias is 0:
+  // nothing to read (doc/benchmarks.md, "Model only what a scene requires").
+  if (c.gap <= 0.0 && law.restitution == 0.0) {
+    c.velocity_bias = 0.0;
+    return;
+  }
   const double u_start =
       relative_velocity(c, bodies.start_velocity[c.body_a], bodies.start_velocity[c.body_b]).n;
   const double advance = step.theta * step.dt;
@@ -122,16 +156,26 @@ std::vector<int> interleaved_order(const std::vector<Contact>& contacts, int bod
   return order;
 }
 
+void warm_start(Contact& c, Local2 carried)
+{
+  c.impulse = {carried.n, c.mu == 0.0 ? 0.0 : carried.t};
+}
+
 void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity)
 {
   for (const Contact& c : contacts) apply_impulse(c, c.impulse, velocity[c.body_a], velocity[c.body_b]);
 }
 
 SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                  double relaxation)
+                  double relaxation, bool frictionless_shortcut)
 {
   SweepChange change;
-  for (Contact& c : contacts) update_contact(c, velocity, relaxation, change);
+  // A branch per contact rather than one sweep per kind: it serves scenes that mix mu = 0
+  // with friction (mu/types, rough walls), and costs a frictional sweep ~1% (doc/benchmarks.md).
+  for (Contact& c : contacts) {
+    if (frictionless_shortcut && c.mu == 0.0) update_frictionless(c, velocity, relaxation, change);
+    else update_frictional(c, velocity, relaxation, change);
+  }
   return change;
 }
 
@@ -143,7 +187,7 @@ SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyV
   // sweep's exchange, contacts or not.
   if (contacts.empty() && !exchange) return report;
   while (report.iterations < settings.max_iterations) {
-    SweepChange change = sweep(contacts, velocity, settings.relaxation);
+    SweepChange change = sweep(contacts, velocity, settings.relaxation, settings.frictionless_shortcut);
     if (exchange) exchange->after_sweep(change);
     ++report.iterations;
     report.residual = change.residual(settings.norm);

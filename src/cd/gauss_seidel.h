@@ -88,6 +88,11 @@ void prepare_mechanics(Contact& contact, const ContactLaw& law, const BodySet& b
 // waits for the previous update of the same body, and runs ~25% faster (doc/benchmarks.md).
 std::vector<int> interleaved_order(const std::vector<Contact>& contacts, int body_count, int spacing = 4);
 
+// Starts a contact from the impulse it carried at the end of the previous step. A frictionless
+// contact keeps only the normal part: it can carry no tangential impulse, and the sweep never
+// changes its p_t nor any spin (a carried p_t can only come from a run with another mu).
+void warm_start(Contact& contact, Local2 carried);
+
 // Adds the contacts' impulses (e.g. the warm start) to the body velocities.
 void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity);
 
@@ -96,6 +101,10 @@ struct SolverSettings {
   int max_iterations = 1000;
   double relaxation = 1.0;  // p <- w p_local + (1 - w) p_previous
   ConvergenceNorm norm = ConvergenceNorm::quadratic;
+  // mu = 0 contacts solve only their normal impulse and touch no spin (solve_frictionless_local),
+  // the same result as the Coulomb solver to round-off at about half the cost. false sends them
+  // through the Coulomb solver: the reference the shortcut is tested and measured against.
+  bool frictionless_shortcut = true;
 };
 
 struct SolveReport {
@@ -112,9 +121,10 @@ class SweepExchange {
   virtual void after_sweep(SweepChange& change) = 0;
 };
 
-// One sweep over the contacts in their stored order.
+// One sweep over the contacts in their stored order. Frictionless contacts (mu = 0) take the
+// shortcut of SolverSettings::frictionless_shortcut unless it is false.
 SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                  double relaxation);
+                  double relaxation, bool frictionless_shortcut = true);
 
 // Sweeps until the norm falls to the tolerance or the iteration cap is reached. The contacts'
 // impulses must already be applied to `velocity` (apply_impulses).
