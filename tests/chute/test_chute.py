@@ -283,6 +283,10 @@ BAD_VARS = [
     ("sample_rate", "3000", "-var sample_rate 3000"),
     ("stage", "chute", "-var stage chute"),
     ("restart_interval", "0.015", "-var restart_interval 0.015"),
+    ("norm", "l2", "-var norm l2"),
+    ("warm_start", "1", "-var warm_start 1"),
+    ("norm", "2", "-var norm 2"),
+    ("order", "random", "-var order random"),
 ]
 
 
