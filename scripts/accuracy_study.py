@@ -107,31 +107,55 @@ def deck_command(args, variables, log):
     return cmd
 
 
-def run_timed(cmd, folder):
-    """Run cmd in folder; return (status, user + sys CPU seconds, wall seconds)."""
+def run_timed(cmd, folder, deadline=None):
+    """Run cmd in folder; return (status, user + sys CPU seconds, wall seconds, stopped):
+    a process still running at `deadline` (time.time()) is stopped by SIGTERM."""
     start = time.time()
     with open(os.path.join(folder, "stdout"), "w") as out:
         proc = subprocess.Popen(cmd, cwd=folder, stdout=out, stderr=subprocess.STDOUT)
-        _, status, usage = os.wait4(proc.pid, 0)
+        stopped = False
+        while True:
+            pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
+            if pid:
+                break
+            if deadline is not None and time.time() > deadline and not stopped:
+                proc.terminate()
+                stopped = True
+            time.sleep(1)
         proc.returncode = os.waitstatus_to_exitcode(status)
-    return proc.returncode, usage.ru_utime + usage.ru_stime, time.time() - start
+    return proc.returncode, usage.ru_utime + usage.ru_stime, time.time() - start, stopped
 
 
 class Job:
-    """One lmp_cd process in its own folder; DONE holds its cost when it has finished."""
+    """One lmp_cd process in its own folder; DONE holds its cost when it has finished, PARTIAL
+    when the study's deadline stopped it (its files then end where it stopped)."""
 
     def __init__(self, name, folder, variables, args):
         self.name, self.folder, self.variables = name, folder, variables
         self.cmd = deck_command(args, variables, "log.lammps")
+        self.deadline = args.deadline
 
     def done(self):
         return os.path.exists(os.path.join(self.folder, "DONE"))
 
+    def partial(self):
+        return os.path.exists(os.path.join(self.folder, "PARTIAL"))
+
     def run(self):
+        if self.deadline is not None and time.time() > self.deadline:
+            print(f"{self.name}: not started (deadline)", flush=True)
+            return
         os.makedirs(self.folder, exist_ok=True)
         with open(os.path.join(self.folder, "command"), "w") as f:
             f.write(" ".join(shlex.quote(c) for c in self.cmd) + "\n")
-        status, cpu, wall = run_timed(self.cmd, self.folder)
+        with open(os.path.join(self.folder, "variables.json"), "w") as f:
+            json.dump(self.variables, f)
+        status, cpu, wall, stopped = run_timed(self.cmd, self.folder, self.deadline)
+        if stopped:
+            with open(os.path.join(self.folder, "PARTIAL"), "w") as f:
+                json.dump(dict(cpu_s=cpu, wall_s=wall), f)
+            print(f"{self.name}: stopped at the deadline after {cpu:.0f} CPU s", flush=True)
+            return
         if status != 0:
             raise RuntimeError(f"{self.name}: lmp_cd exit status {status}, see {self.folder}/log.lammps")
         with open(os.path.join(self.folder, "DONE"), "w") as f:
@@ -140,19 +164,21 @@ class Job:
 
 
 def expected_cost(variables):
-    """Rough cost of a window relative to the default, to start the longest first: steps
-    scale as 1/dt; sweeps per step (about 170 at the default) as tolerance^-1/2 up to the
-    cap (measured: about 1500 at 1e-5); a cold start or the maximum norm costs more."""
+    """Rough cost of a window relative to the default: steps scale as 1/dt; sweeps per step
+    (about 170 at the default) as tolerance^-1/2 up to the cap (measured: about 1500 at 1e-5);
+    a cold start or the maximum norm costs more."""
     sweeps = min(170 * math.sqrt(1e-3 / float(variables["tolerance"])), float(variables["max_iterations"]))
     factor = {"no": 3.0}.get(variables["warm_start"], 1.0) * {"maximum": 2.0}.get(variables["norm"], 1.0)
     return 2e-5 / float(variables["dt"]) * sweeps / 170 * factor
 
 
 def run_pool(jobs, parallel):
-    """Run the jobs not yet done, `parallel` at a time (threads wait on the processes), the
-    most expensive first so that the last ones to finish are short."""
+    """Run the jobs not yet done, `parallel` at a time (threads wait on the processes): the
+    first job (the reference) at once, then the others cheapest first, so that a deadline
+    leaves as many settings finished as possible."""
     import concurrent.futures
-    pending = sorted((j for j in jobs if not j.done()), key=lambda j: -expected_cost(j.variables))
+    pending = [j for j in jobs if not j.done() and not j.partial()]
+    pending = pending[:1] + sorted(pending[1:], key=lambda j: expected_cost(j.variables))
     with concurrent.futures.ThreadPoolExecutor(max_workers=parallel) as pool:
         for future in [pool.submit(j.run) for j in pending]:
             future.result()
@@ -207,16 +233,23 @@ def log_line(folder, key):
     return dict(zip(words[0::2], words[1::2]))
 
 
-def solver_summary(folder, dt, window):
-    """Means of solver.time over the window, and the contact updates (sweeps x contacts)."""
+def solver_summary(folder, dt, window, finished):
+    """Means of solver.time over the window, and the contact updates (sum over the
+    solver_interval rows of mean sweeps x mean contacts x steps). The largest sweeps and
+    interpenetration of any step come from the SOLVER line of a finished run; a stopped run
+    has none, and the largest row mean (a lower bound) is given instead."""
     rows = read_table(os.path.join(folder, "solver.time"))
     steps_per_row = (rows[1]["TimeStep"] - rows[0]["TimeStep"]) if len(rows) > 1 else window / dt
     mean = lambda key: sum(r[key] for r in rows) / len(rows)
     updates = sum(r["f_cd[1]"] * r["f_cd[3]"] for r in rows) * steps_per_row
-    extremes = log_line(folder, "SOLVER")
-    return dict(sweeps_mean=mean("f_cd[1]"), sweeps_max=float(extremes["max_sweeps_per_step"]),
+    if finished:
+        extremes = log_line(folder, "SOLVER")
+        sweeps_max, overlap_max = float(extremes["max_sweeps_per_step"]), float(extremes["max_interpenetration_d"])
+    else:
+        sweeps_max, overlap_max = max(r["f_cd[1]"] for r in rows), max(r["f_cd[5]"] for r in rows)
+    return dict(sweeps_mean=mean("f_cd[1]"), sweeps_max=sweeps_max,
                 residual=mean("f_cd[2]"), contacts=mean("f_cd[3]"),
-                overlap_mean_d=mean("f_cd[6]"), overlap_max_d=float(extremes["max_interpenetration_d"]),
+                overlap_mean_d=mean("f_cd[6]"), overlap_max_d=overlap_max,
                 converged=mean("f_cd[7]"), updates=updates)
 
 
@@ -257,18 +290,27 @@ def amplitude_error(folder, f_hz, t_start, t_end, segment, g, d):
     return sd / math.sqrt(len(amplitudes))
 
 
+def reached_time(folder):
+    """Chute time of the last complete solver_interval in solver.time (s)."""
+    rows = read_table(os.path.join(folder, "solver.time"))
+    return rows[-1]["TimeStep"] * float(json.load(open(os.path.join(folder, "variables.json")))["dt"])
+
+
 def analyse_window(args, name, factor, setting, job):
-    cost = json.load(open(os.path.join(job.folder, "DONE")))
-    chute = log_line(job.folder, "CHUTE")
-    y_top = chute["y_top_m"]
-    t0, t1 = float(args.spinup) + float(args.discard), float(args.spinup) + float(args.window)
-    window = float(args.window)
-    solver = solver_summary(job.folder, float(setting["dt"]), window)
-    res = cdpost_results(args, job.folder, y_top, t0, t1)
-    row = dict(setting=name, factor=factor, **setting,
+    finished = job.done()
+    cost = json.load(open(os.path.join(job.folder, "DONE" if finished else "PARTIAL")))
+    y_top = f"{float(SCENES[args.scene]['wall_height']) * 5e-4:.6g}"   # wall_height d, d = 5e-4 m
+    t0 = float(args.spinup) + float(args.discard)
+    t1 = float(args.spinup) + float(args.window) if finished else reached_time(job.folder)
+    t1 = math.floor(t1 * 1000 + 1e-6) / 1000   # whole samples (1 kHz)
+    window = t1 - float(args.spinup)
+    solver = solver_summary(job.folder, float(setting["dt"]), window, finished)
+    row = dict(setting=name, factor=factor, **setting, finished=finished, window_s=window,
                cpu_per_s=cost["cpu_s"] / window, wall_per_s=cost["wall_s"] / window,
-               updates_per_cpu_s=solver.pop("updates") / cost["cpu_s"],
-               steps_capped=float(chute["steps_capped"]), steps_solved=float(chute["steps_solved"]), **solver)
+               updates_per_cpu_s=solver.pop("updates") / cost["cpu_s"], **solver)
+    if args.cost_only:
+        return row
+    res = cdpost_results(args, job.folder, y_top, t0, t1)
     for key, _, _ in OBSERVABLES:
         value, error = res[key]
         if key == "A":
@@ -307,13 +349,16 @@ def write_csv(rows, path):
         writer.writerows(rows)
 
 
-def markdown_tables(rows):
-    cost = ["| setting | CPU s / phys. s | contact updates / CPU s | sweeps/step mean | max | capped steps | final norm | overlap mean (d) | max (d) |",
-            "|---|---|---|---|---|---|---|---|---|"]
+def markdown_tables(rows, cost_only=False):
+    cost = ["| setting | window (s) | CPU s / phys. s | contact updates / CPU s | sweeps/step mean | max | capped steps | final norm | overlap mean (d) | max (d) |",
+            "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        cost.append(f"| {r['setting']} | {r['cpu_per_s']:.0f} | {r['updates_per_cpu_s'] / 1e6:.1f} M | "
-                    f"{r['sweeps_mean']:.0f} | {r['sweeps_max']:.0f} | {r['steps_capped'] / r['steps_solved']:.1%} | "
+        mark = "" if r["finished"] else " (stopped)"
+        cost.append(f"| {r['setting']} | {r['window_s']:.2f}{mark} | {r['cpu_per_s']:.0f} | {r['updates_per_cpu_s'] / 1e6:.1f} M | "
+                    f"{r['sweeps_mean']:.0f} | {r['sweeps_max']:.0f} | {1 - r['converged']:.2%} | "
                     f"{r['residual']:.2g} | {r['overlap_mean_d']:.1e} | {r['overlap_max_d']:.1e} |")
+    if cost_only:
+        return "\n".join(cost) + "\n"
     obs = ["| setting | " + " | ".join(f"{label} ({unit})" if unit else label for _, label, unit in OBSERVABLES) + " |",
            "|---|" + "---|" * len(OBSERVABLES)]
     for r in rows:
@@ -345,12 +390,13 @@ def pareto_figure(rows, folder):
         panels.append(f"set title '{label}'\nplot ${key} using 1:2 with points pt 7 ps 0.8 notitle, "
                       f"${key} using 1:2:3 with labels offset 0,0.6 font ',7' notitle, 2 with lines dt 2 lc 'gray' notitle")
     script = "\n".join(data) + f"""
-set terminal pngcairo size 1100,650 font ',9'
+set terminal pngcairo size 1100,650 font ',9' noenhanced
 set output 'accuracy_pareto.png'
 set multiplot layout 2,3
 set logscale xy
 set xlabel 'CPU s per physical s'
-set ylabel '|x - x_ref| / error bar'
+set ylabel '|x - x_ref| / combined error bar'
+set format x '%g'
 set yrange [0.01:*]
 """ + "\n".join(panels) + "\nunset multiplot\n"
     gnuplot(script, folder)
@@ -368,8 +414,10 @@ EOD
 $tol << EOD
 {series('tolerance', 'tolerance')}
 EOD
-set terminal pngcairo size 900,380 font ',9'
+set terminal pngcairo size 900,380 font ',9' noenhanced
 set output 'accuracy_f_convergence.png'
+set format x '%.0e'
+set offsets graph 0.1, graph 0.1, 0, 0
 set multiplot layout 1,2
 set ylabel 'f (Hz)'
 set logscale x
@@ -394,14 +442,18 @@ def main():
     p.add_argument("--lmp", default=os.path.join(TOP, "build", "lmp_cd"))
     p.add_argument("--cdpost", default=os.path.join(TOP, "build", "postproc", "cdpost"))
     p.add_argument("--spinup", default="0.7", help="chute time of the common restart (s)")
-    p.add_argument("--window", default="0.6", help="flow window of each setting (s)")
-    p.add_argument("--discard", default="0.1", help="start of each window left out of the analysis (s)")
-    p.add_argument("--segment", type=float, default=0.25, help="cdpost spectrum segment (s)")
+    p.add_argument("--window", default="0.4", help="flow window of each setting (s)")
+    p.add_argument("--discard", default="0.05", help="start of each window left out of the analysis (s)")
+    p.add_argument("--segment", type=float, default=0.175, help="cdpost spectrum segment (s)")
     p.add_argument("--ref-dt", default="1e-5")
-    p.add_argument("--ref-tolerance", default="1e-5")
+    p.add_argument("--ref-tolerance", default="1e-4")
     p.add_argument("--ref-max-iterations", default="10000")
     p.add_argument("--jobs", type=int, default=2, help="windows run at once")
     p.add_argument("--only", nargs="*", help="run only these settings")
+    p.add_argument("--cost-only", action="store_true",
+                   help="cost and solver columns only, no observables (for windows too short to analyse)")
+    p.add_argument("--stop-at", default=None,
+                   help="UTC time HH:MM at which running windows are stopped and analysed as far as they got")
     p.add_argument("--dry-run", action="store_true", help="list the settings and commands, run nothing")
     p.add_argument("--analyse-only", action="store_true", help="analyse the finished windows only")
     p.add_argument("--figures", default=None, help="also copy the figures into this folder")
@@ -412,6 +464,11 @@ def main():
     if float(args.discard) >= float(args.window):
         p.error(f"--discard {args.discard}: must be shorter than --window {args.window}")
 
+    args.deadline = None
+    if args.stop_at:
+        hour, minute = map(int, args.stop_at.split(":"))
+        now = time.gmtime()
+        args.deadline = time.time() + ((hour * 60 + minute) - (now.tm_hour * 60 + now.tm_min)) % 1440 * 60 - now.tm_sec
     deposition, spinup, windows = build_jobs(args)
     if args.dry_run:
         for job in [deposition, spinup] + [w[3] for w in windows]:
@@ -426,15 +483,23 @@ def main():
         run_pool([w[3] for w in windows], args.jobs)
     rows = []
     for name, factor, setting, job in windows:
-        if job.done():
+        if job.partial() and reached_time(job.folder) - float(args.spinup) - float(args.discard) < 2 * args.segment:
+            print(f"{name}: stopped before two spectrum segments, left out", file=sys.stderr)
+        elif job.done() or job.partial():
             rows.append(analyse_window(args, name, factor, setting, job))
         else:
             print(f"{name}: not finished, left out", file=sys.stderr)
+    out = os.path.abspath(args.out)
+    if args.cost_only:
+        write_csv(rows, os.path.join(out, "accuracy_cost.csv"))
+        with open(os.path.join(out, "accuracy_cost.md"), "w") as f:
+            f.write(markdown_tables(rows, cost_only=True))
+        print(f"wrote {out}/accuracy_cost.csv, accuracy_cost.md")
+        return 0
     if not any(r["setting"] == "reference" for r in rows):
         print("the reference window has not finished: no comparison", file=sys.stderr)
         return 1
     rows = compare(rows)
-    out = os.path.abspath(args.out)
     write_csv(rows, os.path.join(out, "accuracy.csv"))
     with open(os.path.join(out, "accuracy.md"), "w") as f:
         f.write(markdown_tables(rows))
