@@ -56,11 +56,19 @@ VARIATIONS = [
     ("norm=maximum", "norm", dict(norm="maximum")),
     ("warm_start=no", "warm_start", dict(warm_start="no")),
     ("order=shuffle", "order", dict(order="shuffle")),
+    # Replicas of the default up to the contact order (another shuffle seed: in stage flow the
+    # seed only draws the order): their scatter is the noise of one realisation of the flow.
+    ("replica seed 2", "replica", dict(order="shuffle", seed="2")),
+    ("replica seed 3", "replica", dict(order="shuffle", seed="3")),
+    ("replica seed 4", "replica", dict(order="shuffle", seed="4")),
 ]
+# The settings that differ from the default only by the contact order.
+REPLICA_FACTORS = ("default", "order", "replica")
 OBSERVABLES = [  # cdpost result name, label, unit
     ("U", "U", "sqrt(g d)"), ("phi", "phi", ""), ("h", "h", "d"), ("f", "f", "Hz"),
-    ("A", "A", "sqrt(g d)"),
+    ("A", "A", "sqrt(g d)"), ("f_c", "f_c", "Hz"), ("A_mean", "A_mean", "sqrt(g d)"),
 ]
+CENTROID_BAND = (10.0, 150.0)   # Hz: f_c, the power-weighted mean frequency of v(t) in this band
 
 
 def settings(args):
@@ -296,6 +304,19 @@ def reached_time(folder):
     return rows[-1]["TimeStep"] * float(json.load(open(os.path.join(folder, "variables.json")))["dt"])
 
 
+def spectral_centroid(post):
+    """Power-weighted mean frequency of cdpost's spectrum.csv over CENTROID_BAND (Hz): unlike
+    the peak, it does not jump between the bumps of a broad spectrum."""
+    power = weighted = 0.0
+    with open(os.path.join(post, "spectrum.csv")) as f:
+        for row in csv.DictReader(f):
+            freq, amp = float(row["f_Hz"]), float(row["A_sqrt_gd"])
+            if CENTROID_BAND[0] <= freq <= CENTROID_BAND[1]:
+                power += amp * amp
+                weighted += freq * amp * amp
+    return weighted / power
+
+
 def analyse_window(args, name, factor, setting, job):
     finished = job.done()
     cost = json.load(open(os.path.join(job.folder, "DONE" if finished else "PARTIAL")))
@@ -311,26 +332,48 @@ def analyse_window(args, name, factor, setting, job):
     if args.cost_only:
         return row
     res = cdpost_results(args, job.folder, y_top, t0, t1)
+    res["f_c"] = (spectral_centroid(os.path.join(job.folder, "post")), None)
+    res["A"] = (res["A"][0], amplitude_error(job.folder, res["f"][0], t0, t1, args.segment, 9.81, 5e-4))
     for key, _, _ in OBSERVABLES:
         value, error = res[key]
-        if key == "A":
-            error = amplitude_error(job.folder, res["f"][0], t0, t1, args.segment, 9.81, 5e-4)
         row[key], row[key + "_err"] = value, error
     return row
 
 
 # ---------------------------------------------------------------- reports
 
+def replica_scatter(rows):
+    """Per observable, the standard deviation over the runs that differ from the default only
+    by the contact order (None below three such runs)."""
+    group = [r for r in rows if r["factor"] in REPLICA_FACTORS]
+    if len(group) < 3:
+        return None
+    scatter = {}
+    for key, _, _ in OBSERVABLES:
+        values = [r[key] for r in group]
+        mean = sum(values) / len(values)
+        scatter[key] = math.sqrt(sum((v - mean) ** 2 for v in values) / (len(values) - 1))
+    return scatter
+
+
 def compare(rows):
-    """Add, per observable, the difference from the reference and whether it is noise."""
+    """Add, per observable, the difference from the reference, its size in error bars and
+    whether it is noise: by the error bars (within_noise), and against the replicas' scatter
+    (two runs differ by sqrt(2) times the scatter: within noise when below 2 sqrt(2) of it)."""
     ref = next(r for r in rows if r["setting"] == "reference")
+    scatter = replica_scatter(rows)
     for r in rows:
         for key, _, _ in OBSERVABLES:
             s, s_ref = r[key + "_err"] or 0.0, ref[key + "_err"] or 0.0
             r[key + "_diff"] = r[key] - ref[key]
-            r[key + "_sig"] = significance(r[key], s, ref[key], s_ref)
-            r[key + "_noise"] = within_noise(r[key], s, ref[key], s_ref)
-    return rows
+            has_bars = r[key + "_err"] is not None or ref[key + "_err"] is not None
+            r[key + "_sig"] = significance(r[key], s, ref[key], s_ref) if has_bars else None
+            r[key + "_noise"] = within_noise(r[key], s, ref[key], s_ref) if has_bars else None
+            if scatter:
+                bar = math.sqrt(2) * scatter[key]
+                r[key + "_sig_replica"] = significance(r[key], bar, ref[key], 0.0)
+                r[key + "_noise_replica"] = within_noise(r[key], bar, ref[key], 0.0)
+    return rows, scatter
 
 
 def fmt(x, digits=3):
@@ -349,7 +392,7 @@ def write_csv(rows, path):
         writer.writerows(rows)
 
 
-def markdown_tables(rows, cost_only=False):
+def markdown_tables(rows, cost_only=False, scatter=None):
     cost = ["| setting | window (s) | CPU s / phys. s | contact updates / CPU s | sweeps/step mean | max | capped steps | final norm | overlap mean (d) | max (d) |",
             "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
@@ -366,9 +409,16 @@ def markdown_tables(rows, cost_only=False):
         for key, _, _ in OBSERVABLES:
             cell = f"{fmt(r[key])} ± {fmt(r[key + '_err'], 2)}"
             if r["setting"] != "reference":
-                cell += f" ({r[key + '_sig']:.1f}σ{'' if r[key + '_noise'] else ' **differs**'})"
+                marks = []
+                if r[key + "_sig"] is not None:
+                    marks.append(f"{r[key + '_sig']:.1f}σ{'' if r[key + '_noise'] else ' **differs**'}")
+                if key + "_sig_replica" in r:
+                    marks.append(f"{r[key + '_sig_replica']:.1f}σr{'' if r[key + '_noise_replica'] else ' **differs**'}")
+                cell += f" ({'; '.join(marks)})" if marks else ""
             cells.append(cell)
         obs.append(f"| {r['setting']} | " + " | ".join(cells) + " |")
+    if scatter:
+        obs.append("| replica scatter (sd) | " + " | ".join(fmt(scatter[key], 2) for key, _, _ in OBSERVABLES) + " |")
     return "\n".join(cost) + "\n\n" + "\n".join(obs) + "\n"
 
 
@@ -383,21 +433,25 @@ def pareto_figure(rows, folder):
         data.append(f"${key} << EOD")
         for r in rows:
             if r["setting"] != "reference":
-                data.append(f"{r['cpu_per_s']:.6g} {max(r[key + '_sig'], 0.01):.6g} \"{r['setting']}\"")
+                bars = r[key + "_sig"] if r[key + "_sig"] is not None else math.nan
+                replica = r.get(key + "_sig_replica", math.nan)
+                data.append(f"{r['cpu_per_s']:.6g} {max(bars, 0.01):.6g} {max(replica, 0.01):.6g} \"{r['setting']}\"")
         data.append("EOD")
     panels = []
     for i, (key, label, _) in enumerate(OBSERVABLES):
-        panels.append(f"set title '{label}'\nplot ${key} using 1:2 with points pt 7 ps 0.8 notitle, "
-                      f"${key} using 1:2:3 with labels offset 0,0.6 font ',7' notitle, 2 with lines dt 2 lc 'gray' notitle")
+        panels.append(f"set title '{label}'\nplot ${key} using 1:2 with points pt 7 ps 0.8 lc 'black' title 'error bars', "
+                      f"${key} using 1:3 with points pt 6 ps 0.9 lc 'red' title 'replica scatter', "
+                      f"${key} using 1:2:4 with labels offset 0,0.6 font ',7' notitle, 2 with lines dt 2 lc 'gray' notitle")
     script = "\n".join(data) + f"""
-set terminal pngcairo size 1100,650 font ',9' noenhanced
+set terminal pngcairo size 1300,620 font ',9' noenhanced
 set output 'accuracy_pareto.png'
-set multiplot layout 2,3
+set multiplot layout 2,4
 set logscale xy
 set xlabel 'CPU s per physical s'
 set ylabel '|x - x_ref| / combined error bar'
 set format x '%g'
 set yrange [0.01:*]
+set key bottom right font ',7'
 """ + "\n".join(panels) + "\nunset multiplot\n"
     gnuplot(script, folder)
 
@@ -476,7 +530,9 @@ def main():
         return 0
     if not args.analyse_only:
         os.makedirs(args.out, exist_ok=True)
-        shutil.copy(DECK, os.path.join(args.out, "in.chute"))
+        copy = os.path.join(args.out, "in.chute")
+        if not os.path.exists(copy) or open(copy).read() != open(DECK).read():
+            shutil.copy(DECK, copy)
         for stage in (deposition, spinup):
             if not stage.done():
                 stage.run()
@@ -499,10 +555,10 @@ def main():
     if not any(r["setting"] == "reference" for r in rows):
         print("the reference window has not finished: no comparison", file=sys.stderr)
         return 1
-    rows = compare(rows)
+    rows, scatter = compare(rows)
     write_csv(rows, os.path.join(out, "accuracy.csv"))
     with open(os.path.join(out, "accuracy.md"), "w") as f:
-        f.write(markdown_tables(rows))
+        f.write(markdown_tables(rows, scatter=scatter))
     pareto_figure(rows, out)
     convergence_figure(rows, out)
     if args.figures:
