@@ -385,9 +385,9 @@ def fmt(x, digits=3):
 
 
 def write_csv(rows, path):
-    keys = list(rows[0].keys())
+    keys = list(dict.fromkeys(k for r in rows for k in r))   # every column, first-seen order
     with open(path, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=keys)
+        writer = csv.DictWriter(f, fieldnames=keys, restval="")
         writer.writeheader()
         writer.writerows(rows)
 
@@ -456,12 +456,17 @@ set key bottom right font ',7'
     gnuplot(script, folder)
 
 
-def convergence_figure(rows, folder):
-    """f against dt and against tolerance, with the reference as a band."""
+def convergence_figure(rows, folder, scatter):
+    """f (peak ± half width) and f_c (spectral centroid ± the replicas' scatter) against dt and
+    against tolerance; the band is the reference's f_c ± 2 sqrt(2) scatter (within noise)."""
     ref = next(r for r in rows if r["setting"] == "reference")
+    sd = scatter["f_c"] if scatter else 0.0
     def series(factor, column):
-        pts = [r for r in rows if r["factor"] in (factor, "default")]
-        return "\n".join(f"{float(r[column]):.6g} {r['f']:.6g} {r['f_err']:.6g}" for r in pts)
+        pts = sorted((r for r in rows if r["factor"] in (factor, "default")), key=lambda r: float(r[column]))
+        return "\n".join(f"{float(r[column]):.6g} {r['f']:.6g} {r['f_err']:.6g} {r['f_c']:.6g} {sd:.6g}" for r in pts)
+    plots = ("plot lo with lines dt 2 lc 'gray' notitle, hi with lines dt 2 lc 'gray' notitle, "
+             "{0} using ($1*0.93):2:3 with yerrorbars pt 7 lc 'black' title 'f (peak, ± half width)', "
+             "{0} using ($1*1.07):4:5 with yerrorbars pt 6 lc 'red' title 'f_c (centroid, ± replica sd)'")
     script = f"""$dt << EOD
 {series('dt', 'dt')}
 EOD
@@ -472,16 +477,17 @@ set terminal pngcairo size 900,380 font ',9' noenhanced
 set output 'accuracy_f_convergence.png'
 set format x '%.0e'
 set offsets graph 0.1, graph 0.1, 0, 0
+set key top right font ',7'
 set multiplot layout 1,2
-set ylabel 'f (Hz)'
+set ylabel 'Hz'
 set logscale x
-lo = {ref['f'] - ref['f_err']:.6g}; hi = {ref['f'] + ref['f_err']:.6g}
+lo = {ref['f_c'] - 2 * math.sqrt(2) * sd:.6g}; hi = {ref['f_c'] + 2 * math.sqrt(2) * sd:.6g}
 set xlabel 'time step (s)'
-set title 'f against dt (tolerance 1e-3); band: reference'
-plot lo with lines dt 2 lc 'gray' notitle, hi with lines dt 2 lc 'gray' notitle, $dt using 1:2:3 with yerrorbars pt 7 notitle
+set title 'against dt (tolerance 1e-3); band: reference f_c within noise'
+{plots.format('$dt')}
 set xlabel 'tolerance'
-set title 'f against tolerance (dt 2e-5 s); band: reference'
-plot lo with lines dt 2 lc 'gray' notitle, hi with lines dt 2 lc 'gray' notitle, $tol using 1:2:3 with yerrorbars pt 7 notitle
+set title 'against tolerance (dt 2e-5 s)'
+{plots.format('$tol')}
 unset multiplot
 """
     gnuplot(script, folder)
@@ -560,7 +566,7 @@ def main():
     with open(os.path.join(out, "accuracy.md"), "w") as f:
         f.write(markdown_tables(rows, scatter=scatter))
     pareto_figure(rows, out)
-    convergence_figure(rows, out)
+    convergence_figure(rows, out, scatter)
     if args.figures:
         for name in ("accuracy_pareto.png", "accuracy_f_convergence.png"):
             shutil.copy(os.path.join(out, name), args.figures)
