@@ -435,13 +435,14 @@ def pareto_figure(rows, folder):
             if r["setting"] != "reference":
                 bars = r[key + "_sig"] if r[key + "_sig"] is not None else math.nan
                 replica = r.get(key + "_sig_replica", math.nan)
-                data.append(f"{r['cpu_per_s']:.6g} {max(bars, 0.01):.6g} {max(replica, 0.01):.6g} \"{r['setting']}\"")
+                data.append(f"{r['cpu_per_s']:.6g} {max(bars, 0.01):.6g} {max(replica, 0.01):.6g} \"{'' if r['factor'] == 'replica' else r['setting']}\"")
         data.append("EOD")
     panels = []
     for i, (key, label, _) in enumerate(OBSERVABLES):
         panels.append(f"set title '{label}'\nplot ${key} using 1:2 with points pt 7 ps 0.8 lc 'black' title 'error bars', "
                       f"${key} using 1:3 with points pt 6 ps 0.9 lc 'red' title 'replica scatter', "
-                      f"${key} using 1:2:4 with labels offset 0,0.6 font ',7' notitle, 2 with lines dt 2 lc 'gray' notitle")
+                      f"${key} using 1:($3 == $3 ? $3 : $2):4 with labels offset 0,0.6 font ',7' notitle, "
+                      f"2 with lines dt 2 lc 'gray' notitle")
     script = "\n".join(data) + f"""
 set terminal pngcairo size 1300,620 font ',9' noenhanced
 set output 'accuracy_pareto.png'
