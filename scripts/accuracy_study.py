@@ -293,9 +293,7 @@ def amplitude_error(folder, f_hz, t_start, t_end, segment, g, d):
         amplitudes.append(2 * math.hypot(re, im) / sum(w) / math.sqrt(g * d))
     if len(amplitudes) < 2:
         return None
-    mean = sum(amplitudes) / len(amplitudes)
-    sd = math.sqrt(sum((a - mean) ** 2 for a in amplitudes) / (len(amplitudes) - 1))
-    return sd / math.sqrt(len(amplitudes))
+    return batch_means(amplitudes, len(amplitudes))[1]   # one segment per batch
 
 
 def reached_time(folder):
