@@ -64,6 +64,8 @@ VARIATIONS = [
 ]
 # The settings that differ from the default only by the contact order.
 REPLICA_FACTORS = ("default", "order", "replica")
+# Replicas of the reference the same way: the scatter of the most accurate setting.
+REFERENCE_REPLICA_SEEDS = ("2", "3", "4", "5")
 OBSERVABLES = [  # cdpost result name, label, unit
     ("U", "U", "sqrt(g d)"), ("phi", "phi", ""), ("h", "h", "d"), ("f", "f", "Hz"),
     ("A", "A", "sqrt(g d)"), ("f_c", "f_c", "Hz"), ("A_mean", "A_mean", "sqrt(g d)"),
@@ -77,6 +79,8 @@ def settings(args):
                      max_iterations=args.ref_max_iterations)
     rows = [("reference", "reference", reference), ("default", "default", dict(DEFAULT))]
     rows += [(name, factor, dict(DEFAULT, **change)) for name, factor, change in VARIATIONS]
+    rows += [(f"reference seed {seed}", "reference replica", dict(reference, order="shuffle", seed=seed))
+             for seed in REFERENCE_REPLICA_SEEDS]
     return [r for r in rows if not args.only or r[0] in args.only]
 
 
@@ -340,18 +344,55 @@ def analyse_window(args, name, factor, setting, job):
 
 # ---------------------------------------------------------------- reports
 
+def replica_groups(rows):
+    """The runs of the default's physics (differing only by the contact order) and those of
+    the reference's."""
+    return ([r for r in rows if r["factor"] in REPLICA_FACTORS],
+            [r for r in rows if r["factor"] in ("reference", "reference replica")])
+
+
+def group_stats(values):
+    """Mean, standard deviation and standard error of the mean of a list (n >= 2)."""
+    mean = sum(values) / len(values)
+    sd = math.sqrt(sum((v - mean) ** 2 for v in values) / (len(values) - 1))
+    return mean, sd, sd / math.sqrt(len(values))
+
+
 def replica_scatter(rows):
-    """Per observable, the standard deviation over the runs that differ from the default only
-    by the contact order (None below three such runs)."""
-    group = [r for r in rows if r["factor"] in REPLICA_FACTORS]
-    if len(group) < 3:
+    """Per observable, the standard deviation of one run: pooled over the replica groups
+    (deviations from each group's own mean) that have at least two runs; None when the
+    groups hold fewer than three runs in all."""
+    groups = [g for g in replica_groups(rows) if len(g) >= 2]
+    if sum(len(g) for g in groups) < 3:
         return None
     scatter = {}
     for key, _, _ in OBSERVABLES:
-        values = [r[key] for r in group]
-        mean = sum(values) / len(values)
-        scatter[key] = math.sqrt(sum((v - mean) ** 2 for v in values) / (len(values) - 1))
+        squares = dof = 0
+        for g in groups:
+            mean = sum(r[key] for r in g) / len(g)
+            squares += sum((r[key] - mean) ** 2 for r in g)
+            dof += len(g) - 1
+        scatter[key] = math.sqrt(squares / dof)
     return scatter
+
+
+def group_table(rows):
+    """Markdown: the default's and the reference's replica groups, mean ± standard error per
+    observable, and whether their difference is within noise (2 combined standard errors)."""
+    default, reference = replica_groups(rows)
+    if len(default) < 2 or len(reference) < 2:
+        return ""
+    lines = [f"| observable | default physics (n = {len(default)}) | reference physics (n = {len(reference)}) | "
+             "difference | in standard errors |", "|---|---|---|---|---|"]
+    for key, label, unit in OBSERVABLES:
+        m_d, _, e_d = group_stats([r[key] for r in default])
+        m_r, _, e_r = group_stats([r[key] for r in reference])
+        sig = significance(m_d, e_d, m_r, e_r)
+        verdict = "" if within_noise(m_d, e_d, m_r, e_r) else " **differs**"
+        unit = f" ({unit})" if unit else ""
+        lines.append(f"| {label}{unit} | {fmt(m_d, 4)} ± {fmt(e_d, 2)} | {fmt(m_r, 4)} ± {fmt(e_r, 2)} | "
+                     f"{fmt(m_d - m_r, 2)} ± {fmt(math.hypot(e_d, e_r), 2)} | {sig:.1f}{verdict} |")
+    return "\n".join(lines) + "\n"
 
 
 def compare(rows):
@@ -416,8 +457,9 @@ def markdown_tables(rows, cost_only=False, scatter=None):
             cells.append(cell)
         obs.append(f"| {r['setting']} | " + " | ".join(cells) + " |")
     if scatter:
-        obs.append("| replica scatter (sd) | " + " | ".join(fmt(scatter[key], 2) for key, _, _ in OBSERVABLES) + " |")
-    return "\n".join(cost) + "\n\n" + "\n".join(obs) + "\n"
+        obs.append("| replica scatter (pooled sd of one run) | " + " | ".join(fmt(scatter[key], 2) for key, _, _ in OBSERVABLES) + " |")
+    groups = group_table(rows)
+    return "\n".join(cost) + "\n\n" + "\n".join(obs) + "\n" + ("\n" + groups if groups else "")
 
 
 def gnuplot(script, folder):
