@@ -81,6 +81,13 @@ def settings(args):
     rows += [(name, factor, dict(DEFAULT, **change)) for name, factor, change in VARIATIONS]
     rows += [(f"reference seed {seed}", "reference replica", dict(reference, order="shuffle", seed=seed))
              for seed in REFERENCE_REPLICA_SEEDS]
+    # --replicas NAME ...: the same replicas of other settings (factor "NAME replica").
+    by_name = {name: setting for name, _, setting in rows}
+    for name in args.replicas or []:
+        if name not in by_name:
+            raise SystemExit(f"accuracy_study.py: --replicas {name}: no such setting")
+        rows += [(f"{name} seed {seed}", f"{name} replica", dict(by_name[name], order="shuffle", seed=seed))
+                 for seed in REFERENCE_REPLICA_SEEDS[:3]]
     return [r for r in rows if not args.only or r[0] in args.only]
 
 
@@ -376,22 +383,38 @@ def replica_scatter(rows):
     return scatter
 
 
-def group_table(rows):
-    """Markdown: the default's and the reference's replica groups, mean ± standard error per
-    observable, and whether their difference is within noise (2 combined standard errors)."""
+def all_groups(rows):
+    """Every replica group with at least two runs: {label: runs}, the default's physics and
+    the reference's first, then each setting run with --replicas."""
     default, reference = replica_groups(rows)
-    if len(default) < 2 or len(reference) < 2:
+    groups = {"default physics": default, "reference physics": reference}
+    for r in rows:
+        if r["factor"].endswith(" replica") and r["factor"] != "reference replica":
+            name = r["factor"][:-len(" replica")]
+            groups.setdefault(name, [x for x in rows if x["setting"] == name])
+            groups[name].append(r)
+    return {label: g for label, g in groups.items() if len(g) >= 2}
+
+
+def group_table(rows):
+    """Markdown: per replica group, mean ± standard error of each observable; each group
+    against the reference's, in combined standard errors (**differs** from 2)."""
+    groups = all_groups(rows)
+    if "reference physics" not in groups or len(groups) < 2:
         return ""
-    lines = [f"| observable | default physics (n = {len(default)}) | reference physics (n = {len(reference)}) | "
-             "difference | in standard errors |", "|---|---|---|---|---|"]
-    for key, label, unit in OBSERVABLES:
-        m_d, _, e_d = group_stats([r[key] for r in default])
-        m_r, _, e_r = group_stats([r[key] for r in reference])
-        sig = significance(m_d, e_d, m_r, e_r)
-        verdict = "" if within_noise(m_d, e_d, m_r, e_r) else " **differs**"
-        unit = f" ({unit})" if unit else ""
-        lines.append(f"| {label}{unit} | {fmt(m_d, 4)} ± {fmt(e_d, 2)} | {fmt(m_r, 4)} ± {fmt(e_r, 2)} | "
-                     f"{fmt(m_d - m_r, 2)} ± {fmt(math.hypot(e_d, e_r), 2)} | {sig:.1f}{verdict} |")
+    ref = groups["reference physics"]
+    header = "| group (runs) | " + " | ".join(f"{label} ({unit})" if unit else label for _, label, unit in OBSERVABLES) + " |"
+    lines = [header, "|---|" + "---|" * len(OBSERVABLES)]
+    for label, g in groups.items():
+        cells = []
+        for key, _, _ in OBSERVABLES:
+            m, _, e = group_stats([r[key] for r in g])
+            cell = f"{fmt(m, 4)} ± {fmt(e, 2)}"
+            if g is not ref:
+                m_r, _, e_r = group_stats([r[key] for r in ref])
+                cell += f" ({significance(m, e, m_r, e_r):.1f}{'' if within_noise(m, e, m_r, e_r) else ' **differs**'})"
+            cells.append(cell)
+        lines.append(f"| {label} ({len(g)}) | " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
 
 
@@ -549,6 +572,7 @@ def main():
     p.add_argument("--ref-dt", default="1e-5")
     p.add_argument("--ref-tolerance", default="1e-4")
     p.add_argument("--ref-max-iterations", default="10000")
+    p.add_argument("--replicas", nargs="*", help="also run three shuffled-order replicas of these settings")
     p.add_argument("--jobs", type=int, default=2, help="windows run at once")
     p.add_argument("--only", nargs="*", help="run only these settings")
     p.add_argument("--cost-only", action="store_true",
