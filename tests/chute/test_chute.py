@@ -204,6 +204,34 @@ def case_flow_run(args):
     print("flow run written")
 
 
+def case_dt_change(args):
+    """A chute restart continued at another time step keeps its chute time (the step count
+    is rescaled), and the solver -vars reach the fix: 10 ms from the 1.2 s flow at dt = 1e-5 s
+    with the maximum norm, no warm start and a shuffled order."""
+    folder = os.path.join(args.work, "dt_change")
+    shutil.rmtree(folder, ignore_errors=True)
+    start = os.path.join(args.work, "flow", "chute.restart")
+    end = FLOW_DURATION + 0.01
+    _, output = run_lmp(args.lmp, folder, dict(CELL, stage="flow", start=start, theta=FLOW_THETA,
+                                               duration=end, dt="1e-5", norm="maximum", warm_start="no",
+                                               order="shuffle", max_iterations=200))
+    rows = read_time_file(os.path.join(folder, "flow.time"))
+    times = [r["v_time"] for r in rows]
+    # fix ave/time also writes the run's first step: 11 samples from the start's 1.2 s.
+    check(abs(times[0] - FLOW_DURATION) < 1e-9 and abs(times[-1] - end) < 1e-9 and len(rows) == 11,
+          f"flow.time covers {times[0]}..{times[-1]} s in {len(rows)} rows, expected {FLOW_DURATION}..{end} in 11")
+    steps = [r["TimeStep"] for r in rows]
+    check(all(abs(s * 1e-5 - t) < 1e-9 for s, t in zip(steps, times)), "steps are not chute time / 1e-5 s")
+    with open(os.path.join(folder, "log.lammps")) as f:
+        fix_lines = [l for l in f if l.startswith("fix cd all contact/dynamics")]
+    check(any("norm maximum warm_start no order shuffle" in l for l in fix_lines),
+          f"the chute's fix line lacks the solver -vars: {fix_lines[-1:]}")
+    extremes = summary(output, "SOLVER")
+    check(1 <= extremes["max_sweeps_per_step"] <= 200, f"largest sweeps per step {extremes['max_sweeps_per_step']}")
+    print(f"dt change: 1.2 s restart continued at dt 1e-5 s to {times[-1]} s (steps {steps[0]:.0f}..{steps[-1]:.0f}); "
+          f"largest sweeps {extremes['max_sweeps_per_step']:.0f}")
+
+
 def case_walls_trap(args):
     """Grains that stay below the wall tops never cross the periodic boundary; grains of the
     flowing layer do, and only with their centre above the wall tops."""
@@ -386,6 +414,10 @@ BAD_VARS = [
     ("sample_rate", "3000", "-var sample_rate 3000"),
     ("stage", "chute", "-var stage chute"),
     ("restart_interval", "0.015", "-var restart_interval 0.015"),
+    ("norm", "l2", "-var norm l2"),
+    ("warm_start", "1", "-var warm_start 1"),
+    ("norm", "2", "-var norm 2"),
+    ("order", "random", "-var order random"),
 ]
 
 
@@ -454,6 +486,7 @@ CASES = {
     "deposition": case_deposition,
     "reproducible": case_reproducible,
     "flow_run": case_flow_run,
+    "dt_change": case_dt_change,
     "walls_trap": case_walls_trap,
     "steady_flow": case_steady_flow,
     "flow_two_ranks": case_flow_two_ranks,
