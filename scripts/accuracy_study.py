@@ -81,6 +81,11 @@ def settings(args):
     rows += [(name, factor, dict(DEFAULT, **change)) for name, factor, change in VARIATIONS]
     rows += [(f"reference seed {seed}", "reference replica", dict(reference, order="shuffle", seed=seed))
              for seed in REFERENCE_REPLICA_SEEDS]
+    # The reference at half its time step, with its replicas: is the reference converged in dt?
+    finer = dict(reference, dt=f"{float(args.ref_dt) / 2:g}")
+    rows.append(("reference half-dt", "reference half-dt", finer))
+    rows += [(f"reference half-dt seed {seed}", "reference half-dt replica", dict(finer, order="shuffle", seed=seed))
+             for seed in REFERENCE_REPLICA_SEEDS[:3]]
     # --replicas NAME ...: the same replicas of other settings (factor "NAME replica").
     by_name = {name: setting for name, _, setting in rows}
     for name in args.replicas or []:
@@ -583,6 +588,10 @@ def main():
     p.add_argument("--analyse-only", action="store_true", help="analyse the finished windows only")
     p.add_argument("--figures", default=None, help="also copy the figures into this folder")
     args = p.parse_args()
+    # Every job runs in its own folder: a program given by a relative path is found from here.
+    for name in ("lmp", "cdpost"):
+        if os.sep in getattr(args, name):
+            setattr(args, name, os.path.abspath(getattr(args, name)))
     for name, value in (("spinup", args.spinup), ("window", args.window), ("discard", args.discard)):
         if float(value) <= 0:
             p.error(f"--{name} {value}: must be > 0")

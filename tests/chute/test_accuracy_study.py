@@ -75,7 +75,8 @@ def check_dry_run():
                          capture_output=True, text=True, check=True).stdout.splitlines()
     names = [line.split(":")[0] for line in out]
     expected = (["deposition", "spinup", "reference", "default"] + [v[0] for v in study.VARIATIONS]
-                + [f"reference seed {seed}" for seed in study.REFERENCE_REPLICA_SEEDS])
+                + [f"reference seed {seed}" for seed in study.REFERENCE_REPLICA_SEEDS]
+                + ["reference half-dt"] + [f"reference half-dt seed {seed}" for seed in study.REFERENCE_REPLICA_SEEDS[:3]])
     assert names == expected, f"dry run lists {names}"
     lines = dict(line.split(": ", 1) for line in out)
     assert "-var dt 4e-5 -var tolerance 1e-3" in lines["dt=4e-5"], lines["dt=4e-5"]
@@ -83,6 +84,7 @@ def check_dry_run():
     assert "-var stage deposition" in lines["deposition"]
     assert "-var start /nonexistent/study/spinup/chute.restart" in lines["tol=1e-4"]
     assert "-var dt 1e-5 -var tolerance 1e-4 -var max_iterations 10000" in lines["reference seed 3"]
+    assert "-var dt 5e-06 -var tolerance 1e-4 -var max_iterations 10000" in lines["reference half-dt seed 2"]
     assert "-var order shuffle -var seed 3" in lines["reference seed 3"]
     print(f"dry run: {len(names)} jobs listed with their variables")
 
