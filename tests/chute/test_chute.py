@@ -298,7 +298,11 @@ def case_flow_two_ranks(args):
     0.4 s agree with the 1-rank run within 3 combined standard errors (batch means). The two
     decompositions order the sweep differently, and a frictional packing's impulses are not
     unique, so the runs part after a few ms (a grain is 3.5e-3 d away after 4 ms, 0.07 d after
-    20 ms) and are two samples of one flow, not one trajectory."""
+    20 ms) and are two samples of one flow, not one trajectory. Caveat, measured: 1-rank runs
+    that differ only in contact order (-var order shuffle, seeds 2-5) scatter far more than
+    these batch-means errors (U: sd 0.31 sqrt(g d) against errors of 0.02-0.05), so a change
+    that alters trajectories can move U past this bound without any defect; judge such a
+    failure against replicas (doc/benchmarks.md, MPI section)."""
     launcher = [args.mpirun, "-np", str(args.ranks), "--oversubscribe"]
     if os.geteuid() == 0:
         launcher.append("--allow-run-as-root")
