@@ -23,6 +23,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.dirname(os.path.dirname(HERE))
 DECK = os.path.join(TOP, "inputs", "in.chute")
 RUNNER = os.path.join(TOP, "scripts", "chute_campaign.py")
+sys.path.insert(0, os.path.join(TOP, "scripts"))
+from accuracy_study import batch_means  # noqa: E402  (tested in test_accuracy_study.py)
 
 D = 5.0e-4                      # mean diameter (m), the deck's default
 G = 9.81
@@ -282,17 +284,6 @@ def case_steady_flow(args):
           f"{capped:.2%} capped steps")
 
 
-def batch_mean(values, blocks=8):
-    """Mean and its standard error from `blocks` consecutive block means (correlated samples)."""
-    values = list(values)
-    size = len(values) // blocks
-    check(size >= 2, f"{len(values)} samples cannot make {blocks} blocks")
-    means = [mean(values[k * size:(k + 1) * size]) for k in range(blocks)]
-    centre = mean(means)
-    spread = sum((m - centre) ** 2 for m in means) / (blocks - 1)
-    return centre, math.sqrt(spread / blocks)
-
-
 def case_flow_two_ranks(args):
     """The flow of flow_run, domain-decomposed along x on 2 ranks (--ranks): U, phi and h over the last
     0.4 s agree with the 1-rank run within 3 combined standard errors (batch means). The two
@@ -315,8 +306,8 @@ def case_flow_two_ranks(args):
     rows_one = late(read_time_file(os.path.join(one, "flow.time")))
     rows_two = late(read_time_file(os.path.join(folder, "flow.time")))
     for column, scale, name in (("v_u_flow", SQRT_GD, "U"), ("v_phi_flow", 1.0, "phi"), ("v_h", D, "h")):
-        m1, e1 = batch_mean(r[column] / scale for r in rows_one)
-        m2, e2 = batch_mean(r[column] / scale for r in rows_two)
+        m1, e1 = batch_means([r[column] / scale for r in rows_one], 8)
+        m2, e2 = batch_means([r[column] / scale for r in rows_two], 8)
         combined = math.hypot(e1, e2)
         check(abs(m1 - m2) < 3 * combined,
               f"{name} = {m1:.4f} ± {e1:.4f} on 1 rank, {m2:.4f} ± {e2:.4f} on {args.ranks} ranks")
