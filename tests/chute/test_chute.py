@@ -23,8 +23,6 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.dirname(os.path.dirname(HERE))
 DECK = os.path.join(TOP, "inputs", "in.chute")
 RUNNER = os.path.join(TOP, "scripts", "chute_campaign.py")
-sys.path.insert(0, os.path.join(TOP, "scripts"))
-from accuracy_study import batch_means  # noqa: E402  (tested in test_accuracy_study.py)
 
 D = 5.0e-4                      # mean diameter (m), the deck's default
 G = 9.81
@@ -284,16 +282,30 @@ def case_steady_flow(args):
           f"{capped:.2%} capped steps")
 
 
+# Scatter of U (sqrt(g d)), phi and h (d) over the last 0.4 s of the 1.2 s test flow between
+# realisations from the same start (1-rank runs differing only in contact order, -var order
+# shuffle -var seed 2..5, and the fixed order: sd of 5 runs; doc/benchmarks.md, MPI section).
+# Two runs from one start then differ by sqrt(2) times these.
+REALISATION_SD = dict(U=0.31, phi=0.0057, h=0.045)
+
+
+def solver_summary(folder):
+    """SOLVER and CHUTE lines of a finished chute's log, as one dict of floats."""
+    with open(os.path.join(folder, "log.lammps")) as log:
+        text = log.read()
+    return {**summary(text, "SOLVER"), **summary(text, "CHUTE")}
+
+
 def case_flow_two_ranks(args):
-    """The flow of flow_run, domain-decomposed along x on 2 ranks (--ranks): U, phi and h over the last
-    0.4 s agree with the 1-rank run within 3 combined standard errors (batch means). The two
-    decompositions order the sweep differently, and a frictional packing's impulses are not
-    unique, so the runs part after a few ms (a grain is 3.5e-3 d away after 4 ms, 0.07 d after
-    20 ms) and are two samples of one flow, not one trajectory. Caveat, measured: 1-rank runs
-    that differ only in contact order (-var order shuffle, seeds 2-5) scatter far more than
-    these batch-means errors (U: sd 0.31 sqrt(g d) against errors of 0.02-0.05), so a change
-    that alters trajectories can move U past this bound without any defect; judge such a
-    failure against replicas (doc/benchmarks.md, MPI section)."""
+    """The flow of flow_run, domain-decomposed along x on 2 ranks (--ranks). The decompositions
+    order the sweep differently and a frictional packing's impulses are not unique, so the runs
+    part after a few ms (a grain is 3.5e-3 d away after 4 ms, 0.07 d after 20 ms): they are two
+    realisations of one flow. U, phi and h over the last 0.4 s must therefore agree within 4
+    standard deviations of the difference of two realisations from one start (REALISATION_SD;
+    this cell's U scatters by 16 %, so that check only catches gross errors). The sharper checks
+    are the solver's: the deepest interpenetration (1.2-1.8e-3 d in 19 runs on 1, 2 and 4 ranks)
+    stays below twice the 1-rank run's, and at most 5 % of the steps hit the iteration cap.
+    Independent starts on 1, 2 and 4 ranks: bench/rank_replicas.py."""
     launcher = [args.mpirun, "-np", str(args.ranks), "--oversubscribe"]
     if os.geteuid() == 0:
         launcher.append("--allow-run-as-root")
@@ -304,15 +316,21 @@ def case_flow_two_ranks(args):
     report = []
     late = lambda rows: [r for r in rows if r["v_time"] >= FLOW_DURATION - 0.4]
     rows_one = late(read_time_file(os.path.join(one, "flow.time")))
-    rows_two = late(read_time_file(os.path.join(folder, "flow.time")))
+    rows_many = late(read_time_file(os.path.join(folder, "flow.time")))
     for column, scale, name in (("v_u_flow", SQRT_GD, "U"), ("v_phi_flow", 1.0, "phi"), ("v_h", D, "h")):
-        m1, e1 = batch_means([r[column] / scale for r in rows_one], 8)
-        m2, e2 = batch_means([r[column] / scale for r in rows_two], 8)
-        combined = math.hypot(e1, e2)
-        check(abs(m1 - m2) < 3 * combined,
-              f"{name} = {m1:.4f} ± {e1:.4f} on 1 rank, {m2:.4f} ± {e2:.4f} on {args.ranks} ranks")
-        report.append(f"{name} {m1:.4f}±{e1:.4f} / {m2:.4f}±{e2:.4f} ({abs(m1 - m2) / combined:.1f} errors)")
-    print(f"{args.ranks} ranks vs 1: " + "; ".join(report))
+        m1 = mean(r[column] / scale for r in rows_one)
+        m2 = mean(r[column] / scale for r in rows_many)
+        bound = 4 * math.sqrt(2) * REALISATION_SD[name]
+        check(abs(m1 - m2) < bound, f"{name} = {m1:.4f} on 1 rank, {m2:.4f} on {args.ranks} ranks (bound {bound:.3g})")
+        report.append(f"{name} {m1:.4f} / {m2:.4f} ({abs(m1 - m2) / bound:.2f} of the bound)")
+    solver_one, solver_many = solver_summary(one), solver_summary(folder)
+    deepest_one, deepest_many = solver_one["max_interpenetration_d"], solver_many["max_interpenetration_d"]
+    check(deepest_many < 2 * deepest_one,
+          f"deepest interpenetration {deepest_many:.3g} d on {args.ranks} ranks, {deepest_one:.3g} d on 1")
+    capped = solver_many["steps_capped"] / solver_many["steps_solved"]
+    check(capped < 0.05, f"{capped:.1%} of the steps on {args.ranks} ranks hit the iteration cap")
+    print(f"{args.ranks} ranks vs 1: " + "; ".join(report) + f"; deepest interpenetration "
+          f"{deepest_one:.3g} / {deepest_many:.3g} d; {capped:.2%} capped steps")
 
 
 def case_static(args):

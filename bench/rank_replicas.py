@@ -1,0 +1,212 @@
+#!/usr/bin/env python3
+"""Does a chute's flow depend on the number of MPI ranks? Replicas from independent starts.
+
+For every deposition seed the chute's bed is rained anew (one rank), then the same flow is run
+from it on every rank count; cdpost measures U, phi, h and f over one window of each run. One
+run's batch-means error understates the scatter between realisations of the flow, so the
+comparison is made between replicas: per rank count the mean over seeds and its standard
+error, and the paired difference from one rank (same start, so the slow variables of the bed
+cancel) with its standard error and t = mean / error over the seeds.
+
+    bench/rank_replicas.py --out runs/rank_replicas --seeds 1-10 --ranks 1 2
+    bench/rank_replicas.py --out DIR --seeds 1-4 --ranks 4          # adds 4 ranks to the same starts
+    bench/rank_replicas.py --out DIR --seeds 1-10 --ranks 1 2 4 --analyse-only
+
+The default cell is the test chute (10 d, 200 grains, walls 8 d): the only cell on which 4 ranks
+oversubscribed on 2 cores are affordable. Runs already done are skipped. Standard library only.
+"""
+
+import argparse
+import concurrent.futures
+import csv
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+
+TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DECK = os.path.join(TOP, "inputs", "in.chute")
+QUANTITIES = ("U", "phi", "h", "f", "sweeps")    # sweeps: per step over the whole flow
+
+
+def parse_seeds(text):
+    """'1-4,7' -> [1, 2, 3, 4, 7]."""
+    seeds = []
+    for part in text.split(","):
+        first, _, last = part.partition("-")
+        try:
+            low, high = int(first), int(last or first)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"--seeds: '{part}' is not N or N-M")
+        if low > high:
+            raise argparse.ArgumentTypeError(f"--seeds: empty range '{part}'")
+        seeds.extend(range(low, high + 1))
+    return seeds
+
+
+def options():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", required=True, help="work folder (resumable)")
+    parser.add_argument("--seeds", type=parse_seeds, default=parse_seeds("1-10"),
+                        help="deposition seeds, e.g. 1-10 or 1,3,5 (default 1-10)")
+    parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2], help="rank counts (default 1 2)")
+    parser.add_argument("--duration", type=float, default=2.0, help="chute time of each flow (s)")
+    parser.add_argument("--t-start", type=float, default=0.6, help="start of the analysed window (s)")
+    parser.add_argument("--segment", type=float, default=0.5, help="spectral segment (s)")
+    parser.add_argument("--cell", default="L=10 grains=200 wall_height=8 mu=0.5 theta=24",
+                        help="in.chute -vars of the cell, 'name=value ...'")
+    parser.add_argument("--solver", default="", help="extra in.chute -vars of the flow, 'name=value ...'")
+    parser.add_argument("--lmp", default=os.path.join(TOP, "build", "lmp_cd"))
+    parser.add_argument("--cdpost", default=os.path.join(TOP, "build", "postproc", "cdpost"))
+    parser.add_argument("--mpirun", default="mpirun")
+    parser.add_argument("--cores", type=int, default=os.cpu_count(), help="cores to fill (default all)")
+    parser.add_argument("--analyse-only", action="store_true")
+    args = parser.parse_args()
+    if not 0 <= args.t_start < args.duration:
+        parser.error(f"--t-start {args.t_start} must lie in [0, --duration {args.duration})")
+    for name in ("cell", "solver"):
+        for pair in getattr(args, name).split():
+            if "=" not in pair:
+                parser.error(f"--{name}: '{pair}' is not name=value")
+    return args
+
+
+def deck_variables(text):
+    return [item for pair in text.split() for item in ("-var", *pair.split("=", 1))]
+
+
+def run_logged(command, folder):
+    """Run in folder; a failure stops the study with the command and the log's last error."""
+    os.makedirs(folder, exist_ok=True)
+    started = time.time()
+    done = subprocess.run(command, cwd=folder, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if done.returncode != 0:
+        log = os.path.join(folder, "log.lammps")
+        errors = [l.strip() for l in open(log)] if os.path.exists(log) else []
+        errors = [l for l in errors if l.startswith("ERROR")] or done.stderr.strip().splitlines()[-1:]
+        sys.exit(f"rank_replicas: {' '.join(command)} failed in {folder}: {errors[-1:] or 'no message'}")
+    return time.time() - started
+
+
+def deposition(args, seed):
+    folder = os.path.join(args.out, f"seed{seed}", "deposition")
+    restart = os.path.join(folder, "deposition.restart")
+    if not os.path.exists(restart):
+        run_logged([args.lmp, "-in", DECK, "-var", "stage", "deposition", "-var", "seed", str(seed),
+                    *deck_variables(args.cell), "-log", "log.lammps", "-screen", "none"], folder)
+    return restart
+
+
+def chute_summary(log):
+    """The deck's last 'CHUTE key value ...' line, as a dict of strings."""
+    with open(log) as src:
+        lines = [line.split()[1:] for line in src if line.startswith("CHUTE ")]
+    if not lines:
+        sys.exit(f"rank_replicas: {log} has no CHUTE line (run not finished?)")
+    return dict(zip(lines[-1][0::2], lines[-1][1::2]))
+
+
+def flow(args, seed, ranks):
+    """Flow from seed's deposition on `ranks` ranks, then cdpost; returns seconds spent (0 if done)."""
+    folder = os.path.join(args.out, f"seed{seed}", f"np{ranks}")
+    if os.path.exists(os.path.join(folder, "post", "results.csv")):
+        return 0.0
+    start = deposition(args, seed)
+    launcher = [args.mpirun, "-np", str(ranks), "--oversubscribe"]
+    if os.geteuid() == 0:
+        launcher.append("--allow-run-as-root")
+    spent = run_logged([*launcher, args.lmp, "-in", DECK, "-var", "stage", "flow", "-var", "start", start,
+                        "-var", "duration", f"{args.duration:g}", *deck_variables(args.cell),
+                        *deck_variables(args.solver), "-log", "log.lammps", "-screen", "none"], folder)
+    with open(os.path.join(folder, "log.lammps")) as src:
+        grid = re.search(r"(\d+) by (\d+) by (\d+) MPI processor grid", src.read())
+    if ranks > 1 and (not grid or int(grid.group(1)) != ranks):
+        sys.exit(f"rank_replicas: {folder}: the cell was not split along x into {ranks}")
+    run_logged([args.cdpost, "run", folder, "--z0", chute_summary(os.path.join(folder, "log.lammps"))["y_top_m"],
+                "--segment", f"{args.segment:g}", "--t-start", f"{args.t_start:g}"], folder)
+    return spent
+
+
+def run_all(args):
+    """Depositions and 1-rank flows fill the cores one run each; N-rank flows take N cores."""
+    jobs = [(seed, ranks) for ranks in sorted(args.ranks) for seed in args.seeds]
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.cores) as pool:
+        list(pool.map(lambda seed: deposition(args, seed), args.seeds))
+    for ranks in sorted(args.ranks):
+        workers = max(1, args.cores // ranks)
+        todo = [seed for seed, r in jobs if r == ranks]
+        with concurrent.futures.ThreadPoolExecutor(max_workers=workers) as pool:
+            for seed, spent in zip(todo, pool.map(lambda s: flow(args, s, ranks), todo)):
+                if spent:
+                    print(f"seed {seed} on {ranks} ranks: {spent:.0f} s wall", flush=True)
+
+
+# ---------------------------------------------------------------- analysis
+
+def results(args, seed, ranks):
+    folder = os.path.join(args.out, f"seed{seed}", f"np{ranks}")
+    path = os.path.join(folder, "post", "results.csv")
+    if not os.path.exists(path):
+        return None
+    with open(path) as src:
+        values = {row["name"]: row["value"] for row in csv.DictReader(src)}
+    solver = chute_summary(os.path.join(folder, "log.lammps"))
+    values["sweeps"] = float(solver["sweeps"]) / float(solver["steps_solved"])
+    return {q: float(values[q]) if values.get(q) not in (None, "") else math.nan for q in QUANTITIES}
+
+
+def mean_and_error(values):
+    """Mean and standard error of independent values (error nan below two)."""
+    n = len(values)
+    mean = sum(values) / n
+    if n < 2:
+        return mean, math.nan, math.nan
+    sd = math.sqrt(sum((v - mean) ** 2 for v in values) / (n - 1))
+    return mean, sd / math.sqrt(n), sd
+
+
+def analyse(args):
+    table = {(s, r): results(args, s, r) for s in args.seeds for r in args.ranks}
+    print(f"window {args.t_start:g}-{args.duration:g} s; cell {args.cell}; {args.solver or 'default solver'}\n")
+    print("| ranks | seeds | " + " | ".join(f"{q} mean ± SE (sd)" for q in QUANTITIES) + " |")
+    print("|---" * (len(QUANTITIES) + 2) + "|")
+    for ranks in args.ranks:
+        done = [s for s in args.seeds if table[(s, ranks)]]
+        cells = []
+        for q in QUANTITIES:
+            mean, error, sd = mean_and_error([table[(s, ranks)][q] for s in done]) if done else (math.nan,) * 3
+            cells.append(f"{mean:.4g} ± {error:.2g} ({sd:.2g})")
+        print(f"| {ranks} | {len(done)} | " + " | ".join(cells) + " |")
+    baseline = min(args.ranks)
+    print(f"\npaired differences from {baseline} rank(s), same start: mean ± SE (t = mean/SE)\n")
+    print("| ranks | pairs | " + " | ".join(f"Δ{q}" for q in QUANTITIES) + " |")
+    print("|---" * (len(QUANTITIES) + 2) + "|")
+    for ranks in args.ranks:
+        if ranks == baseline:
+            continue
+        pairs = [s for s in args.seeds if table[(s, ranks)] and table[(s, baseline)]]
+        cells = []
+        for q in QUANTITIES:
+            diffs = [table[(s, ranks)][q] - table[(s, baseline)][q] for s in pairs]
+            mean, error, _ = mean_and_error(diffs) if diffs else (math.nan,) * 3
+            cells.append(f"{mean:+.3g} ± {error:.2g} (t {mean / error:+.1f})" if error > 0 else f"{mean:+.3g}")
+        print(f"| {ranks} | {len(pairs)} | " + " | ".join(cells) + " |")
+    with open(os.path.join(args.out, "replicas.csv"), "w", newline="") as out:
+        writer = csv.writer(out)
+        writer.writerow(["seed", "ranks", *QUANTITIES])
+        for (seed, ranks), row in sorted(table.items()):
+            if row:
+                writer.writerow([seed, ranks, *(row[q] for q in QUANTITIES)])
+
+
+def main():
+    args = options()
+    if not args.analyse_only:
+        run_all(args)
+    analyse(args)
+
+
+if __name__ == "__main__":
+    main()
