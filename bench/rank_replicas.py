@@ -2,7 +2,8 @@
 """Does a chute's flow depend on the number of MPI ranks? Replicas from independent starts.
 
 For every deposition seed the chute's bed is rained anew (one rank), then the same flow is run
-from it on every rank count; cdpost measures U, phi, h and f over one window of each run. One
+from it on every rank count; cdpost measures U, phi, h and f over one window of each run, the
+deck's log the Gauss-Seidel sweeps per step (over the whole flow). One
 run's batch-means error understates the scatter between realisations of the flow, so the
 comparison is made between replicas: per rank count the mean over seeds and its standard
 error, and the paired difference from one rank (same start, so the slow variables of the bed
@@ -39,9 +40,9 @@ def parse_seeds(text):
         try:
             low, high = int(first), int(last or first)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"--seeds: '{part}' is not N or N-M")
+            raise argparse.ArgumentTypeError(f"'{part}' is not N or N-M")
         if low > high:
-            raise argparse.ArgumentTypeError(f"--seeds: empty range '{part}'")
+            raise argparse.ArgumentTypeError(f"empty range '{part}'")
         seeds.extend(range(low, high + 1))
     return seeds
 
@@ -64,6 +65,8 @@ def options():
     parser.add_argument("--cores", type=int, default=os.cpu_count(), help="cores to fill (default all)")
     parser.add_argument("--analyse-only", action="store_true")
     args = parser.parse_args()
+    if min(args.ranks) < 1 or args.cores < 1:
+        parser.error(f"--ranks {args.ranks} and --cores {args.cores} must be at least 1")
     if not 0 <= args.t_start < args.duration:
         parser.error(f"--t-start {args.t_start} must lie in [0, --duration {args.duration})")
     for name in ("cell", "solver"):
