@@ -170,6 +170,23 @@ def mean_and_error(values):
     return mean, sd / math.sqrt(n), sd
 
 
+def paired_differences(table, seeds, baseline, others):
+    """{ranks: {quantity: [value on ranks - value on baseline, one per seed run on both]}}."""
+    differences = {}
+    for ranks in others:
+        pairs = [s for s in seeds if table[(s, ranks)] and table[(s, baseline)]]
+        differences[ranks] = {q: [table[(s, ranks)][q] - table[(s, baseline)][q] for s in pairs]
+                              for q in QUANTITIES}
+    return differences
+
+
+def pooled_sd(groups):
+    """Standard deviation pooled over groups, each about its own mean (nan without 2 in a group)."""
+    squares = sum(sum((v - sum(g) / len(g)) ** 2 for v in g) for g in groups if len(g) > 1)
+    freedom = sum(len(g) - 1 for g in groups if len(g) > 1)
+    return math.sqrt(squares / freedom) if freedom else math.nan
+
+
 def analyse(args):
     table = {(s, r): results(args, s, r) for s in args.seeds for r in args.ranks}
     print(f"window {args.t_start:g}-{args.duration:g} s; cell {args.cell}; {args.solver or 'default solver'}\n")
@@ -183,19 +200,20 @@ def analyse(args):
             cells.append(f"{mean:.4g} ± {error:.2g} ({sd:.2g})")
         print(f"| {ranks} | {len(done)} | " + " | ".join(cells) + " |")
     baseline = min(args.ranks)
-    print(f"\npaired differences from {baseline} rank(s), same start: mean ± SE (t = mean/SE)\n")
+    differences = paired_differences(table, args.seeds, baseline, [r for r in args.ranks if r != baseline])
+    pooled = {q: pooled_sd([d[q] for d in differences.values()]) for q in QUANTITIES}
+    print(f"\npaired differences from {baseline} rank(s), same start: mean ± SE (t = mean/SE; sd of "
+          "the differences). SE = pooled sd / sqrt(pairs), the sd pooled over the rank counts, "
+          "which share the scatter of realisations (one count's own sd is unreliable from few pairs)\n")
     print("| ranks | pairs | " + " | ".join(f"Δ{q}" for q in QUANTITIES) + " |")
     print("|---" * (len(QUANTITIES) + 2) + "|")
-    for ranks in args.ranks:
-        if ranks == baseline:
-            continue
-        pairs = [s for s in args.seeds if table[(s, ranks)] and table[(s, baseline)]]
-        cells = []
+    for ranks, per_quantity in differences.items():
+        cells, pairs = [], len(per_quantity[QUANTITIES[0]])
         for q in QUANTITIES:
-            diffs = [table[(s, ranks)][q] - table[(s, baseline)][q] for s in pairs]
-            mean, error, _ = mean_and_error(diffs) if diffs else (math.nan,) * 3
-            cells.append(f"{mean:+.3g} ± {error:.2g} (t {mean / error:+.1f})" if error > 0 else f"{mean:+.3g}")
-        print(f"| {ranks} | {len(pairs)} | " + " | ".join(cells) + " |")
+            mean, _, sd = mean_and_error(per_quantity[q]) if pairs else (math.nan,) * 3
+            error = pooled[q] / math.sqrt(pairs) if pairs else math.nan
+            cells.append(f"{mean:+.3g} ± {error:.2g} (t {mean / error:+.1f}; sd {sd:.2g})")
+        print(f"| {ranks} | {pairs} | " + " | ".join(cells) + " |")
     with open(os.path.join(args.out, "replicas.csv"), "w", newline="") as out:
         writer = csv.writer(out)
         writer.writerow(["seed", "ranks", *QUANTITIES])
