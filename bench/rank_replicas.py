@@ -187,6 +187,15 @@ def pooled_sd(groups):
     return math.sqrt(squares / freedom) if freedom else math.nan
 
 
+def write_csv(path, table):
+    with open(path, "w", newline="") as out:
+        writer = csv.writer(out)
+        writer.writerow(["seed", "ranks", *QUANTITIES])
+        for (seed, ranks), row in sorted(table.items()):
+            if row:
+                writer.writerow([seed, ranks, *(row[q] for q in QUANTITIES)])
+
+
 def analyse(args):
     table = {(s, r): results(args, s, r) for s in args.seeds for r in args.ranks}
     print(f"window {args.t_start:g}-{args.duration:g} s; cell {args.cell}; {args.solver or 'default solver'}\n")
@@ -199,8 +208,11 @@ def analyse(args):
             mean, error, sd = mean_and_error([table[(s, ranks)][q] for s in done]) if done else (math.nan,) * 3
             cells.append(f"{mean:.4g} ± {error:.2g} ({sd:.2g})")
         print(f"| {ranks} | {len(done)} | " + " | ".join(cells) + " |")
-    baseline = min(args.ranks)
-    differences = paired_differences(table, args.seeds, baseline, [r for r in args.ranks if r != baseline])
+    write_csv(os.path.join(args.out, "replicas.csv"), table)
+    baseline, others = min(args.ranks), [r for r in args.ranks if r != min(args.ranks)]
+    if not others:
+        return
+    differences = paired_differences(table, args.seeds, baseline, others)
     pooled = {q: pooled_sd([d[q] for d in differences.values()]) for q in QUANTITIES}
     print(f"\npaired differences from {baseline} rank(s), same start: mean ± SE (t = mean/SE; sd of "
           "the differences). SE = pooled sd / sqrt(pairs), the sd pooled over the rank counts, "
@@ -214,12 +226,6 @@ def analyse(args):
             error = pooled[q] / math.sqrt(pairs) if pairs else math.nan
             cells.append(f"{mean:+.3g} ± {error:.2g} (t {mean / error:+.1f}; sd {sd:.2g})")
         print(f"| {ranks} | {pairs} | " + " | ".join(cells) + " |")
-    with open(os.path.join(args.out, "replicas.csv"), "w", newline="") as out:
-        writer = csv.writer(out)
-        writer.writerow(["seed", "ranks", *QUANTITIES])
-        for (seed, ranks), row in sorted(table.items()):
-            if row:
-                writer.writerow([seed, ranks, *(row[q] for q in QUANTITIES)])
 
 
 def main():
