@@ -29,18 +29,20 @@ import time
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DECK = os.path.join(TOP, "inputs", "in.chute")
-QUANTITIES = ("U", "phi", "h", "f", "sweeps")    # sweeps: per step over the whole flow
+sys.path.insert(0, os.path.join(TOP, "scripts"))
+from accuracy_study import group_stats, log_line  # noqa: E402  (tested in test_accuracy_study.py)
+CDPOST_QUANTITIES = ("U", "phi", "h", "f")
+QUANTITIES = CDPOST_QUANTITIES + ("sweeps",)    # sweeps: per step over the whole flow, from the log
 
 
 def parse_seeds(text):
     """'1-4,7' -> [1, 2, 3, 4, 7]."""
     seeds = []
     for part in text.split(","):
-        first, _, last = part.partition("-")
-        try:
-            low, high = int(first), int(last or first)
-        except ValueError:
+        found = re.fullmatch(r"(\d+)(?:-(\d+))?", part.strip())
+        if not found:
             raise argparse.ArgumentTypeError(f"'{part}' is not N or N-M")
+        low, high = int(found.group(1)), int(found.group(2) or found.group(1))
         if low > high:
             raise argparse.ArgumentTypeError(f"empty range '{part}'")
         seeds.extend(range(low, high + 1))
@@ -102,15 +104,6 @@ def deposition(args, seed):
     return restart
 
 
-def chute_summary(log):
-    """The deck's last 'CHUTE key value ...' line, as a dict of strings."""
-    with open(log) as src:
-        lines = [line.split()[1:] for line in src if line.startswith("CHUTE ")]
-    if not lines:
-        sys.exit(f"rank_replicas: {log} has no CHUTE line (run not finished?)")
-    return dict(zip(lines[-1][0::2], lines[-1][1::2]))
-
-
 def flow(args, seed, ranks):
     """Flow from seed's deposition on `ranks` ranks, then cdpost; returns seconds spent (0 if done)."""
     folder = os.path.join(args.out, f"seed{seed}", f"np{ranks}")
@@ -127,7 +120,7 @@ def flow(args, seed, ranks):
         grid = re.search(r"(\d+) by (\d+) by (\d+) MPI processor grid", src.read())
     if ranks > 1 and (not grid or int(grid.group(1)) != ranks):
         sys.exit(f"rank_replicas: {folder}: the cell was not split along x into {ranks}")
-    run_logged([args.cdpost, "run", folder, "--z0", chute_summary(os.path.join(folder, "log.lammps"))["y_top_m"],
+    run_logged([args.cdpost, "run", folder, "--z0", log_line(folder, "CHUTE")["y_top_m"],
                 "--segment", f"{args.segment:g}", "--t-start", f"{args.t_start:g}"], folder)
     return spent
 
@@ -155,19 +148,19 @@ def results(args, seed, ranks):
         return None
     with open(path) as src:
         values = {row["name"]: row["value"] for row in csv.DictReader(src)}
-    solver = chute_summary(os.path.join(folder, "log.lammps"))
+    missing = [q for q in CDPOST_QUANTITIES if q not in values]
+    if missing:
+        raise RuntimeError(f"{path}: no row {', '.join(missing)} (truncated or not cdpost's?)")
+    solver = log_line(folder, "CHUTE")
     values["sweeps"] = float(solver["sweeps"]) / float(solver["steps_solved"])
     return {q: float(values[q]) if values.get(q) not in (None, "") else math.nan for q in QUANTITIES}
 
 
-def mean_and_error(values):
-    """Mean and standard error of independent values (error nan below two)."""
-    n = len(values)
-    mean = sum(values) / n
-    if n < 2:
-        return mean, math.nan, math.nan
-    sd = math.sqrt(sum((v - mean) ** 2 for v in values) / (n - 1))
-    return mean, sd / math.sqrt(n), sd
+def mean_sd_error(values):
+    """Mean, standard deviation and standard error; nan where fewer values than they need."""
+    if len(values) < 2:
+        return (values[0] if values else math.nan), math.nan, math.nan
+    return group_stats(values)
 
 
 def paired_differences(table, seeds, baseline, others):
@@ -205,7 +198,7 @@ def analyse(args):
         done = [s for s in args.seeds if table[(s, ranks)]]
         cells = []
         for q in QUANTITIES:
-            mean, error, sd = mean_and_error([table[(s, ranks)][q] for s in done]) if done else (math.nan,) * 3
+            mean, sd, error = mean_sd_error([table[(s, ranks)][q] for s in done])
             cells.append(f"{mean:.4g} ± {error:.2g} ({sd:.2g})")
         print(f"| {ranks} | {len(done)} | " + " | ".join(cells) + " |")
     write_csv(os.path.join(args.out, "replicas.csv"), table)
@@ -222,7 +215,7 @@ def analyse(args):
     for ranks, per_quantity in differences.items():
         cells, pairs = [], len(per_quantity[QUANTITIES[0]])
         for q in QUANTITIES:
-            mean, _, sd = mean_and_error(per_quantity[q]) if pairs else (math.nan,) * 3
+            mean, sd, _ = mean_sd_error(per_quantity[q])
             error = pooled[q] / math.sqrt(pairs) if pairs else math.nan
             cells.append(f"{mean:+.3g} ± {error:.2g} (t {mean / error:+.1f}; sd {sd:.2g})")
         print(f"| {ranks} | {pairs} | " + " | ".join(cells) + " |")
@@ -230,9 +223,12 @@ def analyse(args):
 
 def main():
     args = options()
-    if not args.analyse_only:
-        run_all(args)
-    analyse(args)
+    try:
+        if not args.analyse_only:
+            run_all(args)
+        analyse(args)
+    except RuntimeError as error:    # a log without the deck's summary line
+        sys.exit(f"rank_replicas: {error}")
 
 
 if __name__ == "__main__":

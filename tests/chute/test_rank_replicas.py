@@ -1,0 +1,96 @@
+#!/usr/bin/env python3
+"""Checks of bench/rank_replicas.py's own logic, run by ctest (no simulation).
+
+    test_rank_replicas.py
+
+Seed lists and their bad forms; the pooled standard deviation on hand-computed groups; the
+paired differences on synthetic replicas whose beds scatter ten times more than their flows:
+pairing must recover the rank-count shift with the flows' scatter only; a truncated cdpost
+table is refused with the file named. Standard library only.
+"""
+
+import argparse
+import math
+import os
+import random
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCRIPT = os.path.join(os.path.dirname(os.path.dirname(HERE)), "bench", "rank_replicas.py")
+sys.path.insert(0, os.path.dirname(SCRIPT))
+import rank_replicas as replicas  # noqa: E402
+
+
+def check(condition, message):
+    if not condition:
+        sys.exit(f"FAILED: {message}")
+
+
+def check_seeds():
+    check(replicas.parse_seeds("1-3,7") == [1, 2, 3, 7], "'1-3,7' is not [1, 2, 3, 7]")
+    for bad in ("3-1", "a", "1-"):
+        try:
+            replicas.parse_seeds(bad)
+            check(False, f"--seeds {bad} accepted")
+        except argparse.ArgumentTypeError:
+            pass
+    done = subprocess.run([sys.executable, SCRIPT, "--out", "unused", "--seeds", "3-1"],
+                          capture_output=True, text=True)
+    lines = done.stderr.strip().splitlines()
+    check(done.returncode == 2 and "--seeds" in lines[-1] and "3-1" in lines[-1],
+          f"--seeds 3-1: exit {done.returncode}, '{lines[-1:]}'")
+
+
+def check_pooled_sd():
+    # Deviations from each group's mean: 1, 1 and 2, 2 -> (1 + 1 + 4 + 4) / (1 + 1) = 5;
+    # a group of one has no deviation to give and is left out.
+    check(abs(replicas.pooled_sd([[1, 3], [10, 14], [99]]) - math.sqrt(5)) < 1e-12, "pooled sd of [1,3],[10,14]")
+    check(math.isnan(replicas.pooled_sd([[1], [2]])), "pooled sd without two values in a group is not nan")
+
+
+def check_pairing():
+    # Bed offsets sd 1, flow noise sd 0.1, a shift of 0.05 on 2 ranks, 400 seeds. Paired: the
+    # mean difference within 4 of its standard errors (0.1 sqrt(2) / 20 = 0.007) of 0.05 and
+    # the sd of the differences within 15 % of 0.1 sqrt(2) (its own scatter: 3.5 %), where
+    # the unpaired means could not separate the shift (sd 1, SE 0.07 on each side).
+    rng = random.Random(11)
+    seeds, shift, noise = list(range(1, 401)), 0.05, 0.1
+    table = {}
+    for s in seeds:
+        bed = rng.gauss(0, 1)
+        for ranks, offset in ((1, 0.0), (2, shift)):
+            table[(s, ranks)] = {q: bed + offset + rng.gauss(0, noise) for q in replicas.QUANTITIES}
+    differences = replicas.paired_differences(table, seeds, 1, [2])[2]
+    for q in replicas.QUANTITIES:
+        mean, sd, error = replicas.mean_sd_error(differences[q])
+        check(abs(mean - shift) < 4 * error, f"{q}: paired shift {mean:.4f} ± {error:.4f}, expected {shift}")
+        check(abs(sd / (noise * math.sqrt(2)) - 1) < 0.15, f"{q}: sd of the differences {sd:.4f}")
+    table[(7, 2)] = None                                     # a run not done: no pair
+    check(len(replicas.paired_differences(table, seeds, 1, [2])[2]["U"]) == 399, "an unfinished run was paired")
+
+
+def check_truncated_table():
+    with tempfile.TemporaryDirectory() as out:
+        post = os.path.join(out, "seed1", "np1", "post")
+        os.makedirs(post)
+        with open(os.path.join(post, "results.csv"), "w") as table:
+            table.write("name,value,error\nU,1.9,0.05\n")
+        try:
+            replicas.results(argparse.Namespace(out=out), 1, 1)
+            check(False, "a results.csv without phi, h, f was accepted")
+        except RuntimeError as error:
+            check("results.csv" in str(error) and "phi" in str(error), f"message '{error}'")
+
+
+def main():
+    check_seeds()
+    check_pooled_sd()
+    check_pairing()
+    check_truncated_table()
+    print("rank_replicas logic: seeds, pooled sd, pairing, truncated table")
+
+
+if __name__ == "__main__":
+    main()
