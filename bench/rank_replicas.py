@@ -82,8 +82,16 @@ def deck_variables(text):
     return [item for pair in text.split() for item in ("-var", *pair.split("=", 1))]
 
 
+def mpi_launcher(mpirun, ranks):
+    """mpirun -np ranks, oversubscribing if the cores are fewer (and allowed to run as root)."""
+    launcher = [mpirun, "-np", str(ranks), "--oversubscribe"]
+    if os.geteuid() == 0:
+        launcher.append("--allow-run-as-root")
+    return launcher
+
+
 def run_logged(command, folder):
-    """Run in folder; a failure stops the study with the command and the log's last error."""
+    """Run in folder; a failure raises RuntimeError with the command and the log's last error."""
     os.makedirs(folder, exist_ok=True)
     started = time.time()
     done = subprocess.run(command, cwd=folder, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
@@ -91,7 +99,7 @@ def run_logged(command, folder):
         log = os.path.join(folder, "log.lammps")
         errors = [l.strip() for l in open(log)] if os.path.exists(log) else []
         errors = [l for l in errors if l.startswith("ERROR")] or done.stderr.strip().splitlines()[-1:]
-        sys.exit(f"rank_replicas: {' '.join(command)} failed in {folder}: {errors[-1:] or 'no message'}")
+        raise RuntimeError(f"{' '.join(command)} failed in {folder}: {errors[-1:] or 'no message'}")
     return time.time() - started
 
 
@@ -110,10 +118,8 @@ def flow(args, seed, ranks):
     if os.path.exists(os.path.join(folder, "post", "results.csv")):
         return 0.0
     start = deposition(args, seed)
-    launcher = [args.mpirun, "-np", str(ranks), "--oversubscribe"]
-    if os.geteuid() == 0:
-        launcher.append("--allow-run-as-root")
-    spent = run_logged([*launcher, args.lmp, "-in", DECK, "-var", "stage", "flow", "-var", "start", start,
+    spent = run_logged([*mpi_launcher(args.mpirun, ranks), args.lmp, "-in", DECK, "-var", "stage", "flow",
+                        "-var", "start", start,
                         "-var", "duration", f"{args.duration:g}", *deck_variables(args.cell),
                         *deck_variables(args.solver), "-log", "log.lammps", "-screen", "none"], folder)
     with open(os.path.join(folder, "log.lammps")) as src:
@@ -227,7 +233,7 @@ def main():
         if not args.analyse_only:
             run_all(args)
         analyse(args)
-    except RuntimeError as error:    # a log without the deck's summary line
+    except RuntimeError as error:    # a failed run, or a log without the deck's summary line
         sys.exit(f"rank_replicas: {error}")
 
 
