@@ -12,6 +12,7 @@ cancel) with its standard error and t = mean / error over the seeds.
     bench/rank_replicas.py --out runs/rank_replicas --seeds 1-10 --ranks 1 2
     bench/rank_replicas.py --out DIR --seeds 1-4 --ranks 4          # adds 4 ranks to the same starts
     bench/rank_replicas.py --out DIR --seeds 1-10 --ranks 1 2 4 --analyse-only
+    bench/rank_replicas.py --out DIR2 --beds DIR --ranks 1 --solver order=shuffle   # same beds, other order
 
 The default cell is the test chute (10 d, 200 grains, walls 8 d): the only cell on which 4 ranks
 oversubscribed on 2 cores are affordable. Runs already done are skipped. Standard library only.
@@ -65,6 +66,8 @@ def options():
     parser.add_argument("--cdpost", default=os.path.join(TOP, "build", "postproc", "cdpost"))
     parser.add_argument("--mpirun", default="mpirun")
     parser.add_argument("--cores", type=int, default=os.cpu_count(), help="cores to fill (default all)")
+    parser.add_argument("--beds", help="take the beds (seedN/deposition) from this study's folder: "
+                        "flows of other settings from the same starts")
     parser.add_argument("--analyse-only", action="store_true")
     args = parser.parse_args()
     if min(args.ranks) < 1 or args.cores < 1:
@@ -104,8 +107,10 @@ def run_logged(command, folder):
 
 
 def deposition(args, seed):
-    folder = os.path.join(args.out, f"seed{seed}", "deposition")
+    folder = os.path.join(args.beds or args.out, f"seed{seed}", "deposition")
     restart = os.path.join(folder, "deposition.restart")
+    if args.beds and not os.path.exists(restart):
+        raise RuntimeError(f"--beds {args.beds}: no bed of seed {seed} ({restart})")
     if not os.path.exists(restart):
         run_logged([args.lmp, "-in", DECK, "-var", "stage", "deposition", "-var", "seed", str(seed),
                     *deck_variables(args.cell), "-log", "log.lammps", "-screen", "none"], folder)

@@ -6,7 +6,8 @@
 Seed lists and their bad forms; the pooled standard deviation on hand-computed groups; the
 paired differences on synthetic replicas whose beds scatter ten times more than their flows:
 pairing must recover the rank-count shift with the flows' scatter only; a truncated cdpost
-table is refused with the file named. Standard library only.
+table is refused with the file named, and so is a --beds folder without the seed's bed.
+Standard library only.
 """
 
 import argparse
@@ -84,12 +85,23 @@ def check_truncated_table():
             check("results.csv" in str(error) and "phi" in str(error), f"message '{error}'")
 
 
+def check_missing_bed():
+    # --beds names another study's folder: a seed it has no bed for stops the study before any run.
+    with tempfile.TemporaryDirectory() as work:
+        beds = os.path.join(work, "other")
+        done = subprocess.run([sys.executable, SCRIPT, "--out", os.path.join(work, "out"), "--beds", beds,
+                               "--seeds", "3", "--ranks", "1", "--lmp", "/bin/false"], capture_output=True, text=True)
+        last = "".join(done.stderr.strip().splitlines()[-1:])
+        check(done.returncode == 1 and "--beds" in last and "seed 3" in last, f"--beds without the bed: '{last}'")
+
+
 def main():
     check_seeds()
     check_pooled_sd()
     check_pairing()
     check_truncated_table()
-    print("rank_replicas logic: seeds, pooled sd, pairing, truncated table")
+    check_missing_bed()
+    print("rank_replicas logic: seeds, pooled sd, pairing, truncated table, missing bed")
 
 
 if __name__ == "__main__":
