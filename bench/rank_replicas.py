@@ -12,7 +12,8 @@ cancel) with its standard error and t = mean / error over the seeds.
     bench/rank_replicas.py --out runs/rank_replicas --seeds 1-10 --ranks 1 2
     bench/rank_replicas.py --out DIR --seeds 1-4 --ranks 4          # adds 4 ranks to the same starts
     bench/rank_replicas.py --out DIR --seeds 1-10 --ranks 1 2 4 --analyse-only
-    bench/rank_replicas.py --out DIR2 --beds DIR --ranks 1 --solver order=shuffle   # same beds, other order
+    bench/rank_replicas.py --out DIR2 --beds DIR --against DIR --ranks 1 --solver order=shuffle
+                                                     # same beds, another contact order, paired with DIR
 
 The default cell is the test chute (10 d, 200 grains, walls 8 d): the only cell on which 4 ranks
 oversubscribed on 2 cores are affordable. Runs already done are skipped. Standard library only.
@@ -68,6 +69,8 @@ def options():
     parser.add_argument("--cores", type=int, default=os.cpu_count(), help="cores to fill (default all)")
     parser.add_argument("--beds", help="take the beds (seedN/deposition) from this study's folder: "
                         "flows of other settings from the same starts")
+    parser.add_argument("--against", help="pair with the 1-rank runs of this study's folder instead of "
+                        "this study's fewest ranks (same beds: use --beds)")
     parser.add_argument("--analyse-only", action="store_true")
     args = parser.parse_args()
     if min(args.ranks) < 1 or args.cores < 1:
@@ -214,11 +217,16 @@ def analyse(args):
         print(f"| {ranks} | {len(done)} | " + " | ".join(cells) + " |")
     write_csv(os.path.join(args.out, "replicas.csv"), table)
     baseline, others = min(args.ranks), [r for r in args.ranks if r != min(args.ranks)]
+    name = f"{baseline} rank(s)"
+    if args.against:    # the 1-rank runs of another study from the same beds
+        baseline, others, name = "against", list(args.ranks), f"1 rank of {args.against}"
+        for s in args.seeds:
+            table[(s, baseline)] = results(argparse.Namespace(out=args.against), s, 1)
     if not others:
         return
     differences = paired_differences(table, args.seeds, baseline, others)
     pooled = {q: pooled_sd([d[q] for d in differences.values()]) for q in QUANTITIES}
-    print(f"\npaired differences from {baseline} rank(s), same start: mean ± SE (t = mean/SE; sd of "
+    print(f"\npaired differences from {name}, same start: mean ± SE (t = mean/SE; sd of "
           "the differences). SE = pooled sd / sqrt(pairs), the sd pooled over the rank counts, "
           "which share the scatter of realisations (one count's own sd is unreliable from few pairs)\n")
     print("| ranks | pairs | " + " | ".join(f"Δ{q}" for q in QUANTITIES) + " |")
@@ -228,7 +236,8 @@ def analyse(args):
         for q in QUANTITIES:
             mean, sd, _ = mean_sd_error(per_quantity[q])
             error = pooled[q] / math.sqrt(pairs) if pairs else math.nan
-            cells.append(f"{mean:+.3g} ± {error:.2g} (t {mean / error:+.1f}; sd {sd:.2g})")
+            t = mean / error if error > 0 else math.nan    # nan also for identical runs (0 / 0)
+            cells.append(f"{mean:+.3g} ± {error:.2g} (t {t:+.1f}; sd {sd:.2g})")
         print(f"| {ranks} | {pairs} | " + " | ".join(cells) + " |")
 
 

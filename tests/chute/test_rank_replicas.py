@@ -6,7 +6,8 @@
 Seed lists and their bad forms; the pooled standard deviation on hand-computed groups; the
 paired differences on synthetic replicas whose beds scatter ten times more than their flows:
 pairing must recover the rank-count shift with the flows' scatter only; a truncated cdpost
-table is refused with the file named, and so is a --beds folder without the seed's bed.
+table is refused with the file named, and so is a --beds folder without the seed's bed;
+--against pairs with another study's runs.
 Standard library only.
 """
 
@@ -95,13 +96,38 @@ def check_missing_bed():
         check(done.returncode == 1 and "--beds" in last and "seed 3" in last, f"--beds without the bed: '{last}'")
 
 
+def write_run(study, seed, values):
+    """A finished 1-rank run as the study leaves it: cdpost's table and the deck's summary line."""
+    folder = os.path.join(study, f"seed{seed}", "np1")
+    os.makedirs(os.path.join(folder, "post"))
+    with open(os.path.join(folder, "post", "results.csv"), "w") as table:
+        table.write("name,value,error\n" + "".join(f"{q},{values[q]},0\n" for q in replicas.CDPOST_QUANTITIES))
+    with open(os.path.join(folder, "log.lammps"), "w") as log:
+        log.write(f"CHUTE steps_solved 100 sweeps {100 * values['sweeps']}\n")
+
+
+def check_against():
+    # Another setting from the same two beds, 0.1 and 0.3 faster: paired with --against, dU = +0.2.
+    with tempfile.TemporaryDirectory() as work:
+        base, other = os.path.join(work, "base"), os.path.join(work, "other")
+        for seed, u in ((1, 1.5), (2, 2.5)):
+            write_run(base, seed, dict(U=u, phi=0.78, h=12, f=40, sweeps=160))
+            write_run(other, seed, dict(U=u + 0.1 * (2 * seed - 1), phi=0.78, h=12, f=40, sweeps=160))
+        done = subprocess.run([sys.executable, SCRIPT, "--out", other, "--against", base, "--seeds", "1-2",
+                               "--ranks", "1", "--analyse-only"], capture_output=True, text=True)
+        row = [l for l in done.stdout.splitlines() if l.startswith("| 1 | 2 |")]
+        check(done.returncode == 0 and row and row[-1].split("|")[3].strip().startswith("+0.2 "),
+              f"--against: {row or done.stdout + done.stderr}")
+
+
 def main():
     check_seeds()
     check_pooled_sd()
     check_pairing()
     check_truncated_table()
     check_missing_bed()
-    print("rank_replicas logic: seeds, pooled sd, pairing, truncated table, missing bed")
+    check_against()
+    print("rank_replicas logic: seeds, pooled sd, pairing, truncated table, missing bed, --against")
 
 
 if __name__ == "__main__":
