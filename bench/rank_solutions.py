@@ -35,6 +35,8 @@ sys.path.insert(0, HERE)
 from rank_replicas import DECK, TOP, deck_variables, mpi_launcher, run_logged  # noqa: E402
 
 SAME_SOLUTION = 1e-3    # error below which two solves count as one solution (see doc/benchmarks.md)
+# Columns of in.chute's solver.time: step, then f_cd[1..7]; [1] sweeps, [7] fraction converged.
+SWEEPS_COLUMN, CONVERGED_COLUMN = 1, 7
 ALTERNATIVE_ORDERS = [dict(order="shuffle", seed=str(s), warm_start=w) for w in ("yes", "no") for s in (1, 2, 3)]
 
 
@@ -114,11 +116,12 @@ def solve_one_step(args, snapshot, start_step, folder, ranks, solver):
                     "-log", "log.lammps", "-screen", "none"], folder)
         velocity_dump(args, os.path.join(folder, "chute.restart"), os.path.join(folder, "after.dump"))
     after, step = read_velocities(os.path.join(folder, "after.dump"))
-    rows = [line.split() for line in open(solved) if not line.startswith("#")]
+    with open(solved) as src:
+        rows = [line.split() for line in src if not line.startswith("#")]
     if step != start_step + 1 or not rows or int(rows[-1][0]) != step:
         raise RuntimeError(f"{folder}: expected one step from step {start_step}, found step {step} "
                            "(snapshot written at another --dt?)")
-    return after, float(rows[-1][1]), float(rows[-1][7]) == 1.0
+    return after, float(rows[-1][SWEEPS_COLUMN]), float(rows[-1][CONVERGED_COLUMN]) == 1.0
 
 
 # ---------------------------------------------------------------- measures
@@ -152,7 +155,7 @@ def study_snapshot(args, index, snapshot):
     base = os.path.join(args.out, f"snapshot{index}")
     os.makedirs(base, exist_ok=True)
     start, step = velocity_dump(args, snapshot, os.path.join(base, "start.dump"))
-    gravity_step = 9.81 * math.sin(math.radians(cell_value(args, "theta", 24))) * args.dt
+    gravity_step = cell_value(args, "g", 9.81) * math.sin(math.radians(cell_value(args, "theta", 24))) * args.dt
     tight = dict(tolerance=f"{args.reference_tolerance:g}", max_iterations=str(args.max_iterations))
 
     def solve(ranks, solver, name):

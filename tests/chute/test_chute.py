@@ -337,10 +337,10 @@ def case_solve_two_ranks(args):
     """One step from two snapshots of flow_run (1.1 and 1.2 s), solved at tolerance 1e-9 on 1
     and on 2 ranks (bench/rank_solutions.py): the decomposed Gauss-Seidel must reach the 1-rank
     solution (relative error of the velocities < SAME_SOLUTION; measured 1e-9 here, < 1e-4 in
-    19 of 20 snapshots of independent flows on 2 and 4 ranks) or, where the frictional problem
+    18 of 20 snapshots of independent flows on 2 and 4 ranks) or, where the frictional problem
     has several solutions, one that a 1-rank solve with another contact order or a cold start
     reaches too. At the deck's tolerance (1e-3) the 2-rank solve must stop no further from its
-    solution than 2x the 1-rank one (ratios measured: 0.6-1.4 on 2 and 4 ranks)."""
+    solution than 2x the 1-rank one (ratios measured at 1e-3: 0.6-1.4 on 2 and 4 ranks)."""
     sys.path.insert(0, os.path.join(TOP, "bench"))
     import rank_solutions
     flow = os.path.join(args.work, "flow")
