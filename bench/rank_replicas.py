@@ -34,6 +34,7 @@ DECK = os.path.join(TOP, "inputs", "in.chute")
 sys.path.insert(0, os.path.join(TOP, "scripts"))
 from accuracy_study import group_stats, log_line  # noqa: E402  (tested in test_accuracy_study.py)
 CDPOST_QUANTITIES = ("U", "phi", "h", "f")
+STUDY_VARIABLES = {"stage", "start", "duration"}   # in.chute -vars the study sets (seed: the beds')
 QUANTITIES = CDPOST_QUANTITIES + ("sweeps",)    # sweeps: per step over the whole flow, from the log
 
 
@@ -81,7 +82,19 @@ def options():
         for pair in getattr(args, name).split():
             if "=" not in pair:
                 parser.error(f"--{name}: '{pair}' is not name=value")
+    # LAMMPS keeps the first -var of a name: a second one would be ignored without a word.
+    both = variable_names(args.cell) & variable_names(args.solver)
+    if both:
+        parser.error(f"--solver sets {', '.join(sorted(both))}, already set by --cell (give it in one of them)")
+    for name, reserved in (("cell", STUDY_VARIABLES | {"seed"}), ("solver", STUDY_VARIABLES)):
+        taken = variable_names(getattr(args, name)) & reserved
+        if taken:
+            parser.error(f"--{name} sets {', '.join(sorted(taken))}, which the study sets itself")
     return args
+
+
+def variable_names(text):
+    return {pair.split("=", 1)[0] for pair in text.split()}
 
 
 def deck_variables(text):
@@ -205,6 +218,8 @@ def write_csv(path, table):
 
 def analyse(args):
     table = {(s, r): results(args, s, r) for s in args.seeds for r in args.ranks}
+    if not any(table.values()):
+        raise RuntimeError(f"{args.out}: no finished run of these seeds and ranks (seedN/npR/post/results.csv)")
     print(f"window {args.t_start:g}-{args.duration:g} s; cell {args.cell}; {args.solver or 'default solver'}\n")
     print("| ranks | seeds | " + " | ".join(f"{q} mean ± SE (sd)" for q in QUANTITIES) + " |")
     print("|---" * (len(QUANTITIES) + 2) + "|")

@@ -32,11 +32,14 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from rank_replicas import DECK, TOP, deck_variables, mpi_launcher, run_logged  # noqa: E402
+from rank_replicas import DECK, TOP, deck_variables, mpi_launcher, run_logged, variable_names  # noqa: E402
 
 SAME_SOLUTION = 1e-3    # error below which two solves count as one solution (see doc/benchmarks.md)
 # Columns of in.chute's solver.time: step, then f_cd[1..7]; [1] sweeps, [7] fraction converged.
 SWEEPS_COLUMN, CONVERGED_COLUMN = 1, 7
+# in.chute -vars each solve sets (--cell must leave them alone).
+STUDY_VARIABLES = {"stage", "start", "dt", "duration", "sample_rate", "solver_interval", "tolerance",
+                   "max_iterations", "order", "seed", "warm_start"}
 ALTERNATIVE_ORDERS = [dict(order="shuffle", seed=str(s), warm_start=w) for w in ("yes", "no") for s in (1, 2, 3)]
 
 
@@ -64,6 +67,10 @@ def options(argv=None):
         parser.error(f"--snapshots: no file {missing[0]}")
     if any("=" not in pair for pair in args.cell.split()):
         parser.error(f"--cell '{args.cell}': not name=value pairs")
+    # LAMMPS keeps the first -var of a name: these would override the study's own settings.
+    taken = variable_names(args.cell) & STUDY_VARIABLES
+    if taken:
+        parser.error(f"--cell sets {', '.join(sorted(taken))}, which the study sets itself")
     return args
 
 

@@ -7,7 +7,8 @@ Seed lists and their bad forms; the pooled standard deviation on hand-computed g
 paired differences on synthetic replicas whose beds scatter ten times more than their flows:
 pairing must recover the rank-count shift with the flows' scatter only; a truncated cdpost
 table is refused with the file named, and so is a --beds folder without the seed's bed;
---against pairs with another study's runs.
+--against pairs with another study's runs; a -var given twice (--solver over --cell, or one the
+study sets) is refused, and so is an analysis with no finished run.
 Standard library only.
 """
 
@@ -120,6 +121,25 @@ def check_against():
               f"--against: {row or done.stdout + done.stderr}")
 
 
+def check_clashing_variables():
+    # LAMMPS keeps the first -var of a name, so a repeated one would be dropped silently.
+    for flags, named in ((["--solver", "theta=23 order=shuffle"], "theta"),
+                         (["--cell", "L=10 duration=5"], "duration"),
+                         (["--cell", "L=10 seed=4"], "seed")):
+        done = subprocess.run([sys.executable, SCRIPT, "--out", "unused", "--analyse-only", *flags],
+                              capture_output=True, text=True)
+        last = done.stderr.strip().splitlines()[-1:]
+        check(done.returncode == 2 and named in "".join(last), f"{flags}: exit {done.returncode}, {last}")
+
+
+def check_nothing_to_analyse():
+    with tempfile.TemporaryDirectory() as work:
+        done = subprocess.run([sys.executable, SCRIPT, "--out", work, "--analyse-only"], capture_output=True, text=True)
+        lines = done.stderr.strip().splitlines()
+        check(done.returncode == 1 and len(lines) == 1 and work in lines[0] and "no finished run" in lines[0],
+              f"--analyse-only of an empty folder: exit {done.returncode}, {lines}")
+
+
 def main():
     check_seeds()
     check_pooled_sd()
@@ -127,7 +147,10 @@ def main():
     check_truncated_table()
     check_missing_bed()
     check_against()
-    print("rank_replicas logic: seeds, pooled sd, pairing, truncated table, missing bed, --against")
+    check_clashing_variables()
+    check_nothing_to_analyse()
+    print("rank_replicas logic: seeds, pooled sd, pairing, truncated table, missing bed, --against, "
+          "clashing -vars, nothing to analyse")
 
 
 if __name__ == "__main__":

@@ -4,8 +4,9 @@
     test_rank_solutions.py
 
 The solve error and the mass-weighted bias on hand-computed velocities; a truncated velocity
-dump and a missing snapshot are refused with the file named; the search for a 1-rank order
-that reaches another solution stops at the first that does. (Its runs are exercised by
+dump and a missing snapshot are refused with the file named, a --cell that sets what the study
+sets with the variable named; the search for a 1-rank order that reaches another solution
+stops at the first that does. (Its runs are exercised by
 chute.solve_two_ranks.) Standard library only.
 """
 
@@ -70,13 +71,20 @@ def check_bad_input():
                               capture_output=True, text=True)
         last = done.stderr.strip().splitlines()[-1:]
         check(done.returncode == 2 and missing in "".join(last), f"missing snapshot: exit {done.returncode}, {last}")
+        snapshot = os.path.join(work, "some.restart")
+        open(snapshot, "w").close()
+        done = subprocess.run([sys.executable, SCRIPT, "--out", work, "--snapshots", snapshot,
+                               "--cell", "L=10 tolerance=1e-4", "--lmp", "false"], capture_output=True, text=True)
+        last = done.stderr.strip().splitlines()[-1:]
+        check(done.returncode == 2 and "tolerance" in "".join(last), f"--cell tolerance: exit {done.returncode}, {last}")
 
 
 def main():
     check_measures()
     check_alternatives()
     check_bad_input()
-    print("rank_solutions measures: solve error, bias, order search, truncated dump, missing snapshot")
+    print("rank_solutions measures: solve error, bias, order search, truncated dump, missing snapshot, "
+          "--cell clash")
 
 
 if __name__ == "__main__":
