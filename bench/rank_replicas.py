@@ -14,6 +14,8 @@ cancel) with its standard error and t = mean / error over the seeds.
     bench/rank_replicas.py --out DIR --seeds 1-10 --ranks 1 2 4 --analyse-only
     bench/rank_replicas.py --out DIR2 --beds DIR --against DIR --ranks 1 --solver order=shuffle
                                                      # same beds, another contact order, paired with DIR
+    bench/rank_replicas.py --out DIR --against DIR DIR2 --ranks 2 4 --analyse-only
+                                                     # paired with both 1-rank runs of each bed (their mean)
 
 The default cell is the test chute (10 d, 200 grains, walls 8 d): the only cell on which 4 ranks
 oversubscribed on 2 cores are affordable. Runs already done are skipped. Standard library only.
@@ -70,8 +72,9 @@ def options():
     parser.add_argument("--cores", type=int, default=os.cpu_count(), help="cores to fill (default all)")
     parser.add_argument("--beds", help="take the beds (seedN/deposition) from this study's folder: "
                         "flows of other settings from the same starts")
-    parser.add_argument("--against", help="pair with the 1-rank runs of this study's folder instead of "
-                        "this study's fewest ranks (same beds: use --beds)")
+    parser.add_argument("--against", nargs="+", metavar="DIR",
+                        help="pair with the 1-rank runs of these studies' folders (with several, their "
+                        "mean per bed) instead of this study's fewest ranks (same beds: use --beds)")
     parser.add_argument("--analyse-only", action="store_true")
     args = parser.parse_args()
     if min(args.ranks) < 1 or args.cores < 1:
@@ -190,6 +193,13 @@ def mean_sd_error(values):
     return group_stats(values)
 
 
+def mean_run(runs):
+    """Quantity by quantity the mean of several runs from one bed; None unless all exist."""
+    if not all(runs):
+        return None
+    return {q: sum(run[q] for run in runs) / len(runs) for q in QUANTITIES}
+
+
 def paired_differences(table, seeds, baseline, others):
     """{ranks: {quantity: [value on ranks - value on baseline, one per seed run on both]}}."""
     differences = {}
@@ -233,10 +243,12 @@ def analyse(args):
     write_csv(os.path.join(args.out, "replicas.csv"), table)
     baseline, others = min(args.ranks), [r for r in args.ranks if r != min(args.ranks)]
     name = f"{baseline} rank(s)"
-    if args.against:    # the 1-rank runs of another study from the same beds
-        baseline, others, name = "against", list(args.ranks), f"1 rank of {args.against}"
+    if args.against:    # the 1-rank runs of other studies from the same beds
+        baseline, others = "against", list(args.ranks)
+        name = f"the 1-rank run{'s' if len(args.against) > 1 else ''} of {' and '.join(args.against)}"
+        name += " (their mean per bed)" if len(args.against) > 1 else ""
         for s in args.seeds:
-            table[(s, baseline)] = results(argparse.Namespace(out=args.against), s, 1)
+            table[(s, baseline)] = mean_run([results(argparse.Namespace(out=study), s, 1) for study in args.against])
     if not others:
         return
     differences = paired_differences(table, args.seeds, baseline, others)

@@ -7,8 +7,9 @@ Seed lists and their bad forms; the pooled standard deviation on hand-computed g
 paired differences on synthetic replicas whose beds scatter ten times more than their flows:
 pairing must recover the rank-count shift with the flows' scatter only; a truncated cdpost
 table is refused with the file named, and so is a --beds folder without the seed's bed;
---against pairs with another study's runs; a -var given twice (--solver over --cell, or one the
-study sets) is refused, and so is an analysis with no finished run.
+--against pairs with another study's runs, or with the mean of several studies' runs; a -var
+given twice (--solver over --cell, or one the study sets) is refused, and so is an analysis
+with no finished run.
 Standard library only.
 """
 
@@ -119,6 +120,19 @@ def check_against():
         row = [l for l in done.stdout.splitlines() if l.startswith("| 1 | 2 |")]
         check(done.returncode == 0 and row and row[-1].split("|")[3].strip().startswith("+0.2 "),
               f"--against: {row or done.stdout + done.stderr}")
+        # With two studies the bed's baseline is their mean: base2 has U 1.3 and 2.3, so the
+        # baselines are 1.4 and 2.4 and the differences 0.2 and 0.4: +0.3. Seed 3 has no run in
+        # base2 and drops out.
+        base2 = os.path.join(work, "base2")
+        for seed, u in ((1, 1.3), (2, 2.3)):
+            write_run(base2, seed, dict(U=u, phi=0.78, h=12, f=40, sweeps=160))
+        write_run(base, 3, dict(U=9.0, phi=0.78, h=12, f=40, sweeps=160))
+        write_run(other, 3, dict(U=1.0, phi=0.78, h=12, f=40, sweeps=160))
+        done = subprocess.run([sys.executable, SCRIPT, "--out", other, "--against", base, base2, "--seeds", "1-3",
+                               "--ranks", "1", "--analyse-only"], capture_output=True, text=True)
+        row = [l for l in done.stdout.splitlines() if l.startswith("| 1 | 2 |")]
+        check(done.returncode == 0 and row and row[-1].split("|")[3].strip().startswith("+0.3 "),
+              f"--against two studies: {row or done.stdout + done.stderr}")
 
 
 def check_clashing_variables():
