@@ -245,8 +245,9 @@ def analyse(args):
     name = f"{baseline} rank(s)"
     if args.against:    # the 1-rank runs of other studies from the same beds
         baseline, others = "against", list(args.ranks)
-        name = f"the 1-rank run{'s' if len(args.against) > 1 else ''} of {' and '.join(args.against)}"
-        name += " (their mean per bed)" if len(args.against) > 1 else ""
+        name = f"the 1-rank runs of {' and '.join(args.against)}"
+        if len(args.against) > 1:
+            name += " (their mean per bed)"
         for s in args.seeds:
             table[(s, baseline)] = mean_run([results(argparse.Namespace(out=study), s, 1) for study in args.against])
     if not others:

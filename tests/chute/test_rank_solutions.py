@@ -6,8 +6,8 @@
 The solve error and the mass-weighted bias on hand-computed velocities; a truncated velocity
 dump and a missing snapshot are refused with the file named, a --cell that sets what the study
 sets with the variable named; the search for a 1-rank order that reaches another solution
-stops at the first that does. (Its runs are exercised by
-chute.solve_two_ranks.) Standard library only.
+stops at the first that does. (Its runs are exercised by chute.solve_two_ranks.) Standard
+library only.
 """
 
 import math
