@@ -16,6 +16,8 @@ cancel) with its standard error and t = mean / error over the seeds.
                                                      # same beds, another contact order, paired with DIR
     bench/rank_replicas.py --out DIR --against DIR DIR2 --ranks 2 4 --analyse-only
                                                      # paired with both 1-rank runs of each bed (their mean)
+    bench/rank_replicas.py --out DIR --seeds 1-10 --ranks 1 4 --analyse-only --timeline 0.2
+                                                     # and the paired flowing-layer vx in 0.2 s bins
 
 The default cell is the test chute (10 d, 200 grains, walls 8 d): the only cell on which 4 ranks
 oversubscribed on 2 cores are affordable. Runs already done are skipped. Standard library only.
@@ -75,10 +77,15 @@ def options():
     parser.add_argument("--against", nargs="+", metavar="DIR",
                         help="pair with the 1-rank runs of these studies' folders (with several, their "
                         "mean per bed) instead of this study's fewest ranks (same beds: use --beds)")
+    parser.add_argument("--timeline", type=float, metavar="SECONDS",
+                        help="also the paired difference of the flowing layer's mean vx (flow.time) in "
+                        "bins of this width over the whole flow: a steady offset or a passing excursion?")
     parser.add_argument("--analyse-only", action="store_true")
     args = parser.parse_args()
     if min(args.ranks) < 1 or args.cores < 1:
         parser.error(f"--ranks {args.ranks} and --cores {args.cores} must be at least 1")
+    if args.timeline is not None and not 0 < args.timeline <= args.duration:
+        parser.error(f"--timeline {args.timeline} must lie in (0, --duration {args.duration}]")
     if not 0 <= args.t_start < args.duration:
         parser.error(f"--t-start {args.t_start} must lie in [0, --duration {args.duration})")
     for name in ("cell", "solver"):
@@ -193,21 +200,29 @@ def mean_sd_error(values):
     return group_stats(values)
 
 
-def mean_run(runs):
-    """Quantity by quantity the mean of several runs from one bed; None unless all exist."""
+def mean_run(runs, keys=QUANTITIES):
+    """Key by key the mean of several runs from one bed; None unless all exist."""
     if not all(runs):
         return None
-    return {q: sum(run[q] for run in runs) / len(runs) for q in QUANTITIES}
+    return {q: sum(run[q] for run in runs) / len(runs) for q in keys}
 
 
-def paired_differences(table, seeds, baseline, others):
-    """{ranks: {quantity: [value on ranks - value on baseline, one per seed run on both]}}."""
+def paired_differences(table, seeds, baseline, others, keys=QUANTITIES):
+    """{ranks: {key: [value on ranks - value on baseline, one per seed run on both]}}."""
     differences = {}
     for ranks in others:
         pairs = [s for s in seeds if table[(s, ranks)] and table[(s, baseline)]]
         differences[ranks] = {q: [table[(s, ranks)][q] - table[(s, baseline)][q] for s in pairs]
-                              for q in QUANTITIES}
+                              for q in keys}
     return differences
+
+
+def difference_cell(values, pooled, with_sd=False):
+    """'mean ± SE (t ...)' of paired differences, SE = the pooled sd / sqrt(pairs)."""
+    mean, sd, _ = mean_sd_error(values)
+    error = pooled / math.sqrt(len(values)) if values else math.nan
+    t = mean / error if error > 0 else math.nan    # nan also for identical runs (0 / 0)
+    return f"{mean:+.3g} ± {error:.2g} (t {t:+.1f}" + (f"; sd {sd:.2g})" if with_sd else ")")
 
 
 def pooled_sd(groups):
@@ -260,13 +275,83 @@ def analyse(args):
     print("| ranks | pairs | " + " | ".join(f"Δ{q}" for q in QUANTITIES) + " |")
     print("|---" * (len(QUANTITIES) + 2) + "|")
     for ranks, per_quantity in differences.items():
-        cells, pairs = [], len(per_quantity[QUANTITIES[0]])
-        for q in QUANTITIES:
-            mean, sd, _ = mean_sd_error(per_quantity[q])
-            error = pooled[q] / math.sqrt(pairs) if pairs else math.nan
-            t = mean / error if error > 0 else math.nan    # nan also for identical runs (0 / 0)
-            cells.append(f"{mean:+.3g} ± {error:.2g} (t {t:+.1f}; sd {sd:.2g})")
+        pairs = len(per_quantity[QUANTITIES[0]])
+        cells = [difference_cell(per_quantity[q], pooled[q], with_sd=True) for q in QUANTITIES]
         print(f"| {ranks} | {pairs} | " + " | ".join(cells) + " |")
+    if args.timeline:
+        print_timeline(args, baseline, others, name, [s for s in args.seeds if table[(s, baseline)]])
+
+
+# ---------------------------------------------------------------- timeline
+
+def flow_series(folder):
+    """The deck's flow.time as [(chute time in s, mean vx of the flowing grains in m/s)]."""
+    path = os.path.join(folder, "flow.time")
+    if not os.path.exists(path):
+        raise RuntimeError(f"{path}: missing (the flow's time series)")
+    columns, series = None, []
+    with open(path) as src:
+        for number, line in enumerate(src, 1):
+            fields = line.split()
+            if line.startswith("#"):
+                if "v_time" in fields and "v_u_flow" in fields:    # '# TimeStep v_time ...'
+                    columns = (fields.index("v_time") - 1, fields.index("v_u_flow") - 1)
+                continue
+            if columns is None:
+                raise RuntimeError(f"{path}: no header naming v_time and v_u_flow")
+            try:
+                series.append((float(fields[columns[0]]), float(fields[columns[1]])))
+            except (IndexError, ValueError):
+                raise RuntimeError(f"{path}:{number}: not a row of numbers under its header") from None
+    return series
+
+
+def bin_count(width, duration):
+    """Bins of `width` covering [0, duration), the last one possibly shorter."""
+    return math.ceil(duration / width - 1e-9)
+
+
+def bin_means(series, width, duration, path):
+    """{bin k: mean over [k width, (k+1) width)} for the bins covering [0, duration)."""
+    bins = bin_count(width, duration)
+    sums, counts = [0.0] * bins, [0] * bins
+    for t, u in series:
+        k = math.floor(t / width + 1e-9)
+        if 0 <= k < bins and t < duration:
+            sums[k] += u
+            counts[k] += 1
+    for k, count in enumerate(counts):
+        if not count:
+            raise RuntimeError(f"{path}: no sample in {k * width:g}-{min((k + 1) * width, duration):g} s (truncated?)")
+    return {k: sums[k] / counts[k] for k in range(bins)}
+
+
+def run_bins(args, study, seed, ranks):
+    folder = os.path.join(study, f"seed{seed}", f"np{ranks}")
+    return bin_means(flow_series(folder), args.timeline, args.duration, os.path.join(folder, "flow.time"))
+
+
+def print_timeline(args, baseline, others, name, seeds):
+    """ΔU_flow per time bin over the whole flow, paired as the table above; the baseline's own
+    U_flow per bin beside it. A drag would show as a steady offset once the layer flows."""
+    keys = range(bin_count(args.timeline, args.duration))
+    table = {}
+    for s in seeds:
+        for ranks in others:
+            table[(s, ranks)] = run_bins(args, args.out, s, ranks) if results(args, s, ranks) else None
+        table[(s, baseline)] = (mean_run([run_bins(args, study, s, 1) for study in args.against], keys)
+                                if args.against else run_bins(args, args.out, s, baseline))
+    differences = paired_differences(table, seeds, baseline, others, keys=keys)
+    pooled = {k: pooled_sd([d[k] for d in differences.values()]) for k in keys}
+    print(f"\nthe flowing layer's mean vx (flow.time's v_u_flow, m/s) in {args.timeline:g} s bins: "
+          f"{name} and the paired differences from it, mean ± SE (t), SE as above\n")
+    print("| time (s) | baseline | " + " | ".join(f"ΔU_flow on {r} rank(s)" for r in differences) + " |")
+    print("|---" * (len(differences) + 2) + "|")
+    for k in keys:
+        reference = sum(table[(s, baseline)][k] for s in seeds) / len(seeds)
+        cells = [difference_cell(d[k], pooled[k]) for d in differences.values()]
+        span = f"{k * args.timeline:g}-{min((k + 1) * args.timeline, args.duration):g}"
+        print(f"| {span} | {reference:.4g} | " + " | ".join(cells) + " |")
 
 
 def main():

@@ -9,7 +9,8 @@ pairing must recover the rank-count shift with the flows' scatter only; a trunca
 table is refused with the file named, and so is a --beds folder without the seed's bed;
 --against pairs with another study's runs, or with the mean of several studies' runs; a -var
 given twice (--solver over --cell, or one the study sets) is refused, and so is an analysis
-with no finished run.
+with no finished run. --timeline bins the flows' time series and pairs them the same way,
+and refuses a cut or malformed flow.time with its name.
 Standard library only.
 """
 
@@ -98,14 +99,19 @@ def check_missing_bed():
         check(done.returncode == 1 and "--beds" in last and "seed 3" in last, f"--beds without the bed: '{last}'")
 
 
-def write_run(study, seed, values):
-    """A finished 1-rank run as the study leaves it: cdpost's table and the deck's summary line."""
-    folder = os.path.join(study, f"seed{seed}", "np1")
+def write_run(study, seed, values, ranks=1, u_flow=None):
+    """A finished run as the study leaves it: cdpost's table, the deck's summary line and, given
+    u_flow(t), the deck's flow.time sampled every 0.01 s over 2 s."""
+    folder = os.path.join(study, f"seed{seed}", f"np{ranks}")
     os.makedirs(os.path.join(folder, "post"))
     with open(os.path.join(folder, "post", "results.csv"), "w") as table:
         table.write("name,value,error\n" + "".join(f"{q},{values[q]},0\n" for q in replicas.CDPOST_QUANTITIES))
     with open(os.path.join(folder, "log.lammps"), "w") as log:
         log.write(f"CHUTE steps_solved 100 sweeps {100 * values['sweeps']}\n")
+    if u_flow:
+        with open(os.path.join(folder, "flow.time"), "w") as series:
+            series.write("# chute flow\n# TimeStep v_time v_u_all v_u_flow v_v_flow\n")
+            series.write("".join(f"{500 * k} {k / 100:g} 0 {u_flow(k / 100)!r} 0\n" for k in range(201)))
 
 
 def check_against():
@@ -154,6 +160,37 @@ def check_nothing_to_analyse():
               f"--analyse-only of an empty folder: exit {done.returncode}, {lines}")
 
 
+def check_timeline():
+    # Two beds whose 4-rank flows run 0.01 and 0.02 m/s faster from 1 s on: the 0.5 s bins
+    # before 1 s show +0, those after +0.015, t = 0.015 / (0.00707 / sqrt 2) = 3.0.
+    with tempfile.TemporaryDirectory() as work:
+        values = dict(U=1.9, phi=0.78, h=12, f=40, sweeps=160)
+        for seed in (1, 2):
+            write_run(work, seed, values, 1, lambda t: 0.1 * t)
+            write_run(work, seed, values, 4, lambda t, seed=seed: 0.1 * t + (0.01 * seed if t >= 1 else 0))
+        command = [sys.executable, SCRIPT, "--out", work, "--seeds", "1-2", "--ranks", "1", "4", "--analyse-only",
+                   "--timeline", "0.5"]
+        done = subprocess.run(command, capture_output=True, text=True)
+        rows = [l.split("|") for l in done.stdout.splitlines() if l.startswith(("| 0-", "| 0.5-", "| 1-", "| 1.5-"))]
+        expected = {"0-0.5": "+0 ", "0.5-1": "+0 ", "1-1.5": "+0.015 ± 0.005 (t +3.0)", "1.5-2": "+0.015 ± 0.005 (t +3.0)"}
+        got = {row[1].strip(): row[3].strip() for row in rows}
+        check(done.returncode == 0 and set(got) == set(expected)
+              and all(got[span].startswith(expected[span]) for span in expected), f"--timeline 0.5: {got or done.stderr}")
+        check(abs(float(rows[0][2]) - 0.0245) < 1e-9, f"baseline of 0-0.5 s: {rows[0][2]} (mean of 0.1 t)")
+        # A flow.time cut at 1.2 s leaves the last bin empty; a row of text is refused with its line.
+        series = os.path.join(work, "seed2", "np4", "flow.time")
+        lines = open(series).readlines()
+        for broken, named in ((lines[:123], "no sample in 1.5-2 s"), (lines[:50] + ["50 0.48 0 x 0\n"], ":51:")):
+            with open(series, "w") as out:
+                out.writelines(broken)
+            done = subprocess.run(command, capture_output=True, text=True)
+            last = done.stderr.strip().splitlines()
+            check(done.returncode == 1 and len(last) == 1 and "flow.time" in last[0] and named in last[0],
+                  f"broken flow.time: exit {done.returncode}, {last}")
+    done = subprocess.run([sys.executable, SCRIPT, "--out", "unused", "--timeline", "0"], capture_output=True, text=True)
+    check(done.returncode == 2 and "--timeline" in done.stderr, f"--timeline 0: exit {done.returncode}")
+
+
 def main():
     check_seeds()
     check_pooled_sd()
@@ -163,8 +200,9 @@ def main():
     check_against()
     check_clashing_variables()
     check_nothing_to_analyse()
+    check_timeline()
     print("rank_replicas logic: seeds, pooled sd, pairing, truncated table, missing bed, --against, "
-          "clashing -vars, nothing to analyse")
+          "clashing -vars, nothing to analyse, timeline")
 
 
 if __name__ == "__main__":
