@@ -86,6 +86,8 @@ def options():
         parser.error(f"--ranks {args.ranks} and --cores {args.cores} must be at least 1")
     if args.timeline is not None and not 0 < args.timeline <= args.duration:
         parser.error(f"--timeline {args.timeline} must lie in (0, --duration {args.duration}]")
+    if args.timeline and len(set(args.ranks)) < 2 and not args.against:
+        parser.error("--timeline pairs runs: give two rank counts or --against")
     if not 0 <= args.t_start < args.duration:
         parser.error(f"--t-start {args.t_start} must lie in [0, --duration {args.duration})")
     for name in ("cell", "solver"):

@@ -187,8 +187,9 @@ def check_timeline():
             last = done.stderr.strip().splitlines()
             check(done.returncode == 1 and len(last) == 1 and "flow.time" in last[0] and named in last[0],
                   f"broken flow.time: exit {done.returncode}, {last}")
-    done = subprocess.run([sys.executable, SCRIPT, "--out", "unused", "--timeline", "0"], capture_output=True, text=True)
-    check(done.returncode == 2 and "--timeline" in done.stderr, f"--timeline 0: exit {done.returncode}")
+    for flags in (["--timeline", "0"], ["--timeline", "0.5", "--ranks", "1"]):    # no bin; nothing to pair
+        done = subprocess.run([sys.executable, SCRIPT, "--out", "unused", *flags], capture_output=True, text=True)
+        check(done.returncode == 2 and "--timeline" in done.stderr, f"{flags}: exit {done.returncode}")
 
 
 def main():
