@@ -188,7 +188,8 @@ def check_timeline():
             check(done.returncode == 1 and len(last) == 1 and "flow.time" in last[0] and named in last[0],
                   f"broken flow.time: exit {done.returncode}, {last}")
     for flags in (["--timeline", "0"], ["--timeline", "0.5", "--ranks", "1"]):    # no bin; nothing to pair
-        done = subprocess.run([sys.executable, SCRIPT, "--out", "unused", *flags], capture_output=True, text=True)
+        done = subprocess.run([sys.executable, SCRIPT, "--out", "unused", "--analyse-only", *flags],
+                              capture_output=True, text=True)
         check(done.returncode == 2 and "--timeline" in done.stderr, f"{flags}: exit {done.returncode}")
 
 
