@@ -145,9 +145,13 @@ def deposition(args, seed):
     return restart
 
 
+def run_folder(study, seed, ranks):
+    return os.path.join(study, f"seed{seed}", f"np{ranks}")
+
+
 def flow(args, seed, ranks):
     """Flow from seed's deposition on `ranks` ranks, then cdpost; returns seconds spent (0 if done)."""
-    folder = os.path.join(args.out, f"seed{seed}", f"np{ranks}")
+    folder = run_folder(args.out, seed, ranks)
     if os.path.exists(os.path.join(folder, "post", "results.csv")):
         return 0.0
     start = deposition(args, seed)
@@ -180,8 +184,9 @@ def run_all(args):
 
 # ---------------------------------------------------------------- analysis
 
-def results(args, seed, ranks):
-    folder = os.path.join(args.out, f"seed{seed}", f"np{ranks}")
+def results(study, seed, ranks):
+    """cdpost's U, phi, h, f and the log's sweeps per step of a finished run; None if not finished."""
+    folder = run_folder(study, seed, ranks)
     path = os.path.join(folder, "post", "results.csv")
     if not os.path.exists(path):
         return None
@@ -244,7 +249,7 @@ def write_csv(path, table):
 
 
 def analyse(args):
-    table = {(s, r): results(args, s, r) for s in args.seeds for r in args.ranks}
+    table = {(s, r): results(args.out, s, r) for s in args.seeds for r in args.ranks}
     if not any(table.values()):
         raise RuntimeError(f"{args.out}: no finished run of these seeds and ranks (seedN/npR/post/results.csv)")
     print(f"window {args.t_start:g}-{args.duration:g} s; cell {args.cell}; {args.solver or 'default solver'}\n")
@@ -266,7 +271,7 @@ def analyse(args):
         if len(args.against) > 1:
             name += " (their mean per bed)"
         for s in args.seeds:
-            table[(s, baseline)] = mean_run([results(argparse.Namespace(out=study), s, 1) for study in args.against])
+            table[(s, baseline)] = mean_run([results(study, s, 1) for study in args.against])
     if not others:
         return
     differences = paired_differences(table, args.seeds, baseline, others)
@@ -281,7 +286,7 @@ def analyse(args):
         cells = [difference_cell(per_quantity[q], pooled[q], with_sd=True) for q in QUANTITIES]
         print(f"| {ranks} | {pairs} | " + " | ".join(cells) + " |")
     if args.timeline:
-        print_timeline(args, baseline, others, name, [s for s in args.seeds if table[(s, baseline)]])
+        print_timeline(args, table, baseline, others, name)
 
 
 # ---------------------------------------------------------------- timeline
@@ -313,6 +318,10 @@ def bin_count(width, duration):
     return math.ceil(duration / width - 1e-9)
 
 
+def bin_span(k, width, duration):
+    return f"{k * width:g}-{min((k + 1) * width, duration):g}"
+
+
 def bin_means(series, width, duration, path):
     """{bin k: mean over [k width, (k+1) width)} for the bins covering [0, duration)."""
     bins = bin_count(width, duration)
@@ -324,23 +333,25 @@ def bin_means(series, width, duration, path):
             counts[k] += 1
     for k, count in enumerate(counts):
         if not count:
-            raise RuntimeError(f"{path}: no sample in {k * width:g}-{min((k + 1) * width, duration):g} s (truncated?)")
+            raise RuntimeError(f"{path}: no sample in {bin_span(k, width, duration)} s (truncated?)")
     return {k: sums[k] / counts[k] for k in range(bins)}
 
 
 def run_bins(args, study, seed, ranks):
-    folder = os.path.join(study, f"seed{seed}", f"np{ranks}")
+    folder = run_folder(study, seed, ranks)
     return bin_means(flow_series(folder), args.timeline, args.duration, os.path.join(folder, "flow.time"))
 
 
-def print_timeline(args, baseline, others, name, seeds):
-    """ΔU_flow per time bin over the whole flow, paired as the table above; the baseline's own
-    U_flow per bin beside it. A drag would show as a steady offset once the layer flows."""
+def print_timeline(args, finished, baseline, others, name):
+    """ΔU_flow per time bin over the whole flow, paired as the table above (`finished`: its runs);
+    the baseline's own U_flow per bin beside it. A drag would show as a steady offset once the
+    layer flows."""
     keys = range(bin_count(args.timeline, args.duration))
+    seeds = [s for s in args.seeds if finished[(s, baseline)]]
     table = {}
     for s in seeds:
         for ranks in others:
-            table[(s, ranks)] = run_bins(args, args.out, s, ranks) if results(args, s, ranks) else None
+            table[(s, ranks)] = run_bins(args, args.out, s, ranks) if finished[(s, ranks)] else None
         table[(s, baseline)] = (mean_run([run_bins(args, study, s, 1) for study in args.against], keys)
                                 if args.against else run_bins(args, args.out, s, baseline))
     differences = paired_differences(table, seeds, baseline, others, keys=keys)
@@ -352,8 +363,7 @@ def print_timeline(args, baseline, others, name, seeds):
     for k in keys:
         reference = sum(table[(s, baseline)][k] for s in seeds) / len(seeds)
         cells = [difference_cell(d[k], pooled[k]) for d in differences.values()]
-        span = f"{k * args.timeline:g}-{min((k + 1) * args.timeline, args.duration):g}"
-        print(f"| {span} | {reference:.4g} | " + " | ".join(cells) + " |")
+        print(f"| {bin_span(k, args.timeline, args.duration)} | {reference:.4g} | " + " | ".join(cells) + " |")
 
 
 def main():

@@ -83,7 +83,7 @@ def check_truncated_table():
         with open(os.path.join(post, "results.csv"), "w") as table:
             table.write("name,value,error\nU,1.9,0.05\n")
         try:
-            replicas.results(argparse.Namespace(out=out), 1, 1)
+            replicas.results(out, 1, 1)
             check(False, "a results.csv without phi, h, f was accepted")
         except RuntimeError as error:
             check("results.csv" in str(error) and "phi" in str(error), f"message '{error}'")
@@ -102,7 +102,7 @@ def check_missing_bed():
 def write_run(study, seed, values, ranks=1, u_flow=None):
     """A finished run as the study leaves it: cdpost's table, the deck's summary line and, given
     u_flow(t), the deck's flow.time sampled every 0.01 s over 2 s."""
-    folder = os.path.join(study, f"seed{seed}", f"np{ranks}")
+    folder = replicas.run_folder(study, seed, ranks)
     os.makedirs(os.path.join(folder, "post"))
     with open(os.path.join(folder, "post", "results.csv"), "w") as table:
         table.write("name,value,error\n" + "".join(f"{q},{values[q]},0\n" for q in replicas.CDPOST_QUANTITIES))
