@@ -47,7 +47,7 @@ double wall_key(int wall_index, cd::WallPart part)
 
 FixContactDynamics::FixContactDynamics(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), theta(0.5), order(ContactOrder::fixed), warm_start(true),
-    max_contacts(12), disc_density(0.0), alert_distance(-1.0), alert_given(false), list(nullptr), covered_radius(0.0), mean_diameter(0.0),
+    max_contacts(12), disc_density(0.0), alert_distance(-1.0), alert_given(false), emulated_ranks(1), list(nullptr), covered_radius(0.0), mean_diameter(0.0),
     natoms_checked(-1), distributed(false), max_overlap(0.0), mean_overlap(0.0),
     solved_contacts_total(0.0), loaded_contacts_total(0.0), loaded_contacts(0),
     total_iterations(0.0), total_unconverged_steps(0.0), total_steps(0.0), history(nullptr),
@@ -216,6 +216,10 @@ void FixContactDynamics::parse_arguments(int narg, char **arg)
       alert_given = true;
       if (alert_distance < 0.0)
         error->all(FLERR, "Fix contact/dynamics: alert must be >= 0, got {}", alert_distance);
+    } else if (keyword == "emulate_ranks") {
+      emulated_ranks = integer_for("emulate_ranks", value, error);
+      if (emulated_ranks < 1)
+        error->all(FLERR, "Fix contact/dynamics: emulate_ranks must be >= 1, got {}", emulated_ranks);
     } else if (keyword == "density") {
       disc_density = number_for("density", value, error);
       if (disc_density <= 0.0)
@@ -296,6 +300,9 @@ int FixContactDynamics::parse_wall(int iarg, int narg, char **arg)
 void FixContactDynamics::init()
 {
   distributed = comm->nprocs > 1;
+  if (distributed && emulated_ranks > 1)
+    error->all(FLERR, "Fix contact/dynamics: emulate_ranks reproduces a decomposed sweep on one rank; "
+               "this run has {} ranks", comm->nprocs);
   if (!comm->ghost_velocity)
     error->all(FLERR, "Fix contact/dynamics requires ghost velocities: use comm_modify vel yes");
   if (atom->map_style == Atom::MAP_NONE)
@@ -459,8 +466,13 @@ void FixContactDynamics::warn_initial_overlaps()
 // straight back to the rank that owns it.
 void FixContactDynamics::check_subdomains()
 {
-  if (!distributed) return;
   const double cutoff = 2.0 * covered_radius + neighbor->skin;
+  // Emulated ranks obey the rule of real ones: the summed coupling of slabs thinner than a
+  // grain is not a decomposition LAMMPS would make, and it can diverge within one step.
+  if (emulated_ranks > 1 && domain->xprd / emulated_ranks < cutoff)
+    error->all(FLERR, "Fix contact/dynamics: emulate_ranks {} makes slabs of {}, thinner than the contact "
+               "cutoff {} (2 max radius + skin)", emulated_ranks, domain->xprd / emulated_ranks, cutoff);
+  if (!distributed) return;
   int thin_local = 0;
   for (int axis = 0; axis < 2; axis++)
     if (domain->subhi[axis] - domain->sublo[axis] < cutoff) thin_local = 1;
@@ -541,12 +553,16 @@ void FixContactDynamics::solve_contacts()
   RankExchange exchange(*this);
   if (distributed) exchange.synchronise_velocities();
   cd::SweepExchange *across_ranks = distributed ? &exchange : nullptr;
-  last_report = cd::solve_gauss_seidel(contacts, bodies.velocity, solver_settings, across_ranks);
+  const std::vector<std::size_t> *blocks = emulated_ranks > 1 ? &emulated_block_ends : nullptr;
+  if (blocks) group_contacts_by_emulated_rank();
+  last_report = cd::solve_gauss_seidel(contacts, bodies.velocity, solver_settings, across_ranks, blocks);
   for (int round = 1; round < max_rounds; round++) {
     int promoted_local = promote_closing_pairs() ? 1 : 0, promoted = promoted_local;
     if (distributed) MPI_Allreduce(&promoted_local, &promoted, 1, MPI_INT, MPI_MAX, world);
     if (!promoted) break;
-    const cd::SolveReport more = cd::solve_gauss_seidel(contacts, bodies.velocity, solver_settings, across_ranks);
+    if (blocks) group_contacts_by_emulated_rank();    // the promoted pairs join their rank
+    const cd::SolveReport more =
+        cd::solve_gauss_seidel(contacts, bodies.velocity, solver_settings, across_ranks, blocks);
     last_report.iterations += more.iterations;
     last_report.residual = more.residual;
     last_report.converged = more.converged;
@@ -714,6 +730,37 @@ void FixContactDynamics::interleave_contacts()
   for (int k : permutation) {
     reordered_contacts.push_back(contacts[k]);
     reordered_records.push_back(records[k]);
+  }
+  contacts.swap(reordered_contacts);
+  records.swap(reordered_records);
+}
+
+// The rank that would solve a contact is the one whose slab of x holds the atom keeping its
+// warm start (the smaller ID of a pair: the rule of collect_pair_contacts). Contacts keep their
+// order within a rank; the atom's slab is taken from its position now rather than at the last
+// reneighbouring, which only differs for atoms within a step's travel of a slab boundary.
+void FixContactDynamics::group_contacts_by_emulated_rank()
+{
+  std::vector<int> rank_of(contacts.size());
+  std::vector<std::size_t> count(emulated_ranks, 0);
+  for (std::size_t k = 0; k < contacts.size(); k++) {
+    const double x = atom->x[records[k].history_atom][0];
+    const int slab = static_cast<int>(std::floor((x - domain->boxlo[0]) / domain->xprd * emulated_ranks));
+    rank_of[k] = ((slab % emulated_ranks) + emulated_ranks) % emulated_ranks;
+    ++count[rank_of[k]];
+  }
+  emulated_block_ends.assign(emulated_ranks, 0);
+  std::vector<std::size_t> next(emulated_ranks, 0);
+  for (int r = 0; r < emulated_ranks; r++) {
+    next[r] = r == 0 ? 0 : emulated_block_ends[r - 1];
+    emulated_block_ends[r] = next[r] + count[r];
+  }
+  reordered_contacts.resize(contacts.size());
+  reordered_records.resize(records.size());
+  for (std::size_t k = 0; k < contacts.size(); k++) {
+    const std::size_t slot = next[rank_of[k]]++;
+    reordered_contacts[slot] = contacts[k];
+    reordered_records[slot] = records[k];
   }
   contacts.swap(reordered_contacts);
   records.swap(reordered_records);

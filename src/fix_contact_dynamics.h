@@ -91,6 +91,7 @@ class FixContactDynamics : public Fix {
   std::vector<cd::ContactLaw> type_laws;  // (ntypes+1)^2, row-major
   std::vector<cd::Wall> walls;
   std::mt19937_64 shuffle_rng;
+  int emulated_ranks;  // > 1: sweep as that many ranks along x would, on one rank (a diagnostic)
 
   // --- per-step state ---
   class NeighList *list;
@@ -105,6 +106,7 @@ class FixContactDynamics : public Fix {
   std::vector<ContactRecord> records;
   std::vector<cd::Contact> reordered_contacts;       // scratch of interleave_contacts
   std::vector<ContactRecord> reordered_records;
+  std::vector<std::size_t> emulated_block_ends;      // the contacts of each emulated rank end here
   // A listed pair left out of the solve: watched for overlap, promoted if it would overlap.
   struct WatchedPair {
     cd::Contact frame;
@@ -147,6 +149,7 @@ class FixContactDynamics : public Fix {
   void add_candidate(const cd::ContactGeometry &, const cd::ContactLaw &, const ContactRecord &);
   void shuffle_contacts();
   void interleave_contacts();
+  void group_contacts_by_emulated_rank();
   void solve_contacts();
   bool promote_closing_pairs();
   void load_warm_start();

@@ -37,6 +37,16 @@ struct SweepChange {
     contacts += 1.0;
   }
 
+  // Adds another set of contacts' sums (another rank's, another block's).
+  void merge(const SweepChange& other)
+  {
+    sum_change_sq += other.sum_change_sq;
+    sum_scale_sq += other.sum_scale_sq;
+    max_change = std::max(max_change, other.max_change);
+    sum_scale += other.sum_scale;
+    contacts += other.contacts;
+  }
+
   // The chosen norm; 0 when nothing changed, infinite when impulses changed but all vanished.
   double residual(ConvergenceNorm norm) const;
 };

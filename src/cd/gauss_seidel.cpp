@@ -166,28 +166,63 @@ void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVeloci
   for (const Contact& c : contacts) apply_impulse(c, c.impulse, velocity[c.body_a], velocity[c.body_b]);
 }
 
-SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                  double relaxation, bool frictionless_shortcut)
+namespace {
+
+SweepChange sweep_range(Contact* first, Contact* last, std::vector<BodyVelocity>& velocity, double relaxation,
+                        bool frictionless_shortcut)
 {
   SweepChange change;
   // A branch per contact rather than one sweep per kind: it serves scenes that mix mu = 0
   // with friction (mu/types, rough walls), and costs a frictional sweep ~1% (doc/benchmarks.md).
-  for (Contact& c : contacts) {
-    if (frictionless_shortcut && c.mu == 0.0) update_frictionless(c, velocity, relaxation, change);
-    else update_frictional(c, velocity, relaxation, change);
+  for (Contact* c = first; c != last; ++c) {
+    if (frictionless_shortcut && c->mu == 0.0) update_frictionless(*c, velocity, relaxation, change);
+    else update_frictional(*c, velocity, relaxation, change);
+  }
+  return change;
+}
+
+}  // namespace
+
+SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                  double relaxation, bool frictionless_shortcut)
+{
+  return sweep_range(contacts.data(), contacts.data() + contacts.size(), velocity, relaxation,
+                     frictionless_shortcut);
+}
+
+SweepChange sweep_in_blocks(std::vector<Contact>& contacts, const std::vector<std::size_t>& block_ends,
+                            std::vector<BodyVelocity>& velocity, double relaxation, bool frictionless_shortcut)
+{
+  const std::vector<BodyVelocity> start = velocity;
+  std::vector<BodyVelocity> block_velocity;
+  SweepChange change;
+  std::size_t block_start = 0;
+  for (const std::size_t block_end : block_ends) {
+    block_velocity = start;
+    change.merge(sweep_range(contacts.data() + block_start, contacts.data() + block_end, block_velocity, relaxation,
+                             frictionless_shortcut));
+    for (std::size_t b = 0; b < velocity.size(); b++) {
+      velocity[b].vx += block_velocity[b].vx - start[b].vx;
+      velocity[b].vy += block_velocity[b].vy - start[b].vy;
+      velocity[b].spin += block_velocity[b].spin - start[b].spin;
+    }
+    block_start = block_end;
   }
   return change;
 }
 
 SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                               const SolverSettings& settings, SweepExchange* exchange)
+                               const SolverSettings& settings, SweepExchange* exchange,
+                               const std::vector<std::size_t>* block_ends)
 {
   SolveReport report;
   // Without an exchange there is nothing to do; with one, every rank takes part in every
   // sweep's exchange, contacts or not.
   if (contacts.empty() && !exchange) return report;
   while (report.iterations < settings.max_iterations) {
-    SweepChange change = sweep(contacts, velocity, settings.relaxation, settings.frictionless_shortcut);
+    SweepChange change =
+        block_ends ? sweep_in_blocks(contacts, *block_ends, velocity, settings.relaxation, settings.frictionless_shortcut)
+                   : sweep(contacts, velocity, settings.relaxation, settings.frictionless_shortcut);
     if (exchange) exchange->after_sweep(change);
     ++report.iterations;
     report.residual = change.residual(settings.norm);

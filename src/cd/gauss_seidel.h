@@ -107,6 +107,7 @@ struct SolverSettings {
   bool frictionless_shortcut = true;
 };
 
+
 struct SolveReport {
   int iterations = 0;
   double residual = 0.0;
@@ -126,10 +127,21 @@ class SweepExchange {
 SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
                   double relaxation, bool frictionless_shortcut = true);
 
+// The sweep of a run decomposed over ranks, reproduced on one rank. The contacts form
+// consecutive blocks, one per rank (block_ends: the end of each, increasing, the last
+// contacts.size()); each block sweeps in order from the velocities at the start of the sweep
+// and the blocks' velocity changes are summed, as ranks sum the changes of their ghosts into
+// the owners after a sweep. A body touched by two blocks is updated by both at once.
+SweepChange sweep_in_blocks(std::vector<Contact>& contacts, const std::vector<std::size_t>& block_ends,
+                            std::vector<BodyVelocity>& velocity, double relaxation,
+                            bool frictionless_shortcut = true);
+
 // Sweeps until the norm falls to the tolerance or the iteration cap is reached. The contacts'
-// impulses must already be applied to `velocity` (apply_impulses).
+// impulses must already be applied to `velocity` (apply_impulses). With block_ends every sweep
+// is sweep_in_blocks (the emulation of ranks on one rank).
 SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                               const SolverSettings& settings, SweepExchange* exchange = nullptr);
+                               const SolverSettings& settings, SweepExchange* exchange = nullptr,
+                               const std::vector<std::size_t>* block_ends = nullptr);
 
 // Linearised gap at the end of the step: gap + theta dt u_n^+ (m).
 double end_of_step_gap(double gap, double normal_velocity, const StepParameters& step);

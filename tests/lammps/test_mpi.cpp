@@ -11,6 +11,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "comm.h"
@@ -43,7 +44,7 @@ std::vector<double> by_id(const LammpsSession& s, const std::function<double(int
 
 struct State {
   std::vector<double> x, y, vx, vy;
-  double candidates = 0.0, loaded = 0.0;
+  double candidates = 0.0, loaded = 0.0, sweeps = 0.0;
 };
 
 State state_of(const LammpsSession& s)
@@ -56,6 +57,7 @@ State state_of(const LammpsSession& s)
   st.vy = by_id(s, [&](int i) { return atom->v[i][1]; });
   st.candidates = s.fix("cd")->compute_vector(2);
   st.loaded = s.fix("cd")->compute_vector(3);
+  st.sweeps = s.fix("cd")->compute_vector(7);
   return st;
 }
 
@@ -164,6 +166,23 @@ TEST_F(SeveralRanks, LoadBalancingKeepsTheTrajectory)
   if (world_rank() != 0) return;
   EXPECT_LT(largest_difference(on_many.x, on_one.x, 20 * d) / d, trajectory_tolerance);
   EXPECT_LT(largest_difference(on_many.y, on_one.y) / d, trajectory_tolerance);
+}
+
+// emulate_ranks on one rank: the decomposed iteration without MPI reaches the trajectory of the
+// plain solve by another iteration (another sweep count).
+TEST_F(SeveralRanks, EmulatedRanksKeepTheTrajectory)
+{
+  if (world_rank() != 0) return;
+  State plain, emulated;
+  for (auto [target, options] : {std::pair{&plain, ""}, std::pair{&emulated, " emulate_ranks 4"}}) {
+    LammpsSession one(MPI_COMM_SELF);
+    load(one, std::string(tight_solve) + options);
+    one.commands("run 100");
+    *target = state_of(one);
+  }
+  EXPECT_LT(largest_difference(emulated.x, plain.x, 20 * d) / d, trajectory_tolerance);
+  EXPECT_LT(largest_difference(emulated.y, plain.y) / d, trajectory_tolerance);
+  EXPECT_NE(emulated.sweeps, plain.sweeps);
 }
 
 TEST_F(SeveralRanks, SameRankCountIsBitwiseReproducible)
