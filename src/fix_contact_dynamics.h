@@ -88,6 +88,7 @@ class FixContactDynamics : public Fix {
   double disc_density;    // > 0: masses reset to pi r^2 rho
   double alert_distance;  // candidate pairs: gap closed at free velocity <= alert (m)
   bool alert_given;
+  bool narrow_subdomains_reported;  // the narrow-subdomain warning is given once per fix
   std::vector<cd::ContactLaw> type_laws;  // (ntypes+1)^2, row-major
   std::vector<cd::Wall> walls;
   std::mt19937_64 shuffle_rng;
@@ -139,6 +140,7 @@ class FixContactDynamics : public Fix {
 
   const cd::ContactLaw &law(int itype, int jtype) const;
   void check_subdomains();
+  double narrowest_split_subdomain();
   void warn_initial_overlaps();
   cd::PeriodicBox periodic_box() const;
   void map_bodies();

@@ -193,6 +193,37 @@ TEST(MultipleRanks, SubdomainsThinnerThanTheContactCutoffAreRefused)
       << result.output;
 }
 
+// Two ranks along x on a box of the given width, two grains, two runs.
+std::string two_rank_deck(const std::string& box_width)
+{
+  return "units si\ndimension 2\natom_style sphere\natom_modify map array\ncomm_modify vel yes\n"
+         "neigh_modify delay 0\nprocessors 2 1 1\nboundary p f p\n"
+         "region box block 0 " + box_width + " 0 0.01 -0.0003 0.0003\ncreate_box 1 box\n"
+         "create_atoms 1 single 0.0004 0.00025 0\ncreate_atoms 1 single 0.0012 0.00025 0\n"
+         "set group all diameter 5e-4 density/disc 2500\nneighbor 1e-4 bin\ntimestep 1e-5\n"
+         "fix cd all contact/dynamics 0.5 0.5 wall yplane 0 0.5 0.5\nrun 5\nrun 5\n";
+}
+
+std::size_t count_of(const std::string& text, const std::string& part)
+{
+  std::size_t count = 0;
+  for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) count++;
+  return count;
+}
+
+TEST(MultipleRanks, NarrowSubdomainsAreReportedOnce)
+{
+  // Contact cutoff 2 d_max + skin = 6e-4: subdomains of 1e-3 are 1.7 cutoffs, of 1.5e-3 are 2.5.
+  const std::string launcher = "mpirun --allow-run-as-root --oversubscribe -np 2 ";
+  const std::string warning = "MPI subdomains down to 0.001 wide, less than 2 contact cutoffs (0.0006)";
+  const RunResult narrow = run_deck("narrow_subdomains", two_rank_deck("0.002"), launcher);
+  EXPECT_EQ(narrow.exit_status, 0) << narrow.output;
+  EXPECT_EQ(count_of(narrow.output, warning), 1u) << narrow.output;
+  const RunResult wide = run_deck("wide_subdomains", two_rank_deck("0.003"), launcher);
+  EXPECT_EQ(wide.exit_status, 0) << wide.output;
+  EXPECT_EQ(count_of(wide.output, "contact cutoffs"), 0u) << wide.output;
+}
+
 TEST(MultipleRanks, EmulatedRanksOnSeveralRanksAreRefused)
 {
   const std::string deck = "processors 2 1 1\n" + with_fix("0.5 0.5 emulate_ranks 2");
