@@ -107,7 +107,6 @@ struct SolverSettings {
   bool frictionless_shortcut = true;
 };
 
-
 struct SolveReport {
   int iterations = 0;
   double residual = 0.0;
