@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numeric>
 
 #include "atom.h"
 #include "comm.h"
@@ -745,7 +746,13 @@ void FixContactDynamics::collect_wall_contacts()
 
 void FixContactDynamics::interleave_contacts()
 {
-  const std::vector<int> permutation = cd::interleaved_order(contacts, static_cast<int>(bodies.velocity.size()));
+  reorder_contacts(cd::interleaved_order(contacts, static_cast<int>(bodies.velocity.size())));
+}
+
+// Contacts (and their records) in the order of permutation: its k-th entry is the old index of
+// the new k-th contact.
+void FixContactDynamics::reorder_contacts(const std::vector<int> &permutation)
+{
   reordered_contacts.clear();
   reordered_records.clear();
   for (int k : permutation) {
@@ -770,21 +777,13 @@ void FixContactDynamics::group_contacts_by_emulated_rank()
     rank_of[k] = ((slab % emulated_ranks) + emulated_ranks) % emulated_ranks;
     ++count[rank_of[k]];
   }
-  emulated_block_ends.assign(emulated_ranks, 0);
-  std::vector<std::size_t> next(emulated_ranks, 0);
-  for (int r = 0; r < emulated_ranks; r++) {
-    next[r] = r == 0 ? 0 : emulated_block_ends[r - 1];
-    emulated_block_ends[r] = next[r] + count[r];
-  }
-  reordered_contacts.resize(contacts.size());
-  reordered_records.resize(records.size());
-  for (std::size_t k = 0; k < contacts.size(); k++) {
-    const std::size_t slot = next[rank_of[k]]++;
-    reordered_contacts[slot] = contacts[k];
-    reordered_records[slot] = records[k];
-  }
-  contacts.swap(reordered_contacts);
-  records.swap(reordered_records);
+  emulated_block_ends.resize(emulated_ranks);
+  std::partial_sum(count.begin(), count.end(), emulated_block_ends.begin());
+  std::vector<std::size_t> next_slot(emulated_ranks, 0);
+  std::copy(emulated_block_ends.begin(), emulated_block_ends.end() - 1, next_slot.begin() + 1);
+  std::vector<int> permutation(contacts.size());
+  for (std::size_t k = 0; k < contacts.size(); k++) permutation[next_slot[rank_of[k]]++] = static_cast<int>(k);
+  reorder_contacts(permutation);
 }
 
 void FixContactDynamics::shuffle_contacts()

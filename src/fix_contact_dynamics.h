@@ -105,7 +105,7 @@ class FixContactDynamics : public Fix {
   bool distributed;                     // more than one rank: exchange every sweep
   std::vector<cd::Contact> contacts;
   std::vector<ContactRecord> records;
-  std::vector<cd::Contact> reordered_contacts;       // scratch of interleave_contacts
+  std::vector<cd::Contact> reordered_contacts;       // scratch of reorder_contacts
   std::vector<ContactRecord> reordered_records;
   std::vector<std::size_t> emulated_block_ends;      // the contacts of each emulated rank end here
   // A listed pair left out of the solve: watched for overlap, promoted if it would overlap.
@@ -151,6 +151,7 @@ class FixContactDynamics : public Fix {
   void add_candidate(const cd::ContactGeometry &, const cd::ContactLaw &, const ContactRecord &);
   void shuffle_contacts();
   void interleave_contacts();
+  void reorder_contacts(const std::vector<int> &permutation);
   void group_contacts_by_emulated_rank();
   void solve_contacts();
   bool promote_closing_pairs();
