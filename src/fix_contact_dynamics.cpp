@@ -779,10 +779,9 @@ void FixContactDynamics::group_contacts_by_emulated_rank()
   }
   emulated_block_ends.resize(emulated_ranks);
   std::partial_sum(count.begin(), count.end(), emulated_block_ends.begin());
-  std::vector<std::size_t> next_slot(emulated_ranks, 0);
-  std::copy(emulated_block_ends.begin(), emulated_block_ends.end() - 1, next_slot.begin() + 1);
   std::vector<int> permutation(contacts.size());
-  for (std::size_t k = 0; k < contacts.size(); k++) permutation[next_slot[rank_of[k]]++] = static_cast<int>(k);
+  std::iota(permutation.begin(), permutation.end(), 0);
+  std::stable_sort(permutation.begin(), permutation.end(), [&](int a, int b) { return rank_of[a] < rank_of[b]; });
   reorder_contacts(permutation);
 }
 
