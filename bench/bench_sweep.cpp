@@ -61,7 +61,7 @@ LocalProblem local_problem(const cd::Contact& c, const std::vector<cd::BodyVeloc
 {
   const cd::Local2 u = cd::relative_velocity(c, velocity[c.body_a], velocity[c.body_b]);
   const cd::Local2 own = c.delassus.times(c.impulse);
-  return {c.delassus, {u.n + c.velocity_bias - own.n, u.t - own.t}, c.mu};
+  return {c.delassus.full(), {u.n + c.velocity_bias - own.n, u.t - own.t}, c.mu};
 }
 
 // The bed, its next step frozen, and the solver state at the start of that step's solve.
@@ -173,12 +173,14 @@ void time_restored_sweeps(benchmark::State& state, const Scene& s, Order order, 
   const std::vector<cd::Contact>& start = s.contacts[order];
   std::vector<cd::Contact> contacts = start;
   std::vector<cd::BodyVelocity> velocity = s.velocity;
+  cd::SolverSettings settings = s.bed.spec().solver;
+  settings.frictionless_shortcut = frictionless_shortcut;
   for (auto _ : state) {
     state.PauseTiming();
     std::copy(start.begin(), start.end(), contacts.begin());
     std::copy(s.velocity.begin(), s.velocity.end(), velocity.begin());
     state.ResumeTiming();
-    benchmark::DoNotOptimize(cd::sweep(contacts, velocity, 1.0, frictionless_shortcut));
+    benchmark::DoNotOptimize(cd::sweep(contacts, velocity, settings));
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(contacts.size()));
@@ -199,7 +201,7 @@ void BM_SweepChained(benchmark::State& state)
   std::vector<cd::Contact> contacts = s.contacts[state.range(0)];
   std::vector<cd::BodyVelocity> velocity = s.velocity;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(cd::sweep(contacts, velocity, 1.0));
+    benchmark::DoNotOptimize(cd::sweep(contacts, velocity, cd::SolverSettings{}));
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(contacts.size()));

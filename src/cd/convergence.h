@@ -25,16 +25,22 @@ struct SweepChange {
   double sum_scale = 0.0;      // sum |W p|
   double contacts = 0.0;       // number of contacts visited
 
-  // Inline: called once per contact update in the sweep.
+  // One contact's W dp and W p, for the quadratic norm only: no square root, which is what
+  // its sweeps accumulate (called once per contact update).
+  void add_squares(Local2 velocity_change, Local2 velocity_scale)
+  {
+    sum_change_sq += velocity_change.n * velocity_change.n + velocity_change.t * velocity_change.t;
+    sum_scale_sq += velocity_scale.n * velocity_scale.n + velocity_scale.t * velocity_scale.t;
+    contacts += 1.0;
+  }
+
+  // One contact's W dp and W p, for either norm.
   void add(Local2 velocity_change, Local2 velocity_scale)
   {
-    const double change_sq = velocity_change.n * velocity_change.n + velocity_change.t * velocity_change.t;
-    const double scale_sq = velocity_scale.n * velocity_scale.n + velocity_scale.t * velocity_scale.t;
-    sum_change_sq += change_sq;
-    sum_scale_sq += scale_sq;
-    max_change = std::max(max_change, std::sqrt(change_sq));
-    sum_scale += std::sqrt(scale_sq);
-    contacts += 1.0;
+    add_squares(velocity_change, velocity_scale);
+    max_change = std::max(max_change, std::sqrt(velocity_change.n * velocity_change.n +
+                                                velocity_change.t * velocity_change.t));
+    sum_scale += std::sqrt(velocity_scale.n * velocity_scale.n + velocity_scale.t * velocity_scale.t);
   }
 
   // Adds another set of contacts' sums (another rank's, another block's).

@@ -23,6 +23,21 @@ struct Delassus2 {
   Local2 times_normal(double p_n) const { return {nn * p_n, nt * p_n}; }  // W (p_n, 0)
 };
 
+// W of a disk contact. The normal passes through both centres (or, on a wall, through the
+// disk's centre), so W_nt = 0 and the local problem separates: Signorini on the normal
+// impulse, then the tangential impulse clamped to the cone. The inverses are kept so that
+// the sweep divides nothing.
+struct DiskDelassus {
+  double nn = 0.0;          // m/s per N s
+  double tt = 0.0;
+  double inverse_nn = 0.0;  // N s per m/s
+  double inverse_tt = 0.0;
+
+  static DiskDelassus of(double nn, double tt) { return {nn, tt, 1.0 / nn, 1.0 / tt}; }
+  Local2 times(Local2 p) const { return {nn * p.n, tt * p.t}; }
+  Delassus2 full() const { return {nn, 0.0, tt}; }
+};
+
 // Which branch of the Coulomb graph the local solution lies on.
 // slip_positive: u_t > 0 and p_t = -mu p_n; slip_negative: u_t < 0 and p_t = +mu p_n.
 enum class ContactStatus : unsigned char { no_contact, stick, slip_positive, slip_negative };
@@ -84,6 +99,17 @@ inline LocalSolution solve_coulomb_local(const Delassus2& w, Local2 u_free, doub
 inline double solve_frictionless_local(const Delassus2& w, double free_normal_velocity)
 {
   return free_normal_velocity >= 0.0 ? 0.0 : -free_normal_velocity / w.nn;
+}
+
+// solve_coulomb_local for W = diag(nn, tt), given the impulse that would stop the contact
+// outright, stick = -W^-1 u_free. With no coupling the slip branches keep the sticking
+// normal impulse, so the solution is that impulse with p_n >= 0 and p_t clamped to the cone:
+// the same branches as the general solver, with no division. NaN propagates (std::max keeps it).
+inline Local2 solve_coulomb_disk(Local2 stick, double mu)
+{
+  const double p_n = std::max(stick.n, 0.0);
+  const double bound = mu * p_n;
+  return {p_n, std::min(std::max(stick.t, -bound), bound)};
 }
 
 // Projection of an impulse onto the friction cone {|p_t| <= mu p_n}.

@@ -40,42 +40,53 @@ inline void apply_normal_impulse(const Contact& c, double dp_n, BodyVelocity& a,
   b.vy -= c.inv_mass_b * py;
 }
 
-// Exact local solve of one contact with every other impulse frozen; returns W dp and W p
-// for the convergence norm.
-inline void update_frictional(Contact& c, std::vector<BodyVelocity>& velocity, double relaxation,
-                              SweepChange& change)
+// What a sweep accumulates for its norm: the quadratic norm needs no square root.
+template <ConvergenceNorm norm>
+inline void record_change(SweepChange& change, Local2 velocity_change, Local2 velocity_scale)
+{
+  if constexpr (norm == ConvergenceNorm::quadratic) change.add_squares(velocity_change, velocity_scale);
+  else change.add(velocity_change, velocity_scale);
+}
+
+// The impulse p (every other impulse frozen) or, under relaxation w, w p + (1 - w) p_previous.
+inline Local2 relaxed(Local2 p, Local2 previous, double relaxation)
+{
+  if (relaxation == 1.0) return p;
+  return {relaxation * p.n + (1.0 - relaxation) * previous.n, relaxation * p.t + (1.0 - relaxation) * previous.t};
+}
+
+// Exact local solve of one contact with every other impulse frozen, in the accumulated-impulse
+// form: the impulse that would stop the contact is the current one minus W^-1 (u + b), with u
+// the relative velocity that already includes the contact's own impulse.
+template <ConvergenceNorm norm>
+inline void update_frictional(Contact& c, BodyVelocity* velocity, double relaxation, SweepChange& change)
 {
   BodyVelocity& a = velocity[c.body_a];
   BodyVelocity& b = velocity[c.body_b];
   const Local2 u = relative_velocity(c, a, b);
-  const Local2 own = c.delassus.times(c.impulse);
-  const Local2 u_free{u.n + c.velocity_bias - own.n, u.t - own.t};
-
-  Local2 p = solve_coulomb_local(c.delassus, u_free, c.mu).impulse;
-  if (relaxation != 1.0) {
-    p.n = relaxation * p.n + (1.0 - relaxation) * c.impulse.n;
-    p.t = relaxation * p.t + (1.0 - relaxation) * c.impulse.t;
-  }
+  const Local2 stick{c.impulse.n - c.delassus.inverse_nn * (u.n + c.velocity_bias),
+                     c.impulse.t - c.delassus.inverse_tt * u.t};
+  const Local2 p = relaxed(solve_coulomb_disk(stick, c.mu), c.impulse, relaxation);
   const Local2 dp{p.n - c.impulse.n, p.t - c.impulse.t};
   c.impulse = p;
   apply_impulse(c, dp, a, b);
-  change.add(c.delassus.times(dp), c.delassus.times(p));
+  record_change<norm>(change, c.delassus.times(dp), c.delassus.times(p));
 }
 
 // update_frictional for mu = 0, where p_t stays 0 (warm_start drops a carried one): the
-// normal velocity, one division and the normal impulse; no tangential solve, no spin.
-inline void update_frictionless(Contact& c, std::vector<BodyVelocity>& velocity, double relaxation,
-                                SweepChange& change)
+// normal velocity and the normal impulse; no tangential solve, no spin.
+template <ConvergenceNorm norm>
+inline void update_frictionless(Contact& c, BodyVelocity* velocity, double relaxation, SweepChange& change)
 {
   BodyVelocity& a = velocity[c.body_a];
   BodyVelocity& b = velocity[c.body_b];
-  const double u_free_n = relative_velocity(c, a, b).n + c.velocity_bias - c.delassus.nn * c.impulse.n;
-  double p_n = solve_frictionless_local(c.delassus, u_free_n);
+  const double stick_n = c.impulse.n - c.delassus.inverse_nn * (relative_velocity(c, a, b).n + c.velocity_bias);
+  double p_n = std::max(stick_n, 0.0);
   if (relaxation != 1.0) p_n = relaxation * p_n + (1.0 - relaxation) * c.impulse.n;
   const double dp_n = p_n - c.impulse.n;
   c.impulse.n = p_n;
   apply_normal_impulse(c, dp_n, a, b);
-  change.add(c.delassus.times_normal(dp_n), c.delassus.times_normal(p_n));
+  record_change<norm>(change, {c.delassus.nn * dp_n, 0.0}, {c.delassus.nn * p_n, 0.0});
 }
 
 }  // namespace
@@ -110,8 +121,7 @@ void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies,
   c.spin_gain_b = c.lever_b * b.inv_inertia;
   const double translation = a.inv_mass + b.inv_mass;
   // For disks the normal passes through both centres: no normal-tangential coupling.
-  c.delassus = {translation, 0.0,
-                translation + c.lever_a * c.spin_gain_a + c.lever_b * c.spin_gain_b};
+  c.delassus = DiskDelassus::of(translation, translation + c.lever_a * c.spin_gain_a + c.lever_b * c.spin_gain_b);
   c.mu = law.mu;
   c.impulse = {};
 
@@ -168,30 +178,36 @@ void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVeloci
 
 namespace {
 
-SweepChange sweep_range(Contact* first, Contact* last, std::vector<BodyVelocity>& velocity, double relaxation,
-                        bool frictionless_shortcut)
+template <ConvergenceNorm norm>
+SweepChange sweep_range(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings)
 {
   SweepChange change;
+  const bool shortcut = settings.frictionless_shortcut;
   // A branch per contact rather than one sweep per kind: it serves scenes that mix mu = 0
-  // with friction (mu/types, rough walls), and costs a frictional sweep ~1% (doc/benchmarks.md).
+  // with friction (mu/types, rough walls).
   for (Contact* c = first; c != last; ++c) {
-    if (frictionless_shortcut && c->mu == 0.0) update_frictionless(*c, velocity, relaxation, change);
-    else update_frictional(*c, velocity, relaxation, change);
+    if (shortcut && c->mu == 0.0) update_frictionless<norm>(*c, velocity, settings.relaxation, change);
+    else update_frictional<norm>(*c, velocity, settings.relaxation, change);
   }
   return change;
 }
 
+SweepChange sweep_range(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings)
+{
+  if (settings.norm == ConvergenceNorm::quadratic)
+    return sweep_range<ConvergenceNorm::quadratic>(first, last, velocity, settings);
+  return sweep_range<ConvergenceNorm::maximum>(first, last, velocity, settings);
+}
+
 }  // namespace
 
-SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                  double relaxation, bool frictionless_shortcut)
+SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const SolverSettings& settings)
 {
-  return sweep_range(contacts.data(), contacts.data() + contacts.size(), velocity, relaxation,
-                     frictionless_shortcut);
+  return sweep_range(contacts.data(), contacts.data() + contacts.size(), velocity.data(), settings);
 }
 
 SweepChange sweep_in_blocks(std::vector<Contact>& contacts, const std::vector<std::size_t>& block_ends,
-                            std::vector<BodyVelocity>& velocity, double relaxation, bool frictionless_shortcut)
+                            std::vector<BodyVelocity>& velocity, const SolverSettings& settings)
 {
   const std::vector<BodyVelocity> start = velocity;
   std::vector<BodyVelocity> block_velocity;
@@ -199,8 +215,8 @@ SweepChange sweep_in_blocks(std::vector<Contact>& contacts, const std::vector<st
   std::size_t block_start = 0;
   for (const std::size_t block_end : block_ends) {
     block_velocity = start;
-    change.merge(sweep_range(contacts.data() + block_start, contacts.data() + block_end, block_velocity, relaxation,
-                             frictionless_shortcut));
+    change.merge(sweep_range(contacts.data() + block_start, contacts.data() + block_end, block_velocity.data(),
+                             settings));
     for (std::size_t b = 0; b < velocity.size(); b++) {
       velocity[b].vx += block_velocity[b].vx - start[b].vx;
       velocity[b].vy += block_velocity[b].vy - start[b].vy;
@@ -220,9 +236,8 @@ SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyV
   // sweep's exchange, contacts or not.
   if (contacts.empty() && !exchange) return report;
   while (report.iterations < settings.max_iterations) {
-    SweepChange change =
-        block_ends ? sweep_in_blocks(contacts, *block_ends, velocity, settings.relaxation, settings.frictionless_shortcut)
-                   : sweep(contacts, velocity, settings.relaxation, settings.frictionless_shortcut);
+    SweepChange change = block_ends ? sweep_in_blocks(contacts, *block_ends, velocity, settings)
+                                    : sweep(contacts, velocity, settings);
     if (exchange) exchange->after_sweep(change);
     ++report.iterations;
     report.residual = change.residual(settings.norm);

@@ -46,7 +46,7 @@ struct Contact {
   double inv_mass_b = 0.0;
   double spin_gain_a = 0.0;       // lever * inverse inertia: spin change per tangential impulse
   double spin_gain_b = 0.0;
-  Delassus2 delassus;             // local W (m/s per N s)
+  DiskDelassus delassus;          // local W, diagonal for disks
   double mu = 0.0;
   double velocity_bias = 0.0;     // b (m/s): the normal law acts on u_n + b (prepare_mechanics)
   double gap = 0.0;               // at the predicted configuration (m)
@@ -121,10 +121,11 @@ class SweepExchange {
   virtual void after_sweep(SweepChange& change) = 0;
 };
 
-// One sweep over the contacts in their stored order. Frictionless contacts (mu = 0) take the
-// shortcut of SolverSettings::frictionless_shortcut unless it is false.
+// One sweep over the contacts in their stored order, accumulating what `settings.norm` needs.
+// Frictionless contacts (mu = 0) take the shortcut of SolverSettings::frictionless_shortcut
+// unless it is false.
 SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                  double relaxation, bool frictionless_shortcut = true);
+                  const SolverSettings& settings);
 
 // The sweep of a run decomposed over ranks, reproduced on one rank. The contacts form
 // consecutive blocks, one per rank (block_ends: the end of each, increasing, the last
@@ -132,8 +133,7 @@ SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& vel
 // and the blocks' velocity changes are summed, as ranks sum the changes of their ghosts into
 // the owners after a sweep. A body touched by two blocks is updated by both at once.
 SweepChange sweep_in_blocks(std::vector<Contact>& contacts, const std::vector<std::size_t>& block_ends,
-                            std::vector<BodyVelocity>& velocity, double relaxation,
-                            bool frictionless_shortcut = true);
+                            std::vector<BodyVelocity>& velocity, const SolverSettings& settings);
 
 // Sweeps until the norm falls to the tolerance or the iteration cap is reached. The contacts'
 // impulses must already be applied to `velocity` (apply_impulses). With block_ends every sweep

@@ -40,7 +40,7 @@ struct DoubleFloor {
 TEST(BlockSweep, TwoBlocksPushingOneBodyOvershootAndAlternate)
 {
   DoubleFloor one_block;
-  cd::sweep(one_block.pile.contacts, one_block.pile.bodies.velocity, 1.0);
+  cd::sweep(one_block.pile.contacts, one_block.pile.bodies.velocity, {});
   EXPECT_NEAR(one_block.vy(), 0.0, 1e-15);
   EXPECT_NEAR(one_block.pile.contacts[0].impulse.n, -one_block.mass * one_block.fall, 1e-15 * one_block.mass);
   EXPECT_EQ(one_block.pile.contacts[1].impulse.n, 0.0);
@@ -48,7 +48,7 @@ TEST(BlockSweep, TwoBlocksPushingOneBodyOvershootAndAlternate)
   DoubleFloor two_blocks;
   const std::vector<std::size_t> block_ends{1, 2};
   for (int sweep = 1; sweep <= 5; sweep++) {
-    cd::sweep_in_blocks(two_blocks.pile.contacts, block_ends, two_blocks.pile.bodies.velocity, 1.0);
+    cd::sweep_in_blocks(two_blocks.pile.contacts, block_ends, two_blocks.pile.bodies.velocity, {});
     const double expected = sweep % 2 == 1 ? -two_blocks.fall : two_blocks.fall;
     EXPECT_NEAR(two_blocks.vy(), expected, 1e-12 * -two_blocks.fall) << "sweep " << sweep;
     EXPECT_EQ(two_blocks.pile.bodies.velocity[1].vx, 0.0);
@@ -134,8 +134,8 @@ TEST(BlockSweep, ConvergesToTheGaussSeidelSolution)
     }
 
   WalledStack single, reference;
-  cd::sweep_in_blocks(single.contacts, {single.contacts.size()}, single.bodies.velocity, 1.0);
-  cd::sweep(reference.contacts, reference.bodies.velocity, 1.0);
+  cd::sweep_in_blocks(single.contacts, {single.contacts.size()}, single.bodies.velocity, {});
+  cd::sweep(reference.contacts, reference.bodies.velocity, {});
   for (std::size_t b = 1; b < reference.bodies.velocity.size(); b++) {
     EXPECT_NEAR(single.bodies.velocity[b].vx, reference.bodies.velocity[b].vx, 1e-14 * fall) << b;
     EXPECT_NEAR(single.bodies.velocity[b].vy, reference.bodies.velocity[b].vy, 1e-14 * fall) << b;

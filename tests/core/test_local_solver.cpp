@@ -43,6 +43,25 @@ TEST(LocalSolver, FrictionlessContactHasNoTangentialImpulse)
   EXPECT_EQ(s.impulse.t, 0.0);
 }
 
+// The sweep's closed form for disks (W_nt = 0) gives the general solver's impulse on every
+// branch: separating, sticking, slipping either way, frictionless and near-infinite friction.
+TEST(LocalSolver, DiskClosedFormMatchesTheGeneralSolver)
+{
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (double mu : {0.0, 0.05, 0.5, 2.0, 1e6}) {
+    for (int trial = 0; trial < 2000; trial++) {
+      const cd::DiskDelassus w = cd::DiskDelassus::of(0.5 + std::abs(unit(rng)), 0.5 + std::abs(unit(rng)));
+      const cd::Local2 u_free{unit(rng), unit(rng)};
+      const cd::Local2 general = cd::solve_coulomb_local(w.full(), u_free, mu).impulse;
+      const cd::Local2 disk = cd::solve_coulomb_disk({-w.inverse_nn * u_free.n, -w.inverse_tt * u_free.t}, mu);
+      // Both are O(1) and computed with a few roundings each.
+      EXPECT_NEAR(disk.n, general.n, 1e-15) << "mu " << mu << " trial " << trial;
+      EXPECT_NEAR(disk.t, general.t, 1e-15 * (1.0 + mu)) << "mu " << mu << " trial " << trial;
+    }
+  }
+}
+
 TEST(LocalSolver, CoupledDelassusSolutionsSatisfyCoulombLaw)
 {
   std::mt19937_64 rng(7);
