@@ -53,7 +53,7 @@ double wall_key(int wall_index, cd::WallPart part)
 
 FixContactDynamics::FixContactDynamics(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), theta(0.5), order(ContactOrder::fixed), warm_start(true),
-    max_contacts(12), disc_density(0.0), alert_distance(-1.0), alert_given(false), narrow_subdomains_reported(false), emulated_ranks(1), list(nullptr), covered_radius(0.0), mean_diameter(0.0),
+    max_contacts(12), disc_density(0.0), alert_distance(-1.0), alert_given(false), narrow_subdomains_reported(false), list(nullptr), covered_radius(0.0), mean_diameter(0.0),
     natoms_checked(-1), distributed(false), max_overlap(0.0), mean_overlap(0.0),
     solved_contacts_total(0.0), loaded_contacts_total(0.0), loaded_contacts(0),
     total_iterations(0.0), total_unconverged_steps(0.0), total_steps(0.0), history(nullptr),
@@ -222,10 +222,6 @@ void FixContactDynamics::parse_arguments(int narg, char **arg)
       alert_given = true;
       if (alert_distance < 0.0)
         error->all(FLERR, "Fix contact/dynamics: alert must be >= 0, got {}", alert_distance);
-    } else if (keyword == "emulate_ranks") {
-      emulated_ranks = integer_for("emulate_ranks", value, error);
-      if (emulated_ranks < 1)
-        error->all(FLERR, "Fix contact/dynamics: emulate_ranks must be >= 1, got {}", emulated_ranks);
     } else if (keyword == "density") {
       disc_density = number_for("density", value, error);
       if (disc_density <= 0.0)
@@ -306,9 +302,6 @@ int FixContactDynamics::parse_wall(int iarg, int narg, char **arg)
 void FixContactDynamics::init()
 {
   distributed = comm->nprocs > 1;
-  if (distributed && emulated_ranks > 1)
-    error->all(FLERR, "Fix contact/dynamics: emulate_ranks reproduces a decomposed sweep on one rank; "
-               "this run has {} ranks", comm->nprocs);
   if (!comm->ghost_velocity)
     error->all(FLERR, "Fix contact/dynamics requires ghost velocities: use comm_modify vel yes");
   if (atom->map_style == Atom::MAP_NONE)
@@ -341,6 +334,10 @@ void FixContactDynamics::init()
   const double cutoff = 2.0 * covered_radius + neighbor->skin;
   comm->cutghostuser = std::max(comm->cutghostuser, cutoff);
   request_neighbor_list();
+  // Without a pair style LAMMPS knows no bin for atom sorting and switches it off (with a
+  // warning); sorting keeps neighbours close in memory as grains flow. Half the contact cutoff,
+  // LAMMPS's own default with a pair style, unless atom_modify sort set a bin.
+  if (atom->sortfreq > 0 && atom->userbinsize == 0.0) atom->userbinsize = 0.5 * cutoff;
 }
 
 void FixContactDynamics::request_neighbor_list()
@@ -408,6 +405,7 @@ void FixContactDynamics::check_disk_masses()
   natoms_checked = atom->natoms;
   mean_diameter = diameter_sum[1] > 0.0 ? diameter_sum[0] / diameter_sum[1] : 2.0 * covered_radius;
   if (!alert_given) alert_distance = default_alert_fraction * mean_diameter;
+  reach.set_margin_floor(alert_distance);
   if (diameter_sum[1] == 0.0) return;
   if (disc_density > 0.0) return;
   const bool area_uniform = global[0] <= -global[1] * (1.0 + uniform_ratio_tolerance);
@@ -473,11 +471,6 @@ void FixContactDynamics::warn_initial_overlaps()
 void FixContactDynamics::check_subdomains()
 {
   const double cutoff = 2.0 * covered_radius + neighbor->skin;
-  // Emulated ranks obey the rule of real ones: the summed coupling of slabs thinner than a
-  // grain is not a decomposition LAMMPS would make, and it can diverge within one step.
-  if (emulated_ranks > 1 && domain->xprd / emulated_ranks < cutoff)
-    error->all(FLERR, "Fix contact/dynamics: emulate_ranks {} makes slabs of {}, thinner than the contact "
-               "cutoff {} (2 max radius + skin)", emulated_ranks, domain->xprd / emulated_ranks, cutoff);
   if (!distributed) return;
   const double width = narrowest_split_subdomain();
   if (width < cutoff)
@@ -537,22 +530,23 @@ void FixContactDynamics::final_integrate()
   }
   if (neighbor->ago == 0) check_subdomains();
   gather_bodies();
-  contacts.clear();
+  const cd::StepParameters step{update->dt, theta};
+  reach.begin_step(bodies, step);
+  pairs.clear();
   records.clear();
-  watched.clear();
-  collect_pair_contacts();
-  collect_wall_contacts();
+  watched_records.clear();
+  collect_pairs(-std::numeric_limits<double>::infinity(), reach.margin());
   if (order == ContactOrder::shuffled) shuffle_contacts();
   else interleave_contacts();
   if (warm_start) load_warm_start();
 
-  cd::apply_impulses(contacts, bodies.velocity);
+  cd::apply_impulses(pairs.solved, bodies.velocity);
   solve_contacts();
 
   store_warm_start();
   write_back_motion();
   fill_local_output();
-  reduce_step_outputs(measure_overlaps());
+  reduce_step_outputs(cd::measure_overlaps(pairs, bodies.velocity, step));
 
   total_iterations += last_report.iterations;
   total_steps += 1.0;
@@ -567,46 +561,17 @@ void FixContactDynamics::final_integrate()
   }
 }
 
-// Solves, then lets pairs that the solution would drive into overlap join and solves again
-// from where it stopped; a few rounds settle it (each round only adds contacts).
+// cd::solve_step: solves, lets watched pairs that the solution would drive into overlap join,
+// solves again; their records follow them.
 void FixContactDynamics::solve_contacts()
 {
-  constexpr int max_rounds = 10;
   RankExchange exchange(*this);
   if (distributed) exchange.synchronise_velocities();
-  cd::SweepExchange *across_ranks = distributed ? &exchange : nullptr;
-  const std::vector<std::size_t> *blocks = emulated_ranks > 1 ? &emulated_block_ends : nullptr;
-  if (blocks) group_contacts_by_emulated_rank();
-  last_report = cd::solve_gauss_seidel(contacts, bodies.velocity, solver_settings, across_ranks, blocks);
-  for (int round = 1; round < max_rounds; round++) {
-    int promoted_local = promote_closing_pairs() ? 1 : 0, promoted = promoted_local;
-    if (distributed) MPI_Allreduce(&promoted_local, &promoted, 1, MPI_INT, MPI_MAX, world);
-    if (!promoted) break;
-    if (blocks) group_contacts_by_emulated_rank();    // the promoted pairs join their rank
-    const cd::SolveReport more =
-        cd::solve_gauss_seidel(contacts, bodies.velocity, solver_settings, across_ranks, blocks);
-    last_report.iterations += more.iterations;
-    last_report.residual = more.residual;
-    last_report.converged = more.converged;
-  }
-}
-
-bool FixContactDynamics::promote_closing_pairs()
-{
-  const cd::StepParameters step{update->dt, theta};
-  const std::size_t before = contacts.size();
-  std::size_t kept = 0;
-  for (WatchedPair &pair : watched) {
-    if (!cd::closes_after_solve(pair.frame, bodies.velocity, step)) {
-      watched[kept++] = pair;
-      continue;
-    }
-    cd::prepare_mechanics(pair.frame, pair.law, bodies, step);
-    contacts.push_back(pair.frame);
-    records.push_back(pair.record);
-  }
-  watched.resize(kept);
-  return contacts.size() > before;
+  NeighbourPairs wider(*this);
+  promoted_records.clear();
+  last_report = cd::solve_step(pairs, promoted_records, bodies, {update->dt, theta}, solver_settings, reach, wider,
+                               distributed ? &exchange : nullptr);
+  for (const int k : promoted_records) records.push_back(watched_records[k]);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -672,21 +637,26 @@ void FixContactDynamics::gather_bodies()
   }
 }
 
-void FixContactDynamics::add_candidate(const cd::ContactGeometry &geometry, const cd::ContactLaw &contact_law,
-                                       const ContactRecord &record)
+void FixContactDynamics::add_pair(const cd::ContactGeometry &geometry, const cd::ContactLaw &contact_law,
+                                  const ContactRecord &record)
 {
-  cd::Contact contact = cd::contact_frame(geometry);
   const cd::StepParameters step{update->dt, theta};
-  if (!cd::is_candidate(contact, bodies, step, alert_distance)) {
-    watched.push_back({contact, contact_law, record});
-    return;
-  }
-  cd::prepare_mechanics(contact, contact_law, bodies, step);
-  contacts.push_back(contact);
-  records.push_back(record);
+  const int watched_index = static_cast<int>(watched_records.size());
+  if (pairs.add(cd::contact_frame(geometry), contact_law, watched_index, bodies, step, alert_distance))
+    records.push_back(record);
+  else
+    watched_records.push_back(record);
 }
 
-void FixContactDynamics::collect_pair_contacts()
+// The listed pairs whose gap lies above their reach plus from_margin and at most their reach
+// plus to_margin (cd::PairReach), and the walls likewise: solved if candidates, else watched.
+void FixContactDynamics::collect_pairs(double from_margin, double to_margin)
+{
+  collect_grain_pairs(from_margin, to_margin);
+  collect_wall_pairs(from_margin, to_margin);
+}
+
+void FixContactDynamics::collect_grain_pairs(double from_margin, double to_margin)
 {
   double **x = atom->x;
   const double *radius = atom->radius;
@@ -694,6 +664,7 @@ void FixContactDynamics::collect_pair_contacts()
   const int *type = atom->type;
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
+  const bool widening = std::isfinite(from_margin);
 
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -706,16 +677,18 @@ void FixContactDynamics::collect_pair_contacts()
       // the smaller atom ID solves it (on the rank that owns that atom).
       if (j >= nlocal && tag[i] > tag[j]) continue;
       const int body_j = body_of_atom[j];
+      const cd::Disk disk_j{x[j][0], x[j][1], radius[j]};
+      if (!reach.within(1 + i, disk_i, body_j, disk_j, to_margin)) continue;
+      if (widening && reach.within(1 + i, disk_i, body_j, disk_j, from_margin)) continue;
       if (body_j == 1 + i)
         error->one(FLERR, "Fix contact/dynamics: atom {} touches its own periodic image; the cell "
                    "is too short", tag[i]);
-      const cd::Disk disk_j{x[j][0], x[j][1], radius[j]};
       const cd::ContactGeometry geometry = cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j);
       // The warm start lives with the smaller ID, an owned atom by the rule above.
       const bool i_keeps = tag[i] < tag[j];
-      add_candidate(geometry, law(type[i], type[j]),
-                    {tag[i], tag[j], 0, i_keeps ? i : j, static_cast<double>(i_keeps ? tag[j] : tag[i]),
-                     geometry.point_x, geometry.point_y});
+      add_pair(geometry, law(type[i], type[j]),
+               {tag[i], tag[j], 0, i_keeps ? i : j, static_cast<double>(i_keeps ? tag[j] : tag[i]),
+                geometry.point_x, geometry.point_y});
     }
   }
 }
@@ -725,28 +698,28 @@ cd::PeriodicBox FixContactDynamics::periodic_box() const
   return {domain->xperiodic != 0, domain->yperiodic != 0, domain->xprd, domain->yprd};
 }
 
-void FixContactDynamics::collect_wall_contacts()
+void FixContactDynamics::collect_wall_pairs(double from_margin, double to_margin)
 {
   if (walls.empty()) return;
   const cd::PeriodicBox box = periodic_box();
-  const double alert = neighbor->skin;
   double **x = atom->x;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(atom->mask[i] & groupbit)) continue;
     const cd::Disk disk{x[i][0], x[i][1], atom->radius[i]};
+    const double reach_i = reach.reach(1 + i);
     for (int w = 0; w < static_cast<int>(walls.size()); w++) {
-      const auto touch = cd::wall_contact(walls[w], 1 + i, disk, alert, box);
-      if (!touch) continue;
-      add_candidate(touch->geometry, walls[w].law,
-                    {atom->tag[i], 0, w + 1, i, wall_key(w, touch->part), touch->geometry.point_x,
-                     touch->geometry.point_y});
+      const auto touch = cd::wall_contact(walls[w], 1 + i, disk, reach_i + to_margin, box);
+      if (!touch || touch->geometry.gap <= reach_i + from_margin) continue;
+      add_pair(touch->geometry, walls[w].law,
+               {atom->tag[i], 0, w + 1, i, wall_key(w, touch->part), touch->geometry.point_x,
+                touch->geometry.point_y});
     }
   }
 }
 
 void FixContactDynamics::interleave_contacts()
 {
-  reorder_contacts(cd::interleaved_order(contacts, static_cast<int>(bodies.velocity.size())));
+  reorder_contacts(cd::interleaved_order(pairs.solved, static_cast<int>(bodies.velocity.size())));
 }
 
 // Contacts (and their records) in the order of permutation: its k-th entry is the old index of
@@ -756,41 +729,19 @@ void FixContactDynamics::reorder_contacts(const std::vector<int> &permutation)
   reordered_contacts.clear();
   reordered_records.clear();
   for (int k : permutation) {
-    reordered_contacts.push_back(contacts[k]);
+    reordered_contacts.push_back(pairs.solved[k]);
     reordered_records.push_back(records[k]);
   }
-  contacts.swap(reordered_contacts);
+  pairs.solved.swap(reordered_contacts);
   records.swap(reordered_records);
-}
-
-// The rank that would solve a contact is the one whose slab of x holds the atom keeping its
-// warm start (the smaller ID of a pair: the rule of collect_pair_contacts). Contacts keep their
-// order within a rank; the atom's slab is taken from its position now rather than at the last
-// reneighbouring, which only differs for atoms within a step's travel of a slab boundary.
-void FixContactDynamics::group_contacts_by_emulated_rank()
-{
-  std::vector<int> rank_of(contacts.size());
-  std::vector<std::size_t> count(emulated_ranks, 0);
-  for (std::size_t k = 0; k < contacts.size(); k++) {
-    const double x = atom->x[records[k].history_atom][0];
-    const int slab = static_cast<int>(std::floor((x - domain->boxlo[0]) / domain->xprd * emulated_ranks));
-    rank_of[k] = ((slab % emulated_ranks) + emulated_ranks) % emulated_ranks;
-    ++count[rank_of[k]];
-  }
-  emulated_block_ends.resize(emulated_ranks);
-  std::partial_sum(count.begin(), count.end(), emulated_block_ends.begin());
-  std::vector<int> permutation(contacts.size());
-  std::iota(permutation.begin(), permutation.end(), 0);
-  std::stable_sort(permutation.begin(), permutation.end(), [&](int a, int b) { return rank_of[a] < rank_of[b]; });
-  reorder_contacts(permutation);
 }
 
 void FixContactDynamics::shuffle_contacts()
 {
-  for (std::size_t k = contacts.size(); k > 1; k--) {
+  for (std::size_t k = pairs.solved.size(); k > 1; k--) {
     std::uniform_int_distribution<std::size_t> pick(0, k - 1);
     const std::size_t other = pick(shuffle_rng);
-    std::swap(contacts[k - 1], contacts[other]);
+    std::swap(pairs.solved[k - 1], pairs.solved[other]);
     std::swap(records[k - 1], records[other]);
   }
 }
@@ -803,13 +754,13 @@ void FixContactDynamics::shuffle_contacts()
 
 void FixContactDynamics::load_warm_start()
 {
-  for (std::size_t k = 0; k < contacts.size(); k++) {
+  for (std::size_t k = 0; k < pairs.solved.size(); k++) {
     const double *row = history[records[k].history_atom];
     const int count = static_cast<int>(row[0]);
     for (int slot = 0; slot < count; slot++) {
       const double *entry = row + 1 + 3 * slot;
       if (entry[0] != records[k].history_key) continue;
-      cd::warm_start(contacts[k], {entry[1], entry[2]});
+      cd::warm_start(pairs.solved[k], {entry[1], entry[2]});
       break;
     }
   }
@@ -833,8 +784,8 @@ void FixContactDynamics::store_warm_start()
 {
   for (int i = 0; i < atom->nlocal; i++) history[i][0] = 0.0;
   loaded_contacts = 0;
-  for (std::size_t k = 0; k < contacts.size(); k++) {
-    const cd::Local2 p = contacts[k].impulse;
+  for (std::size_t k = 0; k < pairs.solved.size(); k++) {
+    const cd::Local2 p = pairs.solved[k].impulse;
     const ContactRecord &record = records[k];
     if (!std::isfinite(p.n) || !std::isfinite(p.t))
       error->one(FLERR, "Fix contact/dynamics: non-finite impulse between atom {} and {} {} at step {}",
@@ -878,29 +829,10 @@ void FixContactDynamics::write_back_motion()
   }
 }
 
-// Interpenetration at the end of the step on this rank, linearised: gap + theta dt u_n^+,
-// over the solved contacts (deepest and sum) and the watched pairs (deepest).
-FixContactDynamics::OverlapSums FixContactDynamics::measure_overlaps() const
-{
-  const cd::StepParameters step{update->dt, theta};
-  auto overlap_of = [&](const cd::Contact &c) {
-    const double u_n = cd::relative_velocity(c, bodies.velocity[c.body_a], bodies.velocity[c.body_b]).n;
-    return std::max(0.0, -cd::end_of_step_gap(c.gap, u_n, step));
-  };
-  OverlapSums sums;
-  for (const cd::Contact &c : contacts) {
-    const double overlap = overlap_of(c);
-    sums.deepest = std::max(sums.deepest, overlap);
-    sums.total += overlap;
-  }
-  for (const WatchedPair &pair : watched) sums.deepest = std::max(sums.deepest, overlap_of(pair.frame));
-  return sums;
-}
-
 // The step's output vector: sums and maxima over ranks.
-void FixContactDynamics::reduce_step_outputs(const OverlapSums &overlaps)
+void FixContactDynamics::reduce_step_outputs(const cd::OverlapSums &overlaps)
 {
-  const double local_sums[3] = {static_cast<double>(contacts.size()), static_cast<double>(loaded_contacts),
+  const double local_sums[3] = {static_cast<double>(pairs.solved.size()), static_cast<double>(loaded_contacts),
                                 overlaps.total};
   double sums[3], deepest = 0.0;
   MPI_Allreduce(local_sums, sums, 3, MPI_DOUBLE, MPI_SUM, world);
@@ -935,6 +867,13 @@ void FixContactDynamics::RankExchange::after_sweep(cd::SweepChange &change)
   change.sum_scale_sq = sums[1];
   change.sum_scale = sums[2];
   change.contacts = sums[3];
+}
+
+bool FixContactDynamics::RankExchange::on_any_rank(bool here)
+{
+  int mine = here ? 1 : 0, any = 0;
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, fix.world);
+  return any != 0;
 }
 
 int FixContactDynamics::pack_forward_comm(int n, int *list, double *buf, int, int *)
@@ -999,15 +938,15 @@ void FixContactDynamics::fill_local_output()
     memory->create(array_local, local_rows_allocated, output_columns, "contact/dynamics:array_local");
   }
   int row = 0;
-  for (std::size_t k = 0; k < contacts.size(); k++) {
-    if (contacts[k].impulse.n <= 0.0) continue;
+  for (std::size_t k = 0; k < pairs.solved.size(); k++) {
+    if (pairs.solved[k].impulse.n <= 0.0) continue;
     const ContactRecord &record = records[k];
     double *out = array_local[row++];
     out[0] = record.atom_a;
     out[1] = record.atom_b;
     out[2] = record.wall;
-    out[3] = contacts[k].impulse.n;
-    out[4] = contacts[k].impulse.t;
+    out[3] = pairs.solved[k].impulse.n;
+    out[4] = pairs.solved[k].impulse.t;
     out[5] = record.point_x;
     out[6] = record.point_y;
   }
@@ -1115,8 +1054,8 @@ int FixContactDynamics::maxsize_restart()
 double FixContactDynamics::memory_usage()
 {
   double bytes = static_cast<double>(atom->nmax) * history_width * sizeof(double);
-  bytes += contacts.capacity() * sizeof(cd::Contact) + watched.capacity() * sizeof(WatchedPair);
-  bytes += records.capacity() * sizeof(ContactRecord);
+  bytes += pairs.solved.capacity() * sizeof(cd::Contact) + pairs.watched.capacity() * sizeof(cd::WatchedPair);
+  bytes += (records.capacity() + watched_records.capacity()) * sizeof(ContactRecord);
   bytes += bodies.velocity.capacity() * (2 * sizeof(cd::BodyVelocity) + sizeof(cd::BodyInertia));
   bytes += static_cast<double>(local_rows_allocated) * output_columns * sizeof(double);
   return bytes;

@@ -15,6 +15,7 @@ FixStyle(contact/dynamics,FixContactDynamics);
 #include <random>
 #include <vector>
 
+#include "cd/detection.h"
 #include "cd/gauss_seidel.h"
 #include "cd/walls.h"
 #include "fix.h"
@@ -70,12 +71,23 @@ class FixContactDynamics : public Fix {
    public:
     explicit RankExchange(FixContactDynamics &fix) : fix(fix) {}
     void after_sweep(cd::SweepChange &change) override;
+    bool on_any_rank(bool here) override;
     void synchronise_velocities();
 
    private:
     FixContactDynamics &fix;
   };
   friend class RankExchange;
+
+  // The wider look cd::solve_step may ask for: the neighbour list again, further out.
+  class NeighbourPairs : public cd::PairCollector {
+   public:
+    explicit NeighbourPairs(FixContactDynamics &fix) : fix(fix) {}
+    void collect_between(double from_margin, double to_margin) override { fix.collect_pairs(from_margin, to_margin); }
+
+   private:
+    FixContactDynamics &fix;
+  };
 
   enum class ContactOrder { fixed, shuffled };
 
@@ -92,7 +104,6 @@ class FixContactDynamics : public Fix {
   std::vector<cd::ContactLaw> type_laws;  // (ntypes+1)^2, row-major
   std::vector<cd::Wall> walls;
   std::mt19937_64 shuffle_rng;
-  int emulated_ranks;  // > 1: sweep as that many ranks along x would, on one rank (a diagnostic)
 
   // --- per-step state ---
   class NeighList *list;
@@ -103,18 +114,13 @@ class FixContactDynamics : public Fix {
   std::vector<int> body_of_atom;        // body of every owned and ghost atom this step
   std::vector<cd::BodyVelocity> ghost_reference;  // ghost velocities at the last forward comm
   bool distributed;                     // more than one rank: exchange every sweep
-  std::vector<cd::Contact> contacts;
-  std::vector<ContactRecord> records;
+  cd::PairReach reach;                  // which listed pairs a step looks at
+  cd::StepContacts pairs;               // solved and watched pairs of this step
+  std::vector<ContactRecord> records;   // of each solved pair, in sweep order
+  std::vector<ContactRecord> watched_records;  // indexed by cd::WatchedPair::record
+  std::vector<int> promoted_records;    // scratch of solve_contacts
   std::vector<cd::Contact> reordered_contacts;       // scratch of reorder_contacts
   std::vector<ContactRecord> reordered_records;
-  std::vector<std::size_t> emulated_block_ends;      // the contacts of each emulated rank end here
-  // A listed pair left out of the solve: watched for overlap, promoted if it would overlap.
-  struct WatchedPair {
-    cd::Contact frame;
-    cd::ContactLaw law;
-    ContactRecord record;
-  };
-  std::vector<WatchedPair> watched;
   cd::SolveReport last_report;
   double max_overlap, mean_overlap;  // in units of the mean diameter, over all ranks
   double solved_contacts_total, loaded_contacts_total;  // over all ranks
@@ -146,25 +152,19 @@ class FixContactDynamics : public Fix {
   void map_bodies();
   void gather_bodies();
   cd::BodyVelocity velocity_change_of_ghost(int ghost) const;
-  void collect_pair_contacts();
-  void collect_wall_contacts();
-  void add_candidate(const cd::ContactGeometry &, const cd::ContactLaw &, const ContactRecord &);
+  void collect_pairs(double from_margin, double to_margin);
+  void collect_grain_pairs(double from_margin, double to_margin);
+  void collect_wall_pairs(double from_margin, double to_margin);
+  void add_pair(const cd::ContactGeometry &, const cd::ContactLaw &, const ContactRecord &);
   void shuffle_contacts();
   void interleave_contacts();
   void reorder_contacts(const std::vector<int> &permutation);
-  void group_contacts_by_emulated_rank();
   void solve_contacts();
-  bool promote_closing_pairs();
   void load_warm_start();
   void store_warm_start();
   void append_history(int atom_index, double key, cd::Local2 impulse);
   void write_back_motion();
-  struct OverlapSums {
-    double deepest = 0.0;  // m
-    double total = 0.0;    // m, over the solved contacts
-  };
-  OverlapSums measure_overlaps() const;
-  void reduce_step_outputs(const OverlapSums &overlaps);
+  void reduce_step_outputs(const cd::OverlapSums &overlaps);
   void fill_local_output();
 };
 

@@ -192,52 +192,29 @@ SweepChange sweep_range(Contact* first, Contact* last, BodyVelocity* velocity, c
   return change;
 }
 
-SweepChange sweep_range(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings)
+}  // namespace
+
+SweepChange sweep(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings)
 {
   if (settings.norm == ConvergenceNorm::quadratic)
     return sweep_range<ConvergenceNorm::quadratic>(first, last, velocity, settings);
   return sweep_range<ConvergenceNorm::maximum>(first, last, velocity, settings);
 }
 
-}  // namespace
-
 SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const SolverSettings& settings)
 {
-  return sweep_range(contacts.data(), contacts.data() + contacts.size(), velocity.data(), settings);
-}
-
-SweepChange sweep_in_blocks(std::vector<Contact>& contacts, const std::vector<std::size_t>& block_ends,
-                            std::vector<BodyVelocity>& velocity, const SolverSettings& settings)
-{
-  const std::vector<BodyVelocity> start = velocity;
-  std::vector<BodyVelocity> block_velocity;
-  SweepChange change;
-  std::size_t block_start = 0;
-  for (const std::size_t block_end : block_ends) {
-    block_velocity = start;
-    change.merge(sweep_range(contacts.data() + block_start, contacts.data() + block_end, block_velocity.data(),
-                             settings));
-    for (std::size_t b = 0; b < velocity.size(); b++) {
-      velocity[b].vx += block_velocity[b].vx - start[b].vx;
-      velocity[b].vy += block_velocity[b].vy - start[b].vy;
-      velocity[b].spin += block_velocity[b].spin - start[b].spin;
-    }
-    block_start = block_end;
-  }
-  return change;
+  return sweep(contacts.data(), contacts.data() + contacts.size(), velocity.data(), settings);
 }
 
 SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                               const SolverSettings& settings, SweepExchange* exchange,
-                               const std::vector<std::size_t>* block_ends)
+                               const SolverSettings& settings, SweepExchange* exchange)
 {
   SolveReport report;
   // Without an exchange there is nothing to do; with one, every rank takes part in every
   // sweep's exchange, contacts or not.
   if (contacts.empty() && !exchange) return report;
   while (report.iterations < settings.max_iterations) {
-    SweepChange change = block_ends ? sweep_in_blocks(contacts, *block_ends, velocity, settings)
-                                    : sweep(contacts, velocity, settings);
+    SweepChange change = sweep(contacts, velocity, settings);
     if (exchange) exchange->after_sweep(change);
     ++report.iterations;
     report.residual = change.residual(settings.norm);

@@ -113,34 +113,27 @@ struct SolveReport {
   bool converged = true;
 };
 
-// Called after every sweep: a domain-decomposed run exchanges ghost velocities and impulses
-// and reduces `change` over ranks here; one rank needs nothing.
+// What a domain-decomposed run does between the sweeps of one rank: after every sweep it
+// exchanges ghost velocities and reduces `change` over ranks; between solves it tells whether
+// any rank wants another one. One rank needs nothing.
 class SweepExchange {
  public:
   virtual ~SweepExchange() = default;
   virtual void after_sweep(SweepChange& change) = 0;
+  virtual bool on_any_rank(bool here) = 0;
 };
 
-// One sweep over the contacts in their stored order, accumulating what `settings.norm` needs.
-// Frictionless contacts (mu = 0) take the shortcut of SolverSettings::frictionless_shortcut
-// unless it is false.
+// One sweep over the contacts [first, last) in their stored order, accumulating what
+// `settings.norm` needs. Frictionless contacts (mu = 0) take the shortcut of
+// SolverSettings::frictionless_shortcut unless it is false.
+SweepChange sweep(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings);
 SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
                   const SolverSettings& settings);
 
-// The sweep of a run decomposed over ranks, reproduced on one rank. The contacts form
-// consecutive blocks, one per rank (block_ends: the end of each, increasing, the last
-// contacts.size()); each block sweeps in order from the velocities at the start of the sweep
-// and the blocks' velocity changes are summed, as ranks sum the changes of their ghosts into
-// the owners after a sweep. A body touched by two blocks is updated by both at once.
-SweepChange sweep_in_blocks(std::vector<Contact>& contacts, const std::vector<std::size_t>& block_ends,
-                            std::vector<BodyVelocity>& velocity, const SolverSettings& settings);
-
 // Sweeps until the norm falls to the tolerance or the iteration cap is reached. The contacts'
-// impulses must already be applied to `velocity` (apply_impulses). With block_ends every sweep
-// is sweep_in_blocks (the emulation of ranks on one rank).
+// impulses must already be applied to `velocity` (apply_impulses).
 SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                               const SolverSettings& settings, SweepExchange* exchange = nullptr,
-                               const std::vector<std::size_t>* block_ends = nullptr);
+                               const SolverSettings& settings, SweepExchange* exchange = nullptr);
 
 // Linearised gap at the end of the step: gap + theta dt u_n^+ (m).
 double end_of_step_gap(double gap, double normal_velocity, const StepParameters& step);

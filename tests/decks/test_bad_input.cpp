@@ -93,10 +93,6 @@ const BadCase bad_cases[] = {
     {"relaxation_out_of_range", with_fix("0.5 0.5 relaxation 1.5"), "relaxation must be in (0,1], got 1.5"},
     {"unknown_norm", with_fix("0.5 0.5 norm l2"), "norm must be quadratic or maximum, got 'l2'"},
     {"unknown_order", with_fix("0.5 0.5 order random"), "order must be fixed or shuffle, got 'random'"},
-    // The preamble's box is 20 d long and the cutoff d + skin = 1.2 d: 20 slabs of 1 d are too thin.
-    {"emulated_slabs_too_thin", with_fix("0.5 0.5 emulate_ranks 20"),
-     "emulate_ranks 20 makes slabs of 0.0005, thinner than the contact cutoff 0.0006"},
-    {"zero_emulated_ranks", with_fix("0.5 0.5 emulate_ranks 0"), "emulate_ranks must be >= 1, got 0"},
     {"missing_value", with_fix("0.5 0.5 tolerance"), "tolerance needs 1 value(s)"},
     {"negative_type_mu", with_fix("0.5 0.5 mu/types 1 2 -1"), "mu/types must be >= 0, got -1"},
     {"wall_outside_box", with_fix("0.5 0.5 wall yplane -0.001 0.5 0.5"), "wall yplane at -0.001 is outside the box"},
@@ -222,15 +218,6 @@ TEST(MultipleRanks, NarrowSubdomainsAreReportedOnce)
   const RunResult wide = run_deck("wide_subdomains", two_rank_deck("0.003"), launcher);
   EXPECT_EQ(wide.exit_status, 0) << wide.output;
   EXPECT_EQ(count_of(wide.output, "contact cutoffs"), 0u) << wide.output;
-}
-
-TEST(MultipleRanks, EmulatedRanksOnSeveralRanksAreRefused)
-{
-  const std::string deck = "processors 2 1 1\n" + with_fix("0.5 0.5 emulate_ranks 2");
-  const RunResult result = run_deck("emulate_on_two_ranks", deck, "mpirun --allow-run-as-root --oversubscribe -np 2 ");
-  EXPECT_NE(result.exit_status, 0);
-  EXPECT_NE(error_line(result.output).find("emulate_ranks reproduces a decomposed sweep on one rank; this run has 2 ranks"),
-            std::string::npos) << result.output;
 }
 
 }  // namespace

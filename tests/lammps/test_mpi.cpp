@@ -168,23 +168,6 @@ TEST_F(SeveralRanks, LoadBalancingKeepsTheTrajectory)
   EXPECT_LT(largest_difference(on_many.y, on_one.y) / d, trajectory_tolerance);
 }
 
-// emulate_ranks on one rank: the decomposed iteration without MPI reaches the trajectory of the
-// plain solve by another iteration (another sweep count).
-TEST_F(SeveralRanks, EmulatedRanksKeepTheTrajectory)
-{
-  if (world_rank() != 0) return;
-  State plain, emulated;
-  for (auto [target, options] : {std::pair{&plain, ""}, std::pair{&emulated, " emulate_ranks 4"}}) {
-    LammpsSession one(MPI_COMM_SELF);
-    load(one, std::string(tight_solve) + options);
-    one.commands("run 100");
-    *target = state_of(one);
-  }
-  EXPECT_LT(largest_difference(emulated.x, plain.x, 20 * d) / d, trajectory_tolerance);
-  EXPECT_LT(largest_difference(emulated.y, plain.y) / d, trajectory_tolerance);
-  EXPECT_NE(emulated.sweeps, plain.sweeps);
-}
-
 TEST_F(SeveralRanks, SameRankCountIsBitwiseReproducible)
 {
   State first, second;

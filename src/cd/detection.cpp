@@ -1,0 +1,115 @@
+#include "cd/detection.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cd {
+
+namespace {
+
+// Next step's margin is this many times what this step needed: a flow changes little from one
+// step to the next, and a margin a little too wide costs a few more pairs looked at.
+constexpr double margin_growth = 1.5;
+
+}  // namespace
+
+void PairReach::begin_step(const BodySet& bodies, const StepParameters& step)
+{
+  const double advance = step.theta * step.dt;
+  reach_.resize(bodies.velocity.size());
+  for (std::size_t b = 0; b < reach_.size(); b++) {
+    const BodyVelocity& v = bodies.velocity[b];
+    reach_[b] = advance * std::sqrt(v.vx * v.vx + v.vy * v.vy);
+  }
+}
+
+double PairReach::needed_margin(const std::vector<BodyVelocity>& velocity, const StepParameters& step) const
+{
+  const double advance = step.theta * step.dt;
+  double largest_gain = 0.0;  // m, advance times speed
+  for (std::size_t b = 0; b < reach_.size(); b++) {
+    const BodyVelocity& v = velocity[b];
+    largest_gain = std::max(largest_gain, advance * std::sqrt(v.vx * v.vx + v.vy * v.vy) - reach_[b]);
+  }
+  return 2.0 * largest_gain;
+}
+
+void PairReach::end_step(double needed)
+{
+  margin_ = std::max(margin_floor_, margin_growth * needed);
+}
+
+bool StepContacts::add(const Contact& frame, const ContactLaw& law, int record, const BodySet& bodies,
+                       const StepParameters& step, double alert)
+{
+  if (!is_candidate(frame, bodies, step, alert)) {
+    watched.push_back({frame, law, record});
+    return false;
+  }
+  solved.push_back(frame);
+  prepare_mechanics(solved.back(), law, bodies, step);
+  return true;
+}
+
+bool promote_closing_pairs(StepContacts& contacts, std::vector<int>& promoted_records, const BodySet& bodies,
+                           const StepParameters& step)
+{
+  const std::size_t before = contacts.solved.size();
+  std::size_t kept = 0;
+  for (WatchedPair& pair : contacts.watched) {
+    if (!closes_after_solve(pair.frame, bodies.velocity, step)) {
+      contacts.watched[kept++] = pair;
+      continue;
+    }
+    prepare_mechanics(pair.frame, pair.law, bodies, step);
+    contacts.solved.push_back(pair.frame);
+    promoted_records.push_back(pair.record);
+  }
+  contacts.watched.resize(kept);
+  return contacts.solved.size() > before;
+}
+
+SolveReport solve_step(StepContacts& contacts, std::vector<int>& promoted_records, BodySet& bodies,
+                       const StepParameters& step, const SolverSettings& settings, PairReach& reach,
+                       PairCollector& collector, SweepExchange* exchange, int max_rounds)
+{
+  SolveReport report = solve_gauss_seidel(contacts.solved, bodies.velocity, settings, exchange);
+  double needed = 0.0;
+  for (int round = 1;; round++) {
+    needed = std::max(needed, reach.needed_margin(bodies.velocity, step));
+    if (needed > reach.margin()) {
+      const double wider = margin_growth * needed;
+      collector.collect_between(reach.margin(), wider);
+      reach.widen_to(wider);
+    }
+    if (round == max_rounds) break;
+    bool promoted = promote_closing_pairs(contacts, promoted_records, bodies, step);
+    if (exchange) promoted = exchange->on_any_rank(promoted);
+    if (!promoted) break;
+    const SolveReport more = solve_gauss_seidel(contacts.solved, bodies.velocity, settings, exchange);
+    report.iterations += more.iterations;
+    report.residual = more.residual;
+    report.converged = more.converged;
+  }
+  reach.end_step(needed);
+  return report;
+}
+
+OverlapSums measure_overlaps(const StepContacts& contacts, const std::vector<BodyVelocity>& velocity,
+                             const StepParameters& step)
+{
+  auto overlap_of = [&](const Contact& c) {
+    const double u_n = relative_velocity(c, velocity[c.body_a], velocity[c.body_b]).n;
+    return std::max(0.0, -end_of_step_gap(c.gap, u_n, step));
+  };
+  OverlapSums sums;
+  for (const Contact& c : contacts.solved) {
+    const double overlap = overlap_of(c);
+    sums.deepest = std::max(sums.deepest, overlap);
+    sums.total += overlap;
+  }
+  for (const WatchedPair& pair : contacts.watched) sums.deepest = std::max(sums.deepest, overlap_of(pair.frame));
+  return sums;
+}
+
+}  // namespace cd

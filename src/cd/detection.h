@@ -1,0 +1,125 @@
+// Which pairs a step solves, which it only watches, and the solve that lets watched pairs join.
+//
+// A pair (a, b) with gap g can close within the step only if theta dt (|v_a| + |v_b|) > g for
+// the velocities it ends the step with. Before the solve only the free velocities are known, so
+// a pair is looked at (its geometry computed) only if
+//     g <= theta dt (|v_a^free| + |v_b^free|) + margin,
+// a test on squared centre distances, without a square root. After each solve the margin is
+// checked against the speed the bodies actually gained: a body faster than its free speed by
+// more than margin / (2 theta dt) could close a pair that was never looked at, and the caller
+// is asked to look again, wider. The margin of the next step follows what this one needed, so
+// that the wider look stays rare.
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "cd/gauss_seidel.h"
+
+namespace cd {
+
+class PairReach {
+ public:
+  // margin_floor: the smallest margin (m), at least the candidates' alert distance.
+  explicit PairReach(double margin_floor = 0.0) : margin_floor_(margin_floor), margin_(margin_floor) {}
+
+  // Reach theta dt |v^free| of every body, from the free velocities of the step.
+  void begin_step(const BodySet& bodies, const StepParameters& step);
+
+  // True if disks a and b (b at its periodic image nearest to a) may meet within the step
+  // with a gap of at most their reach plus `margin` (m).
+  bool within(int body_a, const Disk& a, int body_b, const Disk& b, double margin) const
+  {
+    const double dx = a.x - b.x;
+    const double dy = a.y - b.y;
+    const double limit = a.radius + b.radius + reach_[body_a] + reach_[body_b] + margin;
+    return dx * dx + dy * dy <= limit * limit;
+  }
+  // The same for a disk and a wall point at distance `distance` from its centre.
+  bool within_wall(int body, const Disk& disk, double distance, double margin) const
+  {
+    return distance - disk.radius <= reach_[body] + margin;
+  }
+
+  double margin() const { return margin_; }
+  // A new floor (the alert distance once the grain size is known); the margin rises to it.
+  void set_margin_floor(double floor)
+  {
+    margin_floor_ = floor;
+    margin_ = std::max(margin_, floor);
+  }
+  double reach(int body) const { return reach_[body]; }  // m
+
+  // The margin the solved velocities need: 2 theta dt times the largest speed gain of a body
+  // over its free speed (0 if none got faster).
+  double needed_margin(const std::vector<BodyVelocity>& velocity, const StepParameters& step) const;
+
+  // The caller has looked at pairs out to `margin`.
+  void widen_to(double margin) { margin_ = margin; }
+
+  // Next step's margin: what this step needed, with room to spare, never below the floor.
+  void end_step(double needed);
+
+ private:
+  double margin_floor_;
+  double margin_;
+  std::vector<double> reach_;  // per body (m)
+};
+
+// A looked-at pair left out of the solve: its frame (no mechanics yet), its law, and the
+// caller's index of its record.
+struct WatchedPair {
+  Contact frame;
+  ContactLaw law;
+  int record = 0;
+};
+
+// The contacts of one step: those solved, in sweep order, and those only watched.
+struct StepContacts {
+  std::vector<Contact> solved;
+  std::vector<WatchedPair> watched;
+
+  void clear()
+  {
+    solved.clear();
+    watched.clear();
+  }
+  // The pair is solved if it is a candidate (is_candidate), watched otherwise. Returns true if
+  // solved.
+  bool add(const Contact& frame, const ContactLaw& law, int record, const BodySet& bodies,
+           const StepParameters& step, double alert);
+};
+
+// Moves the watched pairs that would overlap at the end of the step with the solved velocities
+// (closes_after_solve) to the solved contacts, prepared; their records are appended to
+// `promoted_records` in the order the contacts are appended. True if any moved.
+bool promote_closing_pairs(StepContacts& contacts, std::vector<int>& promoted_records, const BodySet& bodies,
+                           const StepParameters& step);
+
+// What the solve asks of its caller: to look at the pairs whose gap lies between their reach
+// plus `from_margin` and their reach plus `to_margin` (none of them looked at yet), and to
+// watch them (StepContacts::add, which watches every pair that is not a candidate).
+class PairCollector {
+ public:
+  virtual ~PairCollector() = default;
+  virtual void collect_between(double from_margin, double to_margin) = 0;
+};
+
+// Solves the step's contacts, then lets watched pairs that the solution would drive into
+// overlap join and solves again from where it stopped, looking wider first if bodies gained
+// more speed than the margin covers; at most `max_rounds` solves. The impulses must already be
+// applied to bodies.velocity. The report sums the sweeps of every solve.
+SolveReport solve_step(StepContacts& contacts, std::vector<int>& promoted_records, BodySet& bodies,
+                       const StepParameters& step, const SolverSettings& settings, PairReach& reach,
+                       PairCollector& collector, SweepExchange* exchange = nullptr, int max_rounds = 10);
+
+// Interpenetration at the end of the step, linearised (gap + theta dt u_n^+): deepest and sum
+// over the solved contacts, deepest over the watched pairs too.
+struct OverlapSums {
+  double deepest = 0.0;  // m
+  double total = 0.0;    // m, over the solved contacts
+};
+OverlapSums measure_overlaps(const StepContacts& contacts, const std::vector<BodyVelocity>& velocity,
+                             const StepParameters& step);
+
+}  // namespace cd

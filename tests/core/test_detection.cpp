@@ -1,0 +1,178 @@
+// Which pairs a step looks at (cd::PairReach) and the solve that lets watched pairs join
+// (cd::solve_step): the reach test against the gap it stands for, the margin a solve needs,
+// and a step with the reach against the same step with every pair looked at.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "cd/detection.h"
+
+namespace {
+
+constexpr double radius = 0.5;    // m
+constexpr double density = 1.0;   // kg/m^2
+const cd::StepParameters step{1e-3, 0.5};
+const cd::ContactLaw law{0.5, 0.5};
+constexpr double alert = 1e-3 * radius;
+
+// Disks with free velocities; every pair (i < j) is "listed", as a neighbour list would.
+struct Scene {
+  std::vector<cd::Disk> disks;  // body 1 + k
+  cd::BodySet bodies;
+
+  void add(cd::Disk disk, cd::BodyVelocity velocity)
+  {
+    disks.push_back(disk);
+    const double mass = M_PI * disk.radius * disk.radius * density;
+    bodies.inertia.push_back({1.0 / mass, 1.0 / (0.5 * mass * disk.radius * disk.radius)});
+    bodies.start_velocity.push_back(velocity);
+    bodies.velocity.push_back(velocity);
+  }
+  Scene() { bodies.reset(1); }
+};
+
+// Collects as the fix does: pairs whose gap lies in (reach + from, reach + to], every pair once.
+class AllPairs : public cd::PairCollector {
+ public:
+  AllPairs(const Scene& scene, const cd::PairReach& reach, cd::StepContacts& contacts)
+      : scene(scene), reach(reach), contacts(contacts)
+  {
+  }
+  void collect_between(double from_margin, double to_margin) override
+  {
+    ++calls;
+    const bool widening = std::isfinite(from_margin);
+    for (int i = 0; i < static_cast<int>(scene.disks.size()); i++)
+      for (int j = i + 1; j < static_cast<int>(scene.disks.size()); j++) {
+        const cd::Disk &a = scene.disks[i], &b = scene.disks[j];
+        if (!reach.within(1 + i, a, 1 + j, b, to_margin)) continue;
+        if (widening && reach.within(1 + i, a, 1 + j, b, from_margin)) continue;
+        contacts.add(cd::contact_frame(cd::disk_disk_geometry(1 + i, a, 1 + j, b)), law, 0, scene.bodies, step, alert);
+        ++looked_at;
+      }
+  }
+  int calls = 0;
+  int looked_at = 0;
+
+ private:
+  const Scene& scene;
+  const cd::PairReach& reach;
+  cd::StepContacts& contacts;
+};
+
+struct StepResult {
+  cd::StepContacts contacts;
+  cd::BodySet bodies;
+  int collections = 0;
+  int looked_at = 0;
+};
+
+// One step of the core from the scene's free velocities, looking at pairs out to `margin_floor`
+// beyond their reach (infinity: every pair).
+StepResult solve(const Scene& scene, double margin_floor)
+{
+  StepResult result;
+  result.bodies = scene.bodies;
+  cd::PairReach reach(margin_floor);
+  reach.begin_step(result.bodies, step);
+  AllPairs collector(scene, reach, result.contacts);
+  collector.collect_between(-std::numeric_limits<double>::infinity(), reach.margin());
+  std::vector<int> promoted;
+  const cd::SolverSettings settings{1e-12, 100000, 1.0, cd::ConvergenceNorm::quadratic};
+  cd::solve_step(result.contacts, promoted, result.bodies, step, settings, reach, collector);
+  result.collections = collector.calls;
+  result.looked_at = collector.looked_at;
+  return result;
+}
+
+double end_gap(const Scene& scene, const cd::BodySet& bodies, int i, int j)
+{
+  cd::Contact frame = cd::contact_frame(cd::disk_disk_geometry(1 + i, scene.disks[i], 1 + j, scene.disks[j]));
+  const double u_n = cd::relative_velocity(frame, bodies.velocity[1 + i], bodies.velocity[1 + j]).n;
+  return cd::end_of_step_gap(frame.gap, u_n, step);
+}
+
+TEST(PairReach, WithinIsTheGapAgainstBothReachesPlusTheMargin)
+{
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> position(-2.0, 2.0), speed(-300.0, 300.0), size(0.4, 0.6);
+  for (int trial = 0; trial < 2000; trial++) {
+    Scene scene;
+    scene.add({0.0, 0.0, size(rng)}, {speed(rng), speed(rng), 0.0});
+    scene.add({position(rng), position(rng), size(rng)}, {speed(rng), speed(rng), 0.0});
+    cd::PairReach reach;
+    reach.begin_step(scene.bodies, step);
+    const double margin = 0.01;
+    const double gap = cd::disk_disk_geometry(1, scene.disks[0], 2, scene.disks[1]).gap;
+    const double limit = reach.reach(1) + reach.reach(2) + margin;
+    if (std::abs(gap - limit) < 1e-12) continue;    // rounding decides
+    EXPECT_EQ(reach.within(1, scene.disks[0], 2, scene.disks[1], margin), gap <= limit) << "trial " << trial;
+    const cd::BodyVelocity& v = scene.bodies.velocity[1];
+    EXPECT_DOUBLE_EQ(reach.reach(1), step.theta * step.dt * std::hypot(v.vx, v.vy));
+  }
+}
+
+TEST(PairReach, NeededMarginIsTwiceTheLargestSpeedGainOverTheStep)
+{
+  Scene scene;
+  scene.add({0.0, 0.0, radius}, {3.0, 4.0, 0.0});    // free speed 5
+  scene.add({2.0, 0.0, radius}, {1.0, 0.0, 0.0});    // free speed 1
+  cd::PairReach reach;
+  reach.begin_step(scene.bodies, step);
+  std::vector<cd::BodyVelocity> solved = scene.bodies.velocity;
+  solved[1] = {0.0, 4.0, 0.0};    // slower: no gain
+  solved[2] = {0.0, -3.0, 0.0};   // speed 3: gained 2
+  EXPECT_NEAR(reach.needed_margin(solved, step), 2.0 * step.theta * step.dt * 2.0, 1e-15);
+  solved[2] = {0.5, 0.0, 0.0};
+  EXPECT_EQ(reach.needed_margin(solved, step), 0.0);
+}
+
+// A fast disk hits a resting one, which is driven into a third that was beyond every reach
+// before the solve: the solve must look wider, watch the new pair and promote it.
+TEST(SolveStep, BodiesFasterThanTheMarginMakeTheSolveLookWider)
+{
+  const double v = 10.0;                       // m/s: moves theta dt v = 5e-3 m in the step
+  const double gap_to_third = 2e-3;            // beyond the margin (alert), within the reach after the hit
+  Scene scene;
+  scene.add({0.0, radius, radius}, {v, 0.0, 0.0});
+  scene.add({2.0 * radius, radius, radius}, {0.0, 0.0, 0.0});
+  scene.add({4.0 * radius + gap_to_third, radius, radius}, {0.0, 0.0, 0.0});
+  const StepResult narrow = solve(scene, alert);
+  EXPECT_EQ(narrow.collections, 2) << "the first look and one wider look";
+  EXPECT_GE(end_gap(scene, narrow.bodies, 1, 2), -1e-12) << "the second and third disks do not overlap";
+  EXPECT_GT(narrow.bodies.velocity[3].vx, 0.0) << "the third disk is pushed";
+
+  const StepResult everything = solve(scene, std::numeric_limits<double>::infinity());
+  for (int b = 1; b <= 3; b++) EXPECT_NEAR(narrow.bodies.velocity[b].vx, everything.bodies.velocity[b].vx, 1e-9);
+}
+
+// A random gas of disks, fast and slow: the reach looks at fewer pairs and reaches the same
+// solution as looking at every pair.
+TEST(SolveStep, TheReachGivesTheSameStepAsLookingAtEveryPair)
+{
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 20; trial++) {
+    Scene scene;
+    for (int row = 0; row < 6; row++)
+      for (int column = 0; column < 6; column++)
+        scene.add({column * 2.02 * radius + 0.002 * unit(rng), row * 2.02 * radius + 0.002 * unit(rng),
+                   radius * (1.0 - 0.05 * std::abs(unit(rng)))},
+                  {(row == 3 ? 20.0 : 1.0) * unit(rng), unit(rng), unit(rng)});
+    const StepResult narrow = solve(scene, alert);
+    const StepResult everything = solve(scene, std::numeric_limits<double>::infinity());
+    EXPECT_LT(narrow.looked_at, everything.looked_at) << "trial " << trial;
+    for (std::size_t b = 1; b < scene.bodies.velocity.size(); b++) {
+      EXPECT_NEAR(narrow.bodies.velocity[b].vx, everything.bodies.velocity[b].vx, 1e-8) << "trial " << trial;
+      EXPECT_NEAR(narrow.bodies.velocity[b].vy, everything.bodies.velocity[b].vy, 1e-8) << "trial " << trial;
+    }
+    for (int i = 0; i < 36; i++)
+      for (int j = i + 1; j < 36; j++)
+        EXPECT_GE(end_gap(scene, narrow.bodies, i, j), -1e-9) << "trial " << trial << " pair " << i << " " << j;
+  }
+}
+
+}  // namespace
