@@ -637,15 +637,19 @@ void FixContactDynamics::gather_bodies()
   }
 }
 
+// Before the solve a pair is solved or watched (cd::StepContacts::add); found during the solve
+// (a wider look) it is watched, and joins only if promoted, its record with it.
 void FixContactDynamics::add_pair(const cd::ContactGeometry &geometry, const cd::ContactLaw &contact_law,
-                                  const ContactRecord &record)
+                                  const ContactRecord &record, bool during_solve)
 {
   const cd::StepParameters step{update->dt, theta};
   const int watched_index = static_cast<int>(watched_records.size());
-  if (pairs.add(cd::contact_frame(geometry), contact_law, watched_index, bodies, step, alert_distance))
+  if (during_solve) pairs.watch(cd::contact_frame(geometry), contact_law, watched_index);
+  else if (pairs.add(cd::contact_frame(geometry), contact_law, watched_index, bodies, step, alert_distance)) {
     records.push_back(record);
-  else
-    watched_records.push_back(record);
+    return;
+  }
+  watched_records.push_back(record);
 }
 
 // The listed pairs whose gap lies above their reach plus from_margin and at most their reach
@@ -688,7 +692,8 @@ void FixContactDynamics::collect_grain_pairs(double from_margin, double to_margi
       const bool i_keeps = tag[i] < tag[j];
       add_pair(geometry, law(type[i], type[j]),
                {tag[i], tag[j], 0, i_keeps ? i : j, static_cast<double>(i_keeps ? tag[j] : tag[i]),
-                geometry.point_x, geometry.point_y});
+                geometry.point_x, geometry.point_y},
+               widening);
     }
   }
 }
@@ -712,7 +717,8 @@ void FixContactDynamics::collect_wall_pairs(double from_margin, double to_margin
       if (!touch || touch->geometry.gap <= reach_i + from_margin) continue;
       add_pair(touch->geometry, walls[w].law,
                {atom->tag[i], 0, w + 1, i, wall_key(w, touch->part), touch->geometry.point_x,
-                touch->geometry.point_y});
+                touch->geometry.point_y},
+               std::isfinite(from_margin));
     }
   }
 }

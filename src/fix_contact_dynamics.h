@@ -155,7 +155,7 @@ class FixContactDynamics : public Fix {
   void collect_pairs(double from_margin, double to_margin);
   void collect_grain_pairs(double from_margin, double to_margin);
   void collect_wall_pairs(double from_margin, double to_margin);
-  void add_pair(const cd::ContactGeometry &, const cd::ContactLaw &, const ContactRecord &);
+  void add_pair(const cd::ContactGeometry &, const cd::ContactLaw &, const ContactRecord &, bool during_solve);
   void shuffle_contacts();
   void interleave_contacts();
   void reorder_contacts(const std::vector<int> &permutation);

@@ -43,7 +43,7 @@ bool StepContacts::add(const Contact& frame, const ContactLaw& law, int record, 
                        const StepParameters& step, double alert)
 {
   if (!is_candidate(frame, bodies, step, alert)) {
-    watched.push_back({frame, law, record});
+    watch(frame, law, record);
     return false;
   }
   solved.push_back(frame);

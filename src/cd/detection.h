@@ -85,9 +85,11 @@ struct StepContacts {
     watched.clear();
   }
   // The pair is solved if it is a candidate (is_candidate), watched otherwise. Returns true if
-  // solved.
+  // solved. Before the solve only: bodies.velocity must be the free velocity.
   bool add(const Contact& frame, const ContactLaw& law, int record, const BodySet& bodies,
            const StepParameters& step, double alert);
+  // Watched whatever its velocity: pairs found during the solve join only by promotion.
+  void watch(const Contact& frame, const ContactLaw& law, int record) { watched.push_back({frame, law, record}); }
 };
 
 // Moves the watched pairs that would overlap at the end of the step with the solved velocities
@@ -98,7 +100,7 @@ bool promote_closing_pairs(StepContacts& contacts, std::vector<int>& promoted_re
 
 // What the solve asks of its caller: to look at the pairs whose gap lies between their reach
 // plus `from_margin` and their reach plus `to_margin` (none of them looked at yet), and to
-// watch them (StepContacts::add, which watches every pair that is not a candidate).
+// watch them (StepContacts::watch).
 class PairCollector {
  public:
   virtual ~PairCollector() = default;

@@ -50,7 +50,9 @@ class AllPairs : public cd::PairCollector {
         const cd::Disk &a = scene.disks[i], &b = scene.disks[j];
         if (!reach.within(1 + i, a, 1 + j, b, to_margin)) continue;
         if (widening && reach.within(1 + i, a, 1 + j, b, from_margin)) continue;
-        contacts.add(cd::contact_frame(cd::disk_disk_geometry(1 + i, a, 1 + j, b)), law, 0, scene.bodies, step, alert);
+        const cd::Contact frame = cd::contact_frame(cd::disk_disk_geometry(1 + i, a, 1 + j, b));
+        if (widening) contacts.watch(frame, law, 0);
+        else contacts.add(frame, law, 0, scene.bodies, step, alert);
         ++looked_at;
       }
   }
