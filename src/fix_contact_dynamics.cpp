@@ -18,6 +18,8 @@
 #include "neigh_list.h"
 #include "neigh_request.h"
 #include "neighbor.h"
+#include "output.h"
+#include "pair.h"
 #include "update.h"
 #include "utils.h"
 
@@ -99,6 +101,7 @@ int FixContactDynamics::setmask()
 {
   int mask = INITIAL_INTEGRATE | FINAL_INTEGRATE;
   if (disc_density > 0.0) mask |= PRE_FORCE;
+  if (adaptive_step) mask |= END_OF_STEP;
   return mask;
 }
 
@@ -222,6 +225,19 @@ void FixContactDynamics::parse_arguments(int narg, char **arg)
       alert_given = true;
       if (alert_distance < 0.0)
         error->all(FLERR, "Fix contact/dynamics: alert must be >= 0, got {}", alert_distance);
+    } else if (keyword == "dt_max") {
+      step_grid.dt_max = number_for("dt_max", value, error);
+      if (step_grid.dt_max <= 0.0)
+        error->all(FLERR, "Fix contact/dynamics: dt_max must be > 0, got {}", step_grid.dt_max);
+      adaptive_step = true;
+    } else if (keyword == "dt_align") {
+      dt_align = number_for("dt_align", value, error);
+      if (dt_align <= 0.0) error->all(FLERR, "Fix contact/dynamics: dt_align must be > 0, got {}", dt_align);
+    } else if (keyword == "travel") {
+      travel_fraction = number_for("travel", value, error);
+      if (travel_fraction <= 0.0 || travel_fraction > 0.5)
+        error->all(FLERR, "Fix contact/dynamics: travel must be in (0,0.5] (a fraction of the neighbour skin), got {}",
+                   travel_fraction);
     } else if (keyword == "density") {
       disc_density = number_for("density", value, error);
       if (disc_density <= 0.0)
@@ -230,6 +246,15 @@ void FixContactDynamics::parse_arguments(int narg, char **arg)
       error->all(FLERR, "Fix contact/dynamics: unknown keyword '{}'", keyword);
     }
     iarg += 2;
+  }
+  if (dt_align > 0.0 && !adaptive_step)
+    error->all(FLERR, "Fix contact/dynamics: dt_align needs dt_max (the adaptive step)");
+  if (adaptive_step) {
+    const double periods = (dt_align > 0.0 ? dt_align : step_grid.dt_max) / step_grid.dt_max;
+    if (periods < 0.5 || std::fabs(periods - std::round(periods)) > 1e-6 * periods)
+      error->all(FLERR, "Fix contact/dynamics: dt_align {} must be a whole multiple of dt_max {}", dt_align,
+                 step_grid.dt_max);
+    step_grid.steps_per_align = static_cast<int>(std::lround(periods));
   }
 }
 
@@ -428,6 +453,68 @@ void FixContactDynamics::setup(int)
   check_disk_masses();
   check_subdomains();
   warn_initial_overlaps();
+  if (adaptive_step) init_step_grid();
+}
+
+/* ----------------------------------------------------------------------
+   The step that follows the flow (cd::StepGrid): at the start of a run the level is taken
+   from the grains' speeds unless a previous run or a restart left one, then revised each time
+   an alignment period ends.
+------------------------------------------------------------------------- */
+
+void FixContactDynamics::init_step_grid()
+{
+  step_grid.travel = travel_fraction * neighbor->skin;
+  if (!step_state_known) {
+    steps_into_period = 0;
+    choose_step_level();
+    step_state_known = true;
+  }
+  set_timestep(step_grid.step(step_level));
+}
+
+void FixContactDynamics::end_of_step()
+{
+  if (++steps_into_period < step_grid.steps_per_period(step_level)) return;
+  steps_into_period = 0;
+  choose_step_level();
+  set_timestep(step_grid.step(step_level));
+}
+
+void FixContactDynamics::choose_step_level()
+{
+  struct {
+    double speed;
+    int tag;
+  } local{0.0, 0}, fastest{0.0, 0};
+  double **v = atom->v;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(atom->mask[i] & groupbit)) continue;
+    const double speed = std::sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1]);
+    if (speed > local.speed) local = {speed, static_cast<int>(atom->tag[i])};
+  }
+  MPI_Allreduce(&local, &fastest, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+  const int level = step_grid.level_for(fastest.speed);
+  if (level >= 0) {
+    step_level = level;
+    return;
+  }
+  output->write_restart(update->ntimestep);
+  error->all(FLERR, "Fix contact/dynamics: atom {} moves at {:.4g} m/s; the smallest step {:.4g} (dt_max/2^{}) "
+             "moves it {:.4g}, more than travel x skin = {:.4g} (restart files written if a restart command is set)",
+             fastest.tag, fastest.speed, step_grid.step(step_grid.max_level), step_grid.max_level,
+             fastest.speed * step_grid.step(step_grid.max_level), step_grid.travel);
+}
+
+// As fix dt/reset does: time so far at the old step, then the new step everywhere it is kept.
+void FixContactDynamics::set_timestep(double dt)
+{
+  if (dt == update->dt) return;
+  update->update_time();
+  update->dt = dt;
+  update->dt_default = 0;
+  if (force->pair) force->pair->reset_dt();
+  for (int f = 0; f < modify->nfix; f++) modify->fix[f]->reset_dt();
 }
 
 // Rigid contacts never push overlapping grains apart: grains created overlapping (random
@@ -980,21 +1067,45 @@ double FixContactDynamics::compute_vector(int n)
    restart and per-atom life cycle
 ------------------------------------------------------------------------- */
 
+namespace {
+// The global restart record: a negative version tag (older files start with the iteration
+// total, never negative), the totals, the step grid's level and position (-1: none), the time.
+constexpr double restart_version = -2.0;
+}    // namespace
+
 void FixContactDynamics::write_restart(FILE *fp)
 {
   if (comm->me != 0) return;
-  const double totals[3] = {total_iterations, total_unconverged_steps, total_steps};
-  const int size = sizeof(totals);
+  const bool known = adaptive_step && step_state_known;
+  const double elapsed = update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
+  const double record[7] = {restart_version,
+                            total_iterations,
+                            total_unconverged_steps,
+                            total_steps,
+                            known ? step_level : -1.0,
+                            known ? static_cast<double>(steps_into_period) : -1.0,
+                            elapsed};
+  const int size = sizeof(record);
   fwrite(&size, sizeof(int), 1, fp);
-  fwrite(totals, sizeof(double), 3, fp);
+  fwrite(record, sizeof(double), 7, fp);
 }
 
 void FixContactDynamics::restart(char *buf)
 {
-  const auto *totals = reinterpret_cast<const double *>(buf);
+  const auto *record = reinterpret_cast<const double *>(buf);
+  const bool versioned = record[0] == restart_version;
+  const double *totals = versioned ? record + 1 : record;
   total_iterations = totals[0];
   total_unconverged_steps = totals[1];
   total_steps = totals[2];
+  if (!versioned || totals[3] < 0.0) return;
+  step_level = static_cast<int>(totals[3]);
+  steps_into_period = static_cast<long long>(totals[4]);
+  step_state_known = true;
+  // With a varying step the step count no longer gives the time, and this LAMMPS version's
+  // restart files do not keep it: the fix that varied the step restores it.
+  update->atime = totals[5];
+  update->atimestep = update->ntimestep;
 }
 
 void FixContactDynamics::grow_arrays(int nmax)

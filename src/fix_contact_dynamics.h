@@ -17,6 +17,7 @@ FixStyle(contact/dynamics,FixContactDynamics);
 
 #include "cd/detection.h"
 #include "cd/gauss_seidel.h"
+#include "cd/time_step.h"
 #include "cd/walls.h"
 #include "fix.h"
 
@@ -33,6 +34,7 @@ class FixContactDynamics : public Fix {
   void initial_integrate(int) override;
   void pre_force(int) override;
   void final_integrate() override;
+  void end_of_step() override;
   double compute_vector(int) override;
 
   int pack_forward_comm(int, int *, double *, int, int *) override;
@@ -104,6 +106,15 @@ class FixContactDynamics : public Fix {
   std::vector<cd::ContactLaw> type_laws;  // (ntypes+1)^2, row-major
   std::vector<cd::Wall> walls;
   std::mt19937_64 shuffle_rng;
+  // The step that follows the flow (dt_max given): the grid, the travel bound as a fraction of
+  // the neighbour skin, and where the run stands on the grid.
+  bool adaptive_step = false;
+  cd::StepGrid step_grid;
+  double dt_align = 0.0;        // s; 0: dt_max
+  double travel_fraction = 0.4;
+  int step_level = 0;
+  long long steps_into_period = 0;
+  bool step_state_known = false;  // level and position set (by a run or a restart)
 
   // --- per-step state ---
   class NeighList *list;
@@ -165,6 +176,9 @@ class FixContactDynamics : public Fix {
   void append_history(int atom_index, double key, cd::Local2 impulse);
   void write_back_motion();
   void reduce_step_outputs(const cd::OverlapSums &overlaps);
+  void init_step_grid();
+  void choose_step_level();
+  void set_timestep(double dt);
   void fill_local_output();
 };
 

@@ -207,15 +207,15 @@ def case_flow_run(args):
 
 
 def case_dt_change(args):
-    """A chute restart continued at another time step keeps its chute time (the step count
-    is rescaled), and the solver -vars reach the fix: 10 ms from the 1.2 s flow at dt = 1e-5 s
-    with the maximum norm, no warm start and a shuffled order."""
+    """A chute restart continued at another fixed time step (adapt_dt no) keeps its chute time
+    (the step count is rescaled), and the solver -vars reach the fix: 10 ms from the 1.2 s flow
+    at dt = 1e-5 s with the maximum norm, no warm start and a shuffled order."""
     folder = os.path.join(args.work, "dt_change")
     shutil.rmtree(folder, ignore_errors=True)
     start = os.path.join(args.work, "flow", "chute.restart")
     end = FLOW_DURATION + 0.01
     _, output = run_lmp(args.lmp, folder, dict(CELL, stage="flow", start=start, theta=FLOW_THETA,
-                                               duration=end, dt="1e-5", norm="maximum", warm_start="no",
+                                               duration=end, dt="1e-5", adapt_dt="no", norm="maximum", warm_start="no",
                                                order="shuffle", max_iterations=200))
     rows = read_time_file(os.path.join(folder, "flow.time"))
     times = [r["v_time"] for r in rows]

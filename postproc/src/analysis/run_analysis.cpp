@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <gsl/gsl_statistics_double.h>
 
 #include "io/ave_chunk.h"
@@ -46,17 +47,49 @@ std::vector<double> slice(const std::vector<double>& values, const Window& windo
 }
 
 // Spectra need one sampling interval: LAMMPS writes at a fixed Nfreq unless the deck changes it.
-double regular_interval(const ColumnTable& table, const std::vector<double>& time_s) {
-  if (time_s.size() < 2) throw InputError(table.source, 0, "fewer than 2 samples");
+double regular_interval(const std::string& source, const std::vector<double>& time_s) {
+  if (time_s.size() < 2) throw InputError(source, 0, "fewer than 2 samples");
   const double interval = time_s[1] - time_s[0];
   for (size_t i = 1; i < time_s.size(); ++i) {
     double step = time_s[i] - time_s[i - 1];
     if (std::abs(step - interval) > 1e-6 * interval)
-      throw InputError(table.source, table.row_lines[i],
+      throw InputError(source, 0,
                        "irregular sampling: interval " + std::to_string(step) + " s after " + std::to_string(interval) +
-                           " s (spectra need a fixed output interval)");
+                           " s at t = " + std::to_string(time_s[i - 1]) + " s (spectra need a fixed output interval)");
   }
   return interval;
+}
+
+// Rows on the coarsest uniform grid (see TimeSeries): the longest interval is the grid's; every
+// interval must divide it, and every grid point must be there. Other sampling is refused.
+std::vector<size_t> coarse_rows(const ColumnTable& table, const std::vector<double>& time_s) {
+  if (time_s.size() < 2) throw InputError(table.source, 0, "fewer than 2 samples");
+  double coarse = 0, finest = std::numeric_limits<double>::infinity();
+  for (size_t i = 1; i < time_s.size(); ++i) {
+    coarse = std::max(coarse, time_s[i] - time_s[i - 1]);
+    finest = std::min(finest, time_s[i] - time_s[i - 1]);
+  }
+  // Times are printed rounded: tolerances well above rounding, well below the finest fraction.
+  const double off_grid = 0.25 * finest / coarse;
+  std::vector<size_t> kept{0};
+  for (size_t i = 1; i < time_s.size(); ++i) {
+    const double interval = time_s[i] - time_s[i - 1];
+    const double parts = coarse / interval;
+    if (!(interval > 0) || std::abs(parts - std::round(parts)) > 1e-4 * parts)
+      throw InputError(table.source, table.row_lines[i],
+                       "irregular sampling: interval " + std::to_string(interval) + " s does not divide the longest, " +
+                           std::to_string(coarse) + " s (spectra need a fixed output interval)");
+    const double grid = (time_s[i] - time_s[0]) / coarse;
+    if (std::abs(grid - std::round(grid)) < off_grid) kept.push_back(i);
+  }
+  return kept;
+}
+
+std::vector<double> rows_of(const std::vector<double>& values, const std::vector<size_t>& rows) {
+  std::vector<double> out;
+  out.reserve(rows.size());
+  for (size_t r : rows) out.push_back(values[r]);
+  return out;
 }
 
 std::vector<double> time_in_seconds(const ColumnTable& table, const RunSettings& settings) {
@@ -81,26 +114,35 @@ TimeSeries read_time_series(const RunSettings& settings, std::vector<std::string
   const auto& c = settings.columns;
   auto table = read_ave_time(path_in(settings, c.time_file));
   const double velocity = settings.units.velocity_unit_mps();
+  const std::vector<double> all_times = time_in_seconds(table, settings);
+  const std::vector<size_t> rows = coarse_rows(table, all_times);
+  auto kept = [&](const std::vector<double>& column) { return rows_of(column, rows); };
   TimeSeries series;
-  series.time_s = time_in_seconds(table, settings);
-  series.sample_interval_s = regular_interval(table, series.time_s);
-  series.u_flow_mps = scaled(table.column(c.u_flow), velocity);
-  series.v_flow_mps = scaled(table.column(c.v_flow), velocity);
+  series.rows_read = all_times.size();
+  series.time_s = kept(all_times);
+  series.timestep = kept(table.column(c.timestep));
+  series.sample_interval_s = regular_interval(table.source, series.time_s);
+  series.u_flow_mps = kept(scaled(table.column(c.u_flow), velocity));
+  series.v_flow_mps = kept(scaled(table.column(c.v_flow), velocity));
   series.u_all_mps = optional_column(table, c.u_all, velocity, warnings, "u(t) of all grains not reported");
+  if (series.u_all_mps) series.u_all_mps = kept(*series.u_all_mps);
   series.phi = optional_column(table, c.phi, 1.0, warnings, "phi not reported");
-  if (table.has(c.h)) series.h_m = scaled(table.column(c.h), settings.units.length_unit_m);
+  if (series.phi) series.phi = kept(*series.phi);
+  if (table.has(c.h)) series.h_m = kept(scaled(table.column(c.h), settings.units.length_unit_m));
+  if (rows.size() < all_times.size())
+    warnings.push_back(table.source + ": " + std::to_string(all_times.size() - rows.size()) +
+                       " samples between the uniform ones (the step was refined) left out of the spectra");
   return series;
 }
 
-// Input time units per step for the chunk files: --dt, or inferred from the time file.
-std::optional<double> timestep_size(const RunSettings& settings, const std::string& time_path) {
-  if (settings.timestep_size) return settings.timestep_size;
-  auto table = read_ave_time(time_path);
-  const auto& c = settings.columns;
-  if (!table.has(c.time) || !table.has(c.timestep) || table.rows() < 2) return std::nullopt;
-  const auto& t = table.column(c.time);
-  const auto& step = table.column(c.timestep);
-  return (t.back() - t.front()) / (step.back() - step.front());
+// Time (s) of a TimeStep: linear between the time file's samples, where the step is constant.
+double time_of_step(const TimeSeries& series, double step) {
+  const auto& steps = series.timestep;
+  auto upper = std::upper_bound(steps.begin(), steps.end(), step);
+  size_t i = static_cast<size_t>(upper - steps.begin());
+  i = std::clamp<size_t>(i, 1, steps.size() - 1);
+  const double rate = (series.time_s[i] - series.time_s[i - 1]) / (steps[i] - steps[i - 1]);
+  return series.time_s[i - 1] + (step - steps[i - 1]) * rate;
 }
 
 Window given_window(const RunSettings& settings, const std::vector<double>& time_s) {
@@ -119,16 +161,31 @@ Window choose_window(const RunSettings& settings, const TimeSeries& series, bool
 }
 
 // Blocks of a chunk file whose time lies in [t0, t1].
-std::vector<size_t> blocks_between(const ChunkSeries& chunks, double seconds_per_step, double t0, double t1) {
+std::vector<size_t> blocks_between(const ChunkSeries& chunks, const TimeSeries& clock, double t0, double t1) {
   std::vector<size_t> blocks;
+  const double tolerance = 1e-9 * (std::abs(t1) + clock.sample_interval_s);
   for (size_t b = 0; b < chunks.blocks(); ++b) {
-    double t = chunks.timesteps[b] * seconds_per_step;
-    if (t >= t0 && t <= t1) blocks.push_back(b);
+    double t = time_of_step(clock, chunks.timesteps[b]);
+    if (t >= t0 - tolerance && t <= t1 + tolerance) blocks.push_back(b);
   }
   return blocks;
 }
 
-VelocityProfile average_profile(const ChunkSeries& chunks, const std::vector<size_t>& blocks, const RunSettings& settings) {
+// Duration (s) each block averages: from the previous block's time (the first block: as long
+// as the second). Blocks of a run whose step was refined are shorter.
+std::vector<double> block_durations(const ChunkSeries& chunks, const TimeSeries& clock) {
+  std::vector<double> durations(chunks.blocks(), 1.0);
+  if (chunks.blocks() < 2) return durations;
+  for (size_t b = 1; b < chunks.blocks(); ++b)
+    durations[b] = time_of_step(clock, chunks.timesteps[b]) - time_of_step(clock, chunks.timesteps[b - 1]);
+  const double first = chunks.timesteps[0], before_first = first - (chunks.timesteps[1] - first);
+  durations[0] = time_of_step(clock, first) - time_of_step(clock, before_first);
+  return durations;
+}
+
+// Time average over the blocks, each weighted by the duration it covers (block_durations).
+VelocityProfile average_profile(const ChunkSeries& chunks, const std::vector<size_t>& blocks,
+                                const std::vector<double>& durations, const RunSettings& settings) {
   const auto& c = settings.columns;
   const size_t coord = chunks.column_index(c.profile_coord), vx = chunks.column_index(c.profile_vx);
   const size_t count = chunks.column_index(c.profile_count);
@@ -136,15 +193,16 @@ VelocityProfile average_profile(const ChunkSeries& chunks, const std::vector<siz
   const double to_reduced = settings.units.velocity_unit_mps() / settings.units.reduced_velocity_mps();
   VelocityProfile profile;
   for (size_t chunk = 0; chunk < chunks.chunks; ++chunk) {
-    double weight = 0, momentum = 0;
+    double weight = 0, momentum = 0, duration = 0;
     for (size_t b : blocks) {
-      weight += chunks.value(b, chunk, count);
-      momentum += chunks.value(b, chunk, count) * chunks.value(b, chunk, vx);
+      weight += durations[b] * chunks.value(b, chunk, count);
+      momentum += durations[b] * chunks.value(b, chunk, count) * chunks.value(b, chunk, vx);
+      duration += durations[b];
     }
     if (weight <= 0) continue;  // empty bin (above the surface): no velocity to report
     profile.z_d.push_back((chunks.value(blocks.front(), chunk, coord) - settings.z0) * to_d);
     profile.u_reduced.push_back(momentum / weight * to_reduced);
-    profile.count.push_back(weight / static_cast<double>(blocks.size()));
+    profile.count.push_back(weight / duration);
   }
   if (profile.z_d.size() >= 2) profile.bin_width_d = std::abs(profile.z_d[1] - profile.z_d[0]);
   return profile;
@@ -226,23 +284,28 @@ struct Analyser {
     return read_ave_chunk(path);
   }
 
-  double seconds_per_step(const ChunkSeries& chunks) const {
-    auto dt = timestep_size(settings, time_path());
-    if (!dt) throw InputError(chunks.source, 0, "cannot convert Timestep to time: give --dt or a time column '" + settings.columns.time + "' in " + time_path());
-    return *dt * units.time_unit_s;
-  }
-
   std::vector<size_t> window_blocks(const ChunkSeries& chunks) const {
-    auto blocks = blocks_between(chunks, seconds_per_step(chunks), run.series.time_s[run.window.begin],
+    auto blocks = blocks_between(chunks, run.series, run.series.time_s[run.window.begin],
                                  run.series.time_s[run.window.end - 1]);
     if (blocks.empty()) throw InputError(chunks.source, 0, "no output block inside the stationary window");
     return blocks;
   }
 
+  // The blocks of a per-sample chunk file (layers.chunk) on the time file's uniform grid.
+  std::vector<size_t> uniform_blocks(const ChunkSeries& chunks, const std::vector<size_t>& blocks) const {
+    std::vector<size_t> kept;
+    const double t0 = run.series.time_s.front(), interval = run.series.sample_interval_s;
+    for (size_t b : blocks) {
+      const double grid = (time_of_step(run.series, chunks.timesteps[b]) - t0) / interval;
+      if (std::abs(grid - std::round(grid)) < 1e-6) kept.push_back(b);    // exact: from TimeStep
+    }
+    return kept;
+  }
+
   void profile() {
     auto chunks = read_optional_chunks(settings.columns.profile_file, "no u(z), Bagnold or creep fit");
     if (!chunks) return;
-    run.profile = average_profile(*chunks, window_blocks(*chunks), settings);
+    run.profile = average_profile(*chunks, window_blocks(*chunks), block_durations(*chunks, run.series), settings);
     if (!run.series.h_m) {
       if (auto h = thickness_from_profile(*run.profile))
         run.results.add("h", *h, "d", "flowing-layer thickness: top of the bins holding half the median count");
@@ -296,9 +359,13 @@ struct Analyser {
     if (!chunks) return;
     const auto& c = settings.columns;
     const size_t coord = chunks->column_index(c.layers_coord), vz = chunks->column_index(c.layers_vz);
-    const auto blocks = window_blocks(*chunks);
-    const double interval = (chunks->timesteps[blocks.back()] - chunks->timesteps[blocks.front()]) /
-                            static_cast<double>(blocks.size() - 1) * seconds_per_step(*chunks);
+    const auto blocks = uniform_blocks(*chunks, window_blocks(*chunks));
+    if (blocks.size() < 2) throw InputError(chunks->source, 0, "fewer than 2 samples inside the stationary window");
+    const double interval = regular_interval(chunks->source, [&] {
+      std::vector<double> times;
+      for (size_t b : blocks) times.push_back(time_of_step(run.series, chunks->timesteps[b]));
+      return times;
+    }());
     const double to_reduced = units.velocity_unit_mps() / units.reduced_velocity_mps();
     for (size_t chunk = 0; chunk < chunks->chunks; ++chunk) {
       if (chunks->has(c.layers_count) && mean_count(*chunks, blocks, chunk) < 0.5) continue;  // empty layer
@@ -329,12 +396,14 @@ struct Analyser {
 
 ColumnSpectrum analyse_column_spectrum(const std::string& path, const std::string& column, const RunSettings& settings) {
   auto table = read_ave_time(path);
-  auto time_s = time_in_seconds(table, settings);
-  const double interval = regular_interval(table, time_s);
+  const auto all_times = time_in_seconds(table, settings);
+  const auto rows = coarse_rows(table, all_times);
+  const auto time_s = rows_of(all_times, rows);
+  const double interval = regular_interval(table.source, time_s);
   return about_file(path, [&] {
     auto window = given_window(settings, time_s);
     ColumnSpectrum result;
-    result.spectrum = amplitude_spectrum(slice(table.column(column), window), interval, settings.spectrum);
+    result.spectrum = amplitude_spectrum(slice(rows_of(table.column(column), rows), window), interval, settings.spectrum);
     result.peak = find_peak(result.spectrum, settings.peak_fmin_hz, settings.peak_fmax_hz);
     result.results.add("t_start", time_s[window.begin], "s", "start of the analysed window");
     result.results.add("t_end", time_s[window.end - 1], "s", "end of the analysed window");

@@ -66,8 +66,14 @@ struct RunSettings {
   bool progress = false;
 };
 
+// The samples of the time file on its coarsest uniform grid. A run whose step follows the flow
+// (fix contact/dynamics dt_max) samples every N steps, so a stretch at a smaller step wrote
+// extra samples in between; the step changes only at samples of the coarse grid, so keeping
+// those rows is an exact decimation, and time is linear in TimeStep between two of them.
 struct TimeSeries {
   std::vector<double> time_s;
+  std::vector<double> timestep;  // TimeStep of each kept sample
+  size_t rows_read = 0;          // before the decimation
   std::vector<double> u_flow_mps, v_flow_mps;
   std::optional<std::vector<double>> u_all_mps, phi, h_m;
   double sample_interval_s = 0;

@@ -1,0 +1,29 @@
+// The grid of the step that follows the flow (cd::StepGrid): levels against the travel bound.
+#include <gtest/gtest.h>
+
+#include "cd/time_step.h"
+
+namespace {
+
+const cd::StepGrid grid{1e-4, 10, 3e-4, 12};  // dt_max 1e-4 s, align 1 ms, travel 0.3 mm
+
+TEST(StepGrid, LevelIsTheLargestStepWithinTheTravelBound)
+{
+  EXPECT_EQ(grid.level_for(0.0), 0);
+  EXPECT_EQ(grid.level_for(2.99), 0);         // 2.99 m/s x 1e-4 s < 0.3 mm
+  EXPECT_EQ(grid.level_for(3.01), 1);
+  EXPECT_EQ(grid.level_for(5.99), 1);
+  EXPECT_EQ(grid.level_for(6.01), 2);
+  EXPECT_EQ(grid.level_for(2.99 * 4096), 12);
+  EXPECT_EQ(grid.level_for(3.0 * 4096 * 1.01), -1) << "no step on the grid is small enough";
+}
+
+TEST(StepGrid, EveryLevelFillsTheAlignmentPeriodExactly)
+{
+  for (int level = 0; level <= grid.max_level; level++) {
+    EXPECT_EQ(grid.steps_per_period(level), 10LL << level);
+    EXPECT_DOUBLE_EQ(grid.step(level) * static_cast<double>(grid.steps_per_period(level)), 1e-3);
+  }
+}
+
+}  // namespace
