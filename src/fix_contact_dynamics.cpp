@@ -81,6 +81,10 @@ FixContactDynamics::FixContactDynamics(LAMMPS *lmp, int narg, char **arg) :
   comm_forward = 3;    // vx, vy, spin of a body
   comm_reverse = 3;    // the change of a ghost's vx, vy, spin over one sweep
 
+  // With a varying step the clock is LAMMPS's time, not step x dt; step 0 is time 0 (this
+  // version's reset_timestep keeps the time already run, e.g. a deposition before the chute).
+  if (update->ntimestep == 0) set_clock(0.0);
+
   history_width = 1 + 3 * max_contacts;
   maxexchange = history_width;
   grow_arrays(atom->nmax);
@@ -1077,7 +1081,8 @@ void FixContactDynamics::write_restart(FILE *fp)
 {
   if (comm->me != 0) return;
   const bool known = adaptive_step && step_state_known;
-  const double elapsed = update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
+  const double elapsed =
+      update->ntimestep == 0 ? 0.0 : update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
   const double record[7] = {restart_version,
                             total_iterations,
                             total_unconverged_steps,
@@ -1098,13 +1103,19 @@ void FixContactDynamics::restart(char *buf)
   total_iterations = totals[0];
   total_unconverged_steps = totals[1];
   total_steps = totals[2];
+  // This LAMMPS version's restart files do not keep the time (the next run would start it at 0),
+  // and with a varying step the step count does not give it: the fix keeps it. Files of earlier
+  // versions of the fix came from fixed steps: step x dt.
+  set_clock(versioned ? totals[5] : static_cast<double>(update->ntimestep) * update->dt);
   if (!versioned || totals[3] < 0.0) return;
   step_level = static_cast<int>(totals[3]);
   steps_into_period = static_cast<long long>(totals[4]);
   step_state_known = true;
-  // With a varying step the step count no longer gives the time, and this LAMMPS version's
-  // restart files do not keep it: the fix that varied the step restores it.
-  update->atime = totals[5];
+}
+
+void FixContactDynamics::set_clock(double time)
+{
+  update->atime = time;
   update->atimestep = update->ntimestep;
 }
 

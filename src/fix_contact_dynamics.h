@@ -179,6 +179,7 @@ class FixContactDynamics : public Fix {
   void init_step_grid();
   void choose_step_level();
   void set_timestep(double dt);
+  void set_clock(double time);  // LAMMPS's time now (s)
   void fill_local_output();
 };
 
