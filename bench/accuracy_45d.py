@@ -1,0 +1,230 @@
+#!/usr/bin/env python3
+"""The 45 d scene: do cheaper solver settings keep the physics? Runs continue one stationary
+restart per scene point; each run is cut into windows of equal length (replicas of the
+stationary flow), cdpost analyses every window, and each setting's group mean and standard
+error are compared with the reference's: a quantity agrees when the two means differ by at
+most twice their combined standard error.
+
+    bench/accuracy_45d.py compare --runs DIR --reference ref_mu0.5 --candidate new_mu0.5 \\
+        --windows 10.2:11.2,11.2:12.2,12.2:13.2 --out doc/accuracy
+    bench/accuracy_45d.py convergence --runs DIR --series "tol:1e-1=tol1e-1_mu0.5,..." ...
+
+The runs are in.chute flow runs (`-var stage flow -var start RESTART`), one folder each.
+"""
+import argparse
+import csv
+import math
+import os
+import statistics
+import subprocess
+import sys
+
+TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+D = 5e-4  # m, mean diameter of the scene
+# cdpost result names compared, and the quantities this script adds from the chunk files.
+QUANTITIES = ["U", "phi", "h", "f", "A", "A_mean", "creep_lambda", "bagnold_amplitude", "bagnold_slip",
+              "bed_u", "phi_bed", "phi_layer"]
+UNITS = dict(U="sqrt(g d)", h="d", f="Hz", A="sqrt(g d)", A_mean="sqrt(g d)", creep_lambda="d",
+             bagnold_amplitude="sqrt(g d)", bagnold_slip="sqrt(g d)", bed_u="sqrt(g d)")
+
+
+def read_table(path):
+    """Rows of a LAMMPS fix ave/time file as dicts keyed by its column names."""
+    names, rows = None, []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#"):
+                names = line[1:].split()
+                continue
+            values = [float(v) for v in line.split()]
+            if names is None or len(values) != len(names):
+                raise SystemExit(f"accuracy_45d.py: {path}: a row of {len(values)} values, expected {len(names or [])}")
+            rows.append(dict(zip(names, values)))
+    return rows
+
+
+def read_chunks(path):
+    """Blocks of a fix ave/chunk file: [(timestep, [row dicts])]."""
+    blocks, names = [], None
+    with open(path) as f:
+        lines = [l for l in f]
+    names = lines[2][1:].split()
+    i = 3
+    while i < len(lines):
+        head = lines[i].split()
+        step, count = float(head[0]), int(head[1])
+        rows = [dict(zip(names, map(float, l.split()))) for l in lines[i + 1:i + 1 + count]]
+        if len(rows) != count:
+            raise SystemExit(f"accuracy_45d.py: {path}: block at step {step:.0f} is cut")
+        blocks.append((step, rows))
+        i += 1 + count
+    return blocks
+
+
+def step_clock(flow):
+    """TimeStep -> time (s), linear between flow.time's samples (the step changes only at them)."""
+    steps = [r["TimeStep"] for r in flow]
+    times = [r["v_time"] for r in flow]
+
+    def time_of(step):
+        k = max(1, min(len(steps) - 1, next((i for i, s in enumerate(steps) if s > step), len(steps) - 1)))
+        return times[k - 1] + (step - steps[k - 1]) * (times[k] - times[k - 1]) / (steps[k] - steps[k - 1])
+    return time_of
+
+
+def cdpost(folder, z0, t0, t1, name):
+    post = os.path.join(folder, name)
+    cmd = [os.path.join(TOP, "build", "postproc", "cdpost"), "run", folder, "--z0", f"{z0:g}",
+           "--t-start", f"{t0:g}", "--t-end", f"{t1:g}", "--out", post]
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    with open(os.path.join(post, "results.csv")) as f:
+        return {r["name"]: float(r["value"]) for r in csv.DictReader(f)}
+
+
+def chunk_means(folder, z0, t0, t1, time_of):
+    """Bed velocity (count-weighted u below the wall tops, sqrt(g d)) from profile.chunk, and
+    the mean area fraction of the bed (-20 d < z < 0) and of the layer (0 < z < 40 d) from
+    packing.chunk, over the blocks ending in (t0, t1]."""
+    sqrt_gd = math.sqrt(9.81 * D)
+    inside = lambda step: t0 < time_of(step) <= t1 + 1e-9
+    momentum = weight = 0.0
+    for step, rows in read_chunks(os.path.join(folder, "profile.chunk")):
+        if not inside(step):
+            continue
+        for r in rows:
+            if r["Coord1"] < z0:
+                momentum += r["Ncount"] * r["vx"]
+                weight += r["Ncount"]
+    bands = dict(phi_bed=(-20, 0), phi_layer=(0, 40))
+    sums = {k: [0.0, 0] for k in bands}
+    for step, rows in read_chunks(os.path.join(folder, "packing.chunk")):
+        if not inside(step):
+            continue
+        for r in rows:
+            z = (r["Coord1"] - z0) / D
+            for key, (lo, hi) in bands.items():
+                if lo < z < hi:
+                    sums[key][0] += r["v_phi_of_grain"]
+                    sums[key][1] += 1
+    out = dict(bed_u=momentum / weight / sqrt_gd if weight else float("nan"))
+    out.update({k: s / n if n else float("nan") for k, (s, n) in sums.items()})
+    return out
+
+
+def window_values(folder, z0, windows):
+    flow = read_table(os.path.join(folder, "flow.time"))
+    time_of = step_clock(flow)
+    values = []
+    for k, (t0, t1) in enumerate(windows):
+        row = cdpost(folder, z0, t0, t1, f"post_w{k + 1}")
+        row.update(chunk_means(folder, z0, t0, t1, time_of))
+        values.append(row)
+    return values
+
+
+def group(values, name):
+    xs = [v[name] for v in values if name in v and math.isfinite(v[name])]
+    if len(xs) < 2:
+        return float("nan"), float("nan")
+    return statistics.mean(xs), statistics.stdev(xs) / math.sqrt(len(xs))
+
+
+def cost(folder):
+    """CPU s per physical s of the run (user time over the chute time it covered)."""
+    user = float(open(os.path.join(folder, "time.txt")).read().split()[-3])
+    flow = read_table(os.path.join(folder, "flow.time"))
+    return user / (flow[-1]["v_time"] - flow[0]["v_time"])
+
+
+def parse_windows(text):
+    try:
+        return [tuple(float(x) for x in w.split(":")) for w in text.split(",")]
+    except ValueError:
+        raise SystemExit(f"accuracy_45d.py: --windows {text}: expected T0:T1,T0:T1,...")
+
+
+def compare(args):
+    windows = parse_windows(args.windows)
+    ref = window_values(os.path.join(args.runs, args.reference), args.z0, windows)
+    new = window_values(os.path.join(args.runs, args.candidate), args.z0, windows)
+    os.makedirs(args.out, exist_ok=True)
+    rows = []
+    for q in QUANTITIES:
+        (rm, rs), (nm, ns) = group(ref, q), group(new, q)
+        combined = math.hypot(rs, ns)
+        t = (nm - rm) / combined if combined > 0 else float("nan")
+        rows.append(dict(quantity=q, unit=UNITS.get(q, ""), reference=rm, reference_se=rs, candidate=nm,
+                         candidate_se=ns, difference=nm - rm, combined_se=combined, t=t,
+                         agrees=abs(t) <= 2 if math.isfinite(t) else False))
+    stem = os.path.join(args.out, f"{args.candidate}_vs_{args.reference}")
+    with open(stem + ".csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    lines = [f"| quantity | {args.reference} | {args.candidate} | difference / combined SE | agrees |",
+             "|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['quantity']} ({r['unit']}) | {r['reference']:.4g} ± {r['reference_se']:.2g} | "
+                     f"{r['candidate']:.4g} ± {r['candidate_se']:.2g} | {r['t']:+.2f} | {'yes' if r['agrees'] else 'NO'} |")
+    lines.append(f"\ncost: {args.reference} {cost(os.path.join(args.runs, args.reference)):.0f}, "
+                 f"{args.candidate} {cost(os.path.join(args.runs, args.candidate)):.1f} CPU s per physical s; "
+                 f"{len(windows)} windows {args.windows} s")
+    open(stem + ".md", "w").write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+def convergence(args):
+    """f, A, A_mean against one setting (tolerance or dt): a CSV, and a gnuplot figure."""
+    windows = parse_windows(args.windows)
+    os.makedirs(args.out, exist_ok=True)
+    series = []
+    for item in args.series.split(","):
+        value, folder = item.split("=")
+        values = window_values(os.path.join(args.runs, folder), args.z0, windows)
+        series.append((float(value), folder, {q: group(values, q) for q in ("f", "A", "A_mean", "U")},
+                       cost(os.path.join(args.runs, folder))))
+    series.sort()
+    stem = os.path.join(args.out, f"convergence_{args.setting}")
+    with open(stem + ".csv", "w") as f:
+        f.write(f"{args.setting},run,f_Hz,f_se,A,A_se,A_mean,A_mean_se,U,U_se,cpu_s_per_s\n")
+        for value, folder, g, c in series:
+            f.write(f"{value:g},{folder}," + ",".join(f"{g[q][0]:.6g},{g[q][1]:.3g}" for q in ("f", "A", "A_mean", "U"))
+                    + f",{c:.1f}\n")
+    for ext, term in (("png", "pngcairo size 900,300"), ("svg", "svg size 900,300")):
+        script = f"""set terminal {term}
+set output '{stem}.{ext}'
+set datafile separator ','
+set logscale x
+set multiplot layout 1,3
+set xlabel '{args.setting}'
+set ylabel 'f (Hz)'
+plot '{stem}.csv' every ::1 using 1:3:4 with yerrorlines notitle
+set ylabel 'A (sqrt(g d))'
+plot '{stem}.csv' every ::1 using 1:5:6 with yerrorlines notitle
+set ylabel 'A_mean (sqrt(g d))'
+plot '{stem}.csv' every ::1 using 1:7:8 with yerrorlines notitle
+unset multiplot
+"""
+        subprocess.run(["gnuplot"], input=script, text=True, check=True)
+    print(open(stem + ".csv").read())
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = p.add_subparsers(dest="command", required=True)
+    for name in ("compare", "convergence"):
+        s = sub.add_parser(name)
+        s.add_argument("--runs", required=True, help="folder holding one folder per run")
+        s.add_argument("--windows", required=True, help="T0:T1,... chute times (s) of the replica windows")
+        s.add_argument("--z0", type=float, default=0.015, help="height of the wall tops (m)")
+        s.add_argument("--out", required=True)
+    sub.choices["compare"].add_argument("--reference", required=True)
+    sub.choices["compare"].add_argument("--candidate", required=True)
+    sub.choices["convergence"].add_argument("--setting", required=True, help="name of the varied setting (axis label)")
+    sub.choices["convergence"].add_argument("--series", required=True, help="VALUE=RUN,... one run per value")
+    args = p.parse_args()
+    compare(args) if args.command == "compare" else convergence(args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
