@@ -24,6 +24,7 @@ usage: reference/run_comparison.sh [options] OUT
   --hertz "A .."       LAMMPS GRANULAR Hertz runs at these overlaps (default 1e-3; "" for none)
   --rigid-tolerances "T .."  rigid runs (default 1e-3; "" for none)
   --rigid-dt S         rigid time step (default 1e-5)
+  --rigid-skin N       rigid neighbour skin in d (default 0.3; a grain may move half of it in a step)
   --rigid-parts N      run each rigid flow as N restarted parts of flow/N (default 1): keeps
                        each lmp_cd process short; the parts' outputs are appended
   --deposit S          deposition time of the shared packing (default 0.2)
@@ -46,7 +47,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 top=$(cd "$here/.." && pwd)
 build=${BUILD_DIR:-$top/build}
 mu=0.5 theta=24 cells=16 grains=320 bed_walls=10
-overlaps="1e-2 1e-3 1e-4" codes="granular liggghts" hertz="1e-3" rigid_tolerances="1e-3" rigid_dt=1e-5 rigid_parts=1
+overlaps="1e-2 1e-3 1e-4" codes="granular liggghts" hertz="1e-3" rigid_tolerances="1e-3" rigid_dt=1e-5 rigid_skin=0.3 rigid_parts=1
 deposit=0.2 deposit_overlap=1e-4 settle=0.05 flow=1.0 sample=1e-4 segment=0.25 read_only=0 compare_args=""
 lmp=lmp liggghts=liggghts lmp_cd=$build/lmp_cd cdref=""
 out=""
@@ -62,6 +63,7 @@ while [ $# -gt 0 ]; do
     --hertz) hertz=$2; shift 2 ;;
     --rigid-tolerances) rigid_tolerances=$2; shift 2 ;;
     --rigid-dt) rigid_dt=$2; shift 2 ;;
+    --rigid-skin) rigid_skin=$2; shift 2 ;;
     --rigid-parts) rigid_parts=$2; shift 2 ;;
     --deposit) deposit=$2; shift 2 ;;
     --deposit-overlap) deposit_overlap=$2; shift 2 ;;
@@ -152,7 +154,7 @@ rigid_flow=$(awk -v f="$flow" -v n="$rigid_parts" 'BEGIN { print f / n }')
 for tolerance in $rigid_tolerances; do
   name="rigid-tol$tolerance"
   rigid=(-var mu "$mu" -var theta "$theta" -var bed_walls "$bed_walls" -var flow "$rigid_flow" -var sample_max "$sample"
-         -var tolerance "$tolerance" -var dt "$rigid_dt")
+         -var tolerance "$tolerance" -var dt "$rigid_dt" -var skin "$rigid_skin")
   run "$name" "$lmp_cd" "$here/in.chute_rigid" log.lammps "${packing[@]}" "${rigid[@]}"
   for ((p = 2; p <= rigid_parts; p++)); do
     previous=..; [ "$p" -eq 2 ] || previous=../part$((p - 1))
