@@ -1073,8 +1073,10 @@ double FixContactDynamics::compute_vector(int n)
 
 namespace {
 // The global restart record: a negative version tag (older files start with the iteration
-// total, never negative), the totals, the step grid's level and position (-1: none), the time.
-constexpr double restart_version = -2.0;
+// total, never negative), the totals, the step grid's level and position (-1: none), the time,
+// and the grid the level refers to (dt_max, steps per alignment period).
+constexpr double restart_version = -3.0;
+constexpr double restart_version_without_grid = -2.0;
 }    // namespace
 
 void FixContactDynamics::write_restart(FILE *fp)
@@ -1083,22 +1085,24 @@ void FixContactDynamics::write_restart(FILE *fp)
   const bool known = adaptive_step && step_state_known;
   const double elapsed =
       update->ntimestep == 0 ? 0.0 : update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
-  const double record[7] = {restart_version,
+  const double record[9] = {restart_version,
                             total_iterations,
                             total_unconverged_steps,
                             total_steps,
                             known ? step_level : -1.0,
                             known ? static_cast<double>(steps_into_period) : -1.0,
-                            elapsed};
+                            elapsed,
+                            step_grid.dt_max,
+                            static_cast<double>(step_grid.steps_per_align)};
   const int size = sizeof(record);
   fwrite(&size, sizeof(int), 1, fp);
-  fwrite(record, sizeof(double), 7, fp);
+  fwrite(record, sizeof(double), 9, fp);
 }
 
 void FixContactDynamics::restart(char *buf)
 {
   const auto *record = reinterpret_cast<const double *>(buf);
-  const bool versioned = record[0] == restart_version;
+  const bool versioned = record[0] == restart_version || record[0] == restart_version_without_grid;
   const double *totals = versioned ? record + 1 : record;
   total_iterations = totals[0];
   total_unconverged_steps = totals[1];
@@ -1107,7 +1111,10 @@ void FixContactDynamics::restart(char *buf)
   // and with a varying step the step count does not give it: the fix keeps it. Files of earlier
   // versions of the fix came from fixed steps: step x dt.
   set_clock(versioned ? totals[5] : static_cast<double>(update->ntimestep) * update->dt);
-  if (!versioned || totals[3] < 0.0) return;
+  // The level and position hold on the grid they were written on only.
+  const bool same_grid = record[0] == restart_version && totals[6] == step_grid.dt_max &&
+                         static_cast<int>(totals[7]) == step_grid.steps_per_align;
+  if (!same_grid || totals[3] < 0.0) return;
   step_level = static_cast<int>(totals[3]);
   steps_into_period = static_cast<long long>(totals[4]);
   step_state_known = true;
