@@ -143,10 +143,18 @@ def parse_windows(text):
         raise SystemExit(f"accuracy_45d.py: --windows {text}: expected T0:T1,T0:T1,...")
 
 
+def group_values(args, names, windows):
+    """The windows of every run of a group (replica runs, e.g. another contact order each)."""
+    values = []
+    for name in names.split(","):
+        values += window_values(os.path.join(args.runs, name), args.z0, windows)
+    return values
+
+
 def compare(args):
     windows = parse_windows(args.windows)
-    ref = window_values(os.path.join(args.runs, args.reference), args.z0, windows)
-    new = window_values(os.path.join(args.runs, args.candidate), args.z0, windows)
+    ref = group_values(args, args.reference, windows)
+    new = group_values(args, args.candidate, windows)
     os.makedirs(args.out, exist_ok=True)
     rows = []
     for q in QUANTITIES:
@@ -156,7 +164,7 @@ def compare(args):
         rows.append(dict(quantity=q, unit=UNITS.get(q, ""), reference=rm, reference_se=rs, candidate=nm,
                          candidate_se=ns, difference=nm - rm, combined_se=combined, t=t,
                          agrees=abs(t) <= 2 if math.isfinite(t) else False))
-    stem = os.path.join(args.out, f"{args.candidate}_vs_{args.reference}")
+    stem = os.path.join(args.out, args.name or f"{args.candidate.split(',')[0]}_vs_{args.reference.split(',')[0]}")
     with open(stem + ".csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
@@ -166,9 +174,10 @@ def compare(args):
     for r in rows:
         lines.append(f"| {r['quantity']} ({r['unit']}) | {r['reference']:.4g} ± {r['reference_se']:.2g} | "
                      f"{r['candidate']:.4g} ± {r['candidate_se']:.2g} | {r['t']:+.2f} | {'yes' if r['agrees'] else 'NO'} |")
-    lines.append(f"\ncost: {args.reference} {cost(os.path.join(args.runs, args.reference)):.0f}, "
-                 f"{args.candidate} {cost(os.path.join(args.runs, args.candidate)):.1f} CPU s per physical s; "
-                 f"{len(windows)} windows {args.windows} s")
+    first = lambda names: names.split(",")[0]
+    lines.append(f"\ncost: {first(args.reference)} {cost(os.path.join(args.runs, first(args.reference))):.0f}, "
+                 f"{first(args.candidate)} {cost(os.path.join(args.runs, first(args.candidate))):.1f} CPU s per physical s; "
+                 f"{len(ref)} and {len(new)} windows ({args.windows} s of {args.reference} and {args.candidate})")
     open(stem + ".md", "w").write("\n".join(lines) + "\n")
     print("\n".join(lines))
 
@@ -218,8 +227,9 @@ def main():
         s.add_argument("--windows", required=True, help="T0:T1,... chute times (s) of the replica windows")
         s.add_argument("--z0", type=float, default=0.015, help="height of the wall tops (m)")
         s.add_argument("--out", required=True)
-    sub.choices["compare"].add_argument("--reference", required=True)
-    sub.choices["compare"].add_argument("--candidate", required=True)
+    sub.choices["compare"].add_argument("--reference", required=True, help="RUN[,RUN...]: replicas of the reference")
+    sub.choices["compare"].add_argument("--candidate", required=True, help="RUN[,RUN...]: replicas of the candidate")
+    sub.choices["compare"].add_argument("--name", help="file name of the table (default CANDIDATE_vs_REFERENCE)")
     sub.choices["convergence"].add_argument("--setting", required=True, help="name of the varied setting (axis label)")
     sub.choices["convergence"].add_argument("--series", required=True, help="VALUE=RUN,... one run per value")
     args = p.parse_args()
