@@ -193,25 +193,37 @@ def convergence(args):
         series.append((float(value), folder, {q: group(values, q) for q in ("f", "A", "A_mean", "U")},
                        cost(os.path.join(args.runs, folder))))
     series.sort()
+    reference = None
+    if args.reference:
+        values = group_values(args, args.reference, windows)
+        reference = {q: group(values, q) for q in ("f", "A", "A_mean")}
     stem = os.path.join(args.out, f"convergence_{args.setting}")
     with open(stem + ".csv", "w") as f:
         f.write(f"{args.setting},run,f_Hz,f_se,A,A_se,A_mean,A_mean_se,U,U_se,cpu_s_per_s\n")
         for value, folder, g, c in series:
             f.write(f"{value:g},{folder}," + ",".join(f"{g[q][0]:.6g},{g[q][1]:.3g}" for q in ("f", "A", "A_mean", "U"))
                     + f",{c:.1f}\n")
-    for ext, term in (("png", "pngcairo size 900,300"), ("svg", "svg size 900,300")):
-        script = f"""set terminal {term}
+    def band(q):
+        """The reference's mean and mean +- SE as horizontal lines, if there is a reference."""
+        if not reference:
+            return ""
+        m, e = reference[q]
+        return f", {m} with lines dt 2 lc 'black' title 'reference', {m - e} with lines dt 3 lc 'gray' notitle, " \
+               f"{m + e} with lines dt 3 lc 'gray' notitle"
+    for ext, term in (("png", "pngcairo size 1000,320"), ("svg", "svg size 1000,320")):
+        script = f"""set terminal {term} noenhanced
 set output '{stem}.{ext}'
 set datafile separator ','
 set logscale x
+set key top right font ",9"
 set multiplot layout 1,3
 set xlabel '{args.setting}'
 set ylabel 'f (Hz)'
-plot '{stem}.csv' every ::1 using 1:3:4 with yerrorlines notitle
+plot '{stem}.csv' every ::1 using 1:3:4 with yerrorlines title 'mean of the windows +- SE'{band("f")}
 set ylabel 'A (sqrt(g d))'
-plot '{stem}.csv' every ::1 using 1:5:6 with yerrorlines notitle
-set ylabel 'A_mean (sqrt(g d))'
-plot '{stem}.csv' every ::1 using 1:7:8 with yerrorlines notitle
+plot '{stem}.csv' every ::1 using 1:5:6 with yerrorlines notitle{band("A")}
+set ylabel 'A_mean, f >= 100 Hz (sqrt(g d))'
+plot '{stem}.csv' every ::1 using 1:7:8 with yerrorlines notitle{band("A_mean")}
 unset multiplot
 """
         subprocess.run(["gnuplot"], input=script, text=True, check=True)
@@ -232,6 +244,7 @@ def main():
     sub.choices["compare"].add_argument("--name", help="file name of the table (default CANDIDATE_vs_REFERENCE)")
     sub.choices["convergence"].add_argument("--setting", required=True, help="name of the varied setting (axis label)")
     sub.choices["convergence"].add_argument("--series", required=True, help="VALUE=RUN,... one run per value")
+    sub.choices["convergence"].add_argument("--reference", help="RUN[,RUN...]: drawn as a band")
     args = p.parse_args()
     compare(args) if args.command == "compare" else convergence(args)
 
