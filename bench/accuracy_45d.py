@@ -124,14 +124,17 @@ def window_values(folder, z0, windows):
 
 def group(values, name):
     xs = [v[name] for v in values if name in v and math.isfinite(v[name])]
-    if len(xs) < 2:
-        return float("nan"), float("nan")
+    if len(xs) < 2:    # one window: a value without an error
+        return (xs[0] if xs else float("nan")), float("nan")
     return statistics.mean(xs), statistics.stdev(xs) / math.sqrt(len(xs))
 
 
 def cost(folder):
     """CPU s per physical s of the run (user time over the chute time it covered)."""
-    user = float(open(os.path.join(folder, "time.txt")).read().split()[-3])
+    fields = open(os.path.join(folder, "time.txt")).read().split()
+    if len(fields) < 3 or not fields[-3].replace(".", "").isdigit():
+        return float("nan")    # a run stopped before it finished: no time of its own
+    user = float(fields[-3])
     flow = read_table(os.path.join(folder, "flow.time"))
     return user / (flow[-1]["v_time"] - flow[0]["v_time"])
 
@@ -189,9 +192,9 @@ def convergence(args):
     series = []
     for item in args.series.split(","):
         value, folder = item.split("=")
-        values = window_values(os.path.join(args.runs, folder), args.z0, windows)
+        values = group_values(args, folder.replace("+", ","), windows)    # RUN+RUN: replicas
         series.append((float(value), folder, {q: group(values, q) for q in ("f", "A", "A_mean", "U")},
-                       cost(os.path.join(args.runs, folder))))
+                       cost(os.path.join(args.runs, folder.split("+")[0]))))
     series.sort()
     reference = None
     if args.reference:
@@ -243,7 +246,8 @@ def main():
     sub.choices["compare"].add_argument("--candidate", required=True, help="RUN[,RUN...]: replicas of the candidate")
     sub.choices["compare"].add_argument("--name", help="file name of the table (default CANDIDATE_vs_REFERENCE)")
     sub.choices["convergence"].add_argument("--setting", required=True, help="name of the varied setting (axis label)")
-    sub.choices["convergence"].add_argument("--series", required=True, help="VALUE=RUN,... one run per value")
+    sub.choices["convergence"].add_argument("--series", required=True,
+                                            help="VALUE=RUN[+RUN...],...: the run (or replicas) of each value")
     sub.choices["convergence"].add_argument("--reference", help="RUN[,RUN...]: drawn as a band")
     args = p.parse_args()
     compare(args) if args.command == "compare" else convergence(args)

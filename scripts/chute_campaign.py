@@ -64,10 +64,10 @@ LEG_OUTPUTS = (("flow.time", "time"), ("solver.time", "time"), ("profile.chunk",
                ("packing.chunk", "chunk"), ("layers.chunk", "chunk"), ("dump.chute.gz", "dump"))
 
 # Prior cost model for the time-left estimate before any run has been measured: wall seconds
-# per grain and per step at the deck's default dt and tolerance (1e-4 s, 1e-2: 38.5 CPU s per
-# physical second for 3967 grains, doc/accuracy.md); replaced by the measured rate of finished
-# and running legs as soon as there is one.
-PRIOR_SECONDS_PER_GRAIN_STEP = 1.0e-6
+# per grain and per step at the deck's default dt and tolerance (1e-4 s, 1e-3: 116 CPU s per
+# physical second for 3967 grains at mu 0.5, doc/accuracy.md); replaced by the measured rate of
+# finished and running legs as soon as there is one.
+PRIOR_SECONDS_PER_GRAIN_STEP = 3.0e-6
 
 
 def die_with_parent():
