@@ -22,6 +22,18 @@ constexpr double skin = 1e-4;      // m
 constexpr double travel = 0.4;     // of the skin
 constexpr double gravity = 9.81;
 
+// Gravity and the fix with its step grid; thermo without temperature, whose degrees of freedom
+// one grain would leave negative.
+const char* integration = R"(
+neighbor 1e-4 bin
+timestep 1e-4
+fix grav all gravity 9.81 vector 0 -1 0
+fix cd all contact/dynamics 0.5 0.5 wall yplane 0.0 0.5 0.5 dt_max 1e-4 dt_align 1e-3 travel 0.4
+fix 2d all enforce2d
+thermo_style custom step time
+run 0 post no
+)";
+
 void falling_grain(LammpsSession& s)
 {
   s.commands(cdtest::disk_preamble);
@@ -31,14 +43,8 @@ region box block 0 0.01 0 2.0 -0.0003 0.0003
 create_box 1 box
 create_atoms 1 single 0.005 1.9 0
 set group all diameter 5e-4 density/disc 2500
-neighbor 1e-4 bin
-timestep 1e-4
-fix grav all gravity 9.81 vector 0 -1 0
-fix cd all contact/dynamics 0.5 0.5 wall yplane 0.0 0.5 0.5 dt_max 1e-4 dt_align 1e-3 travel 0.4
-fix 2d all enforce2d
-thermo_style custom step time
-run 0 post no
 )");
+  s.commands(integration);
 }
 
 double lammps_time(const LammpsSession& s)
@@ -98,7 +104,6 @@ TEST(AdaptiveStep, FallingGrainTakesTheLevelOfItsSpeedAtEveryAlignmentTime)
 }
 
 // A restart written in the middle of an alignment period continues the same steps and clock.
-// (One grain: thermo without temperature, whose degrees of freedom it would leave negative.)
 TEST(AdaptiveStep, RestartContinuesTheLevelPositionAndTime)
 {
   const std::string file = "test_adaptive_step.restart";
@@ -110,17 +115,8 @@ TEST(AdaptiveStep, RestartContinuesTheLevelPositionAndTime)
 
   LammpsSession second;
   second.commands("read_restart " + file);
-  second.commands(R"(
-comm_modify vel yes
-neigh_modify delay 0 every 1 check yes
-neighbor 1e-4 bin
-timestep 1e-4
-fix grav all gravity 9.81 vector 0 -1 0
-fix cd all contact/dynamics 0.5 0.5 wall yplane 0.0 0.5 0.5 dt_max 1e-4 dt_align 1e-3 travel 0.4
-fix 2d all enforce2d
-thermo_style custom step time
-run 0 post no
-)");
+  second.commands("comm_modify vel yes\nneigh_modify delay 0 every 1 check yes");
+  second.commands(integration);
   const std::vector<StepRecord> restarted = run_steps(second, 400);
   std::remove(file.c_str());
   for (std::size_t k = 0; k < restarted.size(); k++) {
