@@ -35,11 +35,6 @@ class PairReach {
     const double limit = a.radius + b.radius + reach_[body_a] + reach_[body_b] + margin;
     return dx * dx + dy * dy <= limit * limit;
   }
-  // The same for a disk and a wall point at distance `distance` from its centre.
-  bool within_wall(int body, const Disk& disk, double distance, double margin) const
-  {
-    return distance - disk.radius <= reach_[body] + margin;
-  }
 
   double margin() const { return margin_; }
   // A new floor (the alert distance once the grain size is known); the margin rises to it.

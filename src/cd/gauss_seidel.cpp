@@ -81,8 +81,7 @@ inline void update_frictionless(Contact& c, BodyVelocity* velocity, double relax
   BodyVelocity& a = velocity[c.body_a];
   BodyVelocity& b = velocity[c.body_b];
   const double stick_n = c.impulse.n - c.delassus.inverse_nn * (relative_velocity(c, a, b).n + c.velocity_bias);
-  double p_n = std::max(stick_n, 0.0);
-  if (relaxation != 1.0) p_n = relaxation * p_n + (1.0 - relaxation) * c.impulse.n;
+  const double p_n = relaxed({std::max(stick_n, 0.0), 0.0}, c.impulse, relaxation).n;
   const double dp_n = p_n - c.impulse.n;
   c.impulse.n = p_n;
   apply_normal_impulse(c, dp_n, a, b);

@@ -101,7 +101,7 @@ struct SolverSettings {
   int max_iterations = 1000;
   double relaxation = 1.0;  // p <- w p_local + (1 - w) p_previous
   ConvergenceNorm norm = ConvergenceNorm::quadratic;
-  // mu = 0 contacts solve only their normal impulse and touch no spin (solve_frictionless_local),
+  // mu = 0 contacts solve only their normal impulse and touch no spin (solve_frictionless_local's closed form),
   // the same result as the Coulomb solver to round-off at about half the cost. false sends them
   // through the Coulomb solver: the reference the shortcut is tested and measured against.
   bool frictionless_shortcut = true;
