@@ -473,6 +473,8 @@ BAD_VARS = [
     ("tolerance", "0.1x", "tolerance_is_not_a_number"),
     ("sample_rate", "3000", "-var sample_rate 3000"),
     ("stage", "chute", "-var stage chute"),
+    ("adapt_dt", "maybe", "-var adapt_dt maybe"),
+    ("travel", "0.7", "-var travel 0.7"),
     ("restart_interval", "0.015", "-var restart_interval 0.015"),
     ("norm", "l2", "-var norm l2"),
     ("warm_start", "1", "-var warm_start 1"),
