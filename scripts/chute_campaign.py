@@ -38,12 +38,17 @@ import time
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DECK = os.path.join(TOP, "inputs", "in.chute")
 
-# The series of SCENE.md. Angles in degrees, L in mean diameters d.
+# The series of the scene (doc/chute.md). Angles in degrees, L in mean diameters d.
+REPLICA_SEED = 20261123
 SERIES = {
     "mu0.05": [dict(mu=0.05, theta=t, L=45) for t in range(16, 23)],
     "mu0.5": [dict(mu=0.5, theta=t, L=45) for t in range(22, 29)],
     "mu2": [dict(mu=2, theta=t, L=45) for t in range(26, 31)],
     "L": [dict(mu=0.5, theta=22, L=n) for n in (12, 22, 32, 52, 72, 102, 152)],
+    # Another deposition (rain seed) at one point per friction: the scatter between two
+    # realisations of a run, which the error bars of one run's windows understate.
+    "replicas": [dict(mu=mu, theta=theta, L=45, seed=REPLICA_SEED)
+                 for mu, theta in ((0.05, 20), (0.5, 24), (2, 28))],
 }
 # The cdpost series analyses: the flow rules need every mu together; the L series also takes
 # the 45 d run at the same (mu, theta) from the mu = 0.5 series.
@@ -64,10 +69,13 @@ LEG_OUTPUTS = (("flow.time", "time"), ("solver.time", "time"), ("profile.chunk",
                ("packing.chunk", "chunk"), ("layers.chunk", "chunk"), ("dump.chute.gz", "dump"))
 
 # Prior cost model for the time-left estimate before any run has been measured: wall seconds
-# per grain and per step at the deck's default dt and tolerance (1e-4 s, 1e-3: 116 CPU s per
-# physical second for 3967 grains at mu 0.5, doc/accuracy.md); replaced by the measured rate of
-# finished and running legs as soon as there is one.
-PRIOR_SECONDS_PER_GRAIN_STEP = 3.0e-6
+# per grain and per second of chute time at the deck's defaults (doc/accuracy.md gives the
+# measured cost of the 45 d scene), and per grain and deposition step; replaced by the
+# measured rate of finished and running legs as soon as there is one. Chute progress is
+# counted in chute time, not steps: the step follows the flow (adapt_dt), so steps do not
+# map to time.
+PRIOR_SECONDS_PER_GRAIN_CHUTE_SECOND = 0.03
+PRIOR_SECONDS_PER_GRAIN_DEPOSITION_STEP = 1.0e-6
 
 
 def die_with_parent():
@@ -244,6 +252,36 @@ def splice_legs(leg_dirs, starts, name, kind, destination):
     return True
 
 
+def time_span(path):
+    """(first, last) chute time of a flow.time file (its v_time column), or None before its
+    first row. Only the head and the tail are read: a row cut by a kill is skipped."""
+    try:
+        with open(path, "rb") as src:
+            head = src.read(8192).decode(errors="replace").splitlines()
+            src.seek(max(0, os.path.getsize(path) - 8192))
+            tail = src.read().decode(errors="replace").splitlines()
+    except OSError:
+        return None
+    names = [l[1:].split() for l in head if l.startswith("#")]
+    if not names or "v_time" not in names[-1]:
+        return None
+    column = names[-1].index("v_time")
+
+    def time_of(line):
+        fields = line.split()
+        if line.startswith("#") or len(fields) != len(names[-1]):
+            return None
+        try:
+            return float(fields[column])
+        except ValueError:
+            return None
+    firsts = [t for t in map(time_of, head) if t is not None]
+    lasts = [t for t in map(time_of, tail[1:]) if t is not None]   # tail[0] may be cut
+    if not firsts:
+        return None
+    return firsts[0], (lasts[-1] if lasts else firsts[-1])
+
+
 def leg_start_step(leg_dir):
     """The time step a leg started from: the first thermo row of its log (the run's setup)."""
     in_thermo = False
@@ -342,26 +380,41 @@ class Job:
         n = int(float(self.vars.get("grains", "0")))
         return n if n > 0 else int(round(3967 * float(self.vars["L"]) / 45))
 
-    def total_steps(self):
+    def total_work(self):
+        """Deposition steps (at most settle_max), or the chute time of a run (s)."""
         if self.kind == "deposition":
             return int(round(float(self.vars["settle_max"]) / float(self.vars["dt_deposition"])))
-        return int(round(float(self.vars["duration"]) / float(self.vars["dt"])))
+        return float(self.vars["duration"])
+
+    def expected_work(self):
+        """total_work, except that most depositions settle within 0.6 s, not settle_max."""
+        if self.kind == "deposition":
+            return min(self.total_work(), int(0.6 / float(self.vars["dt_deposition"])))
+        return self.total_work()
+
+    def prior_seconds_per_work(self):
+        if self.kind == "deposition":
+            return self.grains() * PRIOR_SECONDS_PER_GRAIN_DEPOSITION_STEP
+        return self.grains() * PRIOR_SECONDS_PER_GRAIN_CHUTE_SECOND
 
     def legs(self):
         return sorted(glob.glob(os.path.join(self.folder, "legs", "[0-9][0-9]")))
 
-    def steps_done(self):
-        """Chute steps already behind the newest usable restart (0 for a deposition)."""
+    def work_done(self):
+        """Chute time already behind the newest usable restart (0 for a deposition): a
+        finished leg's end, or an unfinished leg's last sample less one restart interval (its
+        restarts come at least that often)."""
         if self.kind == "deposition":
             return 0
-        best = 0
+        best = 0.0
         for leg in self.legs():
-            last, _, _, finished = leg_progress(leg)
-            if finished and os.path.exists(os.path.join(leg, "chute.restart")):
-                best = max(best, last or 0)
-            elif last:
-                restart_every = int(round(float(self.vars["restart_interval"]) / float(self.vars["dt"])))
-                best = max(best, (last // restart_every) * restart_every)
+            span = time_span(os.path.join(leg, "flow.time"))
+            if span is None:
+                continue
+            if os.path.exists(os.path.join(leg, "chute.restart")):
+                best = max(best, span[1])
+            else:
+                best = max(best, span[0], span[1] - float(self.vars["restart_interval"]))
         return best
 
     def restart_files(self):
@@ -453,8 +506,9 @@ class Job:
         return None
 
     def poll_rate(self):
-        """Steps per wall second of the running leg (None until two thermo outputs)."""
-        last, _, _, _ = leg_progress(self.leg_dir)
+        """Work (deposition steps, chute seconds) per wall second of the running leg, None until
+        it progressed twice."""
+        last = self.current_work()
         if last is None:
             return None
         now = time.time()
@@ -466,11 +520,15 @@ class Job:
         (t0, s0), (t1, s1) = self.rate_samples[0], self.rate_samples[-1]
         return (s1 - s0) / (t1 - t0) if t1 > t0 else None
 
-    def current_step(self):
+    def current_work(self):
+        """Deposition step or chute time reached by the running leg, None before its first
+        output."""
         if self.leg_dir is None:
-            return 0
-        last, _, _, _ = leg_progress(self.leg_dir)
-        return last or 0
+            return None
+        if self.kind == "deposition":
+            return leg_progress(self.leg_dir)[0]
+        span = time_span(os.path.join(self.leg_dir, "flow.time"))
+        return span[1] if span else None
 
 
 # ---------------------------------------------------------------------------------------
@@ -518,21 +576,26 @@ def finish_run(job, args):
 
 
 def run_cost(job, legs):
-    """Wall time per physical second over the chute legs, from LAMMPS's own loop timers."""
+    """Wall and CPU time per physical second over the chute legs, from LAMMPS's own loop
+    timers. A leg killed before its end printed no timers, so the physical time is the chute
+    time covered by the legs that did."""
     wall, steps, cpu = 0.0, 0, 0.0
+    spans = []
     for leg in legs:
         _, leg_wall, leg_steps, _, leg_cpu = leg_timing(leg)
         wall += leg_wall
         steps += leg_steps
         cpu += leg_cpu
-    dt = float(job.vars["dt"])
+        span = time_span(os.path.join(leg, "flow.time"))
+        if span and leg_steps > 0:
+            spans.append(span)
     sweeps = None
     solver = os.path.join(job.folder, "solver.time")
     if os.path.exists(solver):
         _, records = read_time_records(solver)
         values = [float(text.split()[1]) for _, text in records]
         sweeps = sum(values) / len(values) if values else None
-    physical = steps * dt
+    physical = max(s[1] for s in spans) - min(s[0] for s in spans) if spans else 0.0
     return dict(grains=job.grains(), steps=steps, physical_seconds=physical, wall_seconds=wall,
                 wall_per_physical_second=wall / physical if physical > 0 else None,
                 cpu_seconds=cpu, cpu_per_physical_second=cpu / physical if physical > 0 else None,
@@ -615,6 +678,8 @@ def build_jobs(args):
             if not variables["e_wall"]:
                 variables["e_wall"] = variables["e"]
             name = f"mu{variables['mu']}_theta{variables['theta']}_L{variables['L']}"
+            if variables["seed"] != defaults["seed"]:
+                name += f"_seed{variables['seed']}"
             if args.only and not any(fnmatch.fnmatch(name, p) for p in args.only):
                 continue
             dep_vars = {k: variables[k] for k in DEPOSITION_VARS}
@@ -677,41 +742,39 @@ def record_params(job, args):
     write_json(path, data)
 
 
-def estimate_left(jobs, running, rate_per_grain_step, jobs_at_once):
-    """Wall seconds left: running legs from their own rate, queued work from the cost model."""
+def estimate_left(jobs, running, seconds_per_grain_chute_second, jobs_at_once):
+    """Wall seconds left: running legs from their own rate, queued work from the cost model
+    (runs: the measured rate, when there is one)."""
     left_running, queued = [], 0.0
     for job in jobs:
         if job.done or job.failed:
             continue
-        total = job.total_steps()
+        per_work = job.prior_seconds_per_work()
+        if job.kind == "run" and seconds_per_grain_chute_second:
+            per_work = job.grains() * seconds_per_grain_chute_second
         if job in running:
             rate = job.poll_rate()
-            remaining = max(total - job.current_step(), 0)
-            if job.kind == "deposition":
-                remaining = min(remaining, int(0.6 / float(job.vars["dt_deposition"])))
-            if rate:
-                left_running.append(remaining / rate)
-            else:
-                left_running.append(remaining * job.grains() * rate_per_grain_step)
+            reached = job.current_work()
+            remaining = max(job.expected_work() - (reached if reached is not None else job.work_done()), 0)
+            left_running.append(remaining / rate if rate else remaining * per_work)
         else:
-            steps = total - job.steps_done()
-            if job.kind == "deposition":      # most settle within 0.6 s, not settle_max
-                steps = min(steps, int(0.6 / float(job.vars["dt_deposition"])))
-            queued += steps * job.grains() * rate_per_grain_step
+            queued += max(job.expected_work() - job.work_done(), 0) * per_work
     busy = max(left_running) if left_running else 0.0
     return max(busy, (sum(left_running) + queued) / max(jobs_at_once, 1))
 
 
 def measured_rate(jobs):
-    seconds, grain_steps = 0.0, 0.0
+    """Wall seconds per grain and chute second over every chute leg so far, or None."""
+    seconds, grain_seconds = 0.0, 0.0
     for job in jobs:
         if job.kind != "run":
             continue
         for leg in job.legs():
-            _, wall, steps, _ = leg_progress(leg)
-            seconds += wall
-            grain_steps += steps * job.grains()
-    return seconds / grain_steps if grain_steps > 0 else None
+            span = time_span(os.path.join(leg, "flow.time"))
+            if span:
+                seconds += leg_progress(leg)[1]
+                grain_seconds += (span[1] - span[0]) * job.grains()
+    return seconds / grain_seconds if grain_seconds > 0 else None
 
 
 def after_run(job, args, cdpost, pending):
@@ -742,11 +805,11 @@ def run_campaign(args):
             state = "done" if job.done else ("started" if job.kind == "run" and job.legs() else "pending")
             extra = ""
             if job.kind == "run":
-                reached = job.steps_done() * float(job.vars["dt"])
+                reached = job.work_done()
                 extra = f"  {reached:.3f}/{job.vars['duration']} s"
                 if job.done and reached < float(job.vars["duration"]) - 1e-9:
                     state = "to extend"
-            print(f"{job.kind:10s} {job.name:28s} {job.grains():6d} grains  {state}{extra}")
+            print(f"{job.kind:10s} {job.name:34s} {job.grains():6d} grains  {state}{extra}")
         return 0
     for job in jobs:
         problem = check_recorded_params(job)
@@ -854,13 +917,12 @@ def run_campaign(args):
         now = time.time()
         if now - last_report >= args.progress_interval and (running or pending):
             last_report = now
-            rate = measured_rate(jobs) or PRIOR_SECONDS_PER_GRAIN_STEP
-            left = estimate_left(jobs, running, rate, args.jobs)
+            left = estimate_left(jobs, running, measured_rate(jobs), args.jobs)
             finished = sum(j.done for j in jobs)
             parts = []
             for job in running:
-                total = job.total_steps()
-                parts.append(f"{job.name} {100.0 * job.current_step() / total:.0f}%")
+                reached = job.current_work() or 0
+                parts.append(f"{job.name} {100.0 * reached / job.total_work():.0f}%")
             print(f"[{finished}/{len(jobs)} done, {len(running)} running, {len(pending)} queued] "
                   + ", ".join(parts) + f"; time left ~{format_duration(left)}", flush=True)
         time.sleep(args.poll)
