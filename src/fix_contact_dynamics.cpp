@@ -37,9 +37,9 @@ constexpr double uniform_ratio_tolerance = 1.0e-6;
 constexpr double default_alert_fraction = 0.01;
 // Overlaps deeper than this, in mean diameters, at the start of a run are reported.
 constexpr double initial_overlap_warning = 0.01;
-// Subdomains narrower than this many contact cutoffs are reported: on 1.4 cutoffs (4 ranks
-// of a 10 d chute cell) the decomposed sweep left the flow 5 % slower than one rank, on 2.8
-// (2 ranks) it agreed (doc/benchmarks.md).
+// Subdomains narrower than this many contact cutoffs are reported: there every grain is a
+// ghost of a neighbouring rank, and a chute's flow measurably depended on the rank count
+// (doc/benchmarks.md).
 constexpr double narrow_subdomain_cutoffs = 2.0;
 
 // Keys of wall contacts in the per-atom store are negative, atom IDs positive.
@@ -137,6 +137,13 @@ void require_values(const char *keyword, int iarg, int count, int narg, Error *e
     error->all(FLERR, "Fix contact/dynamics: {} needs {} value(s)", keyword, count);
 }
 
+bool yes_or_no(const char *keyword, const std::string &value, Error *error)
+{
+  if (value != "yes" && value != "no")
+    error->all(FLERR, "Fix contact/dynamics: {} must be yes or no, got '{}'", keyword, value);
+  return value == "yes";
+}
+
 void check_friction(const char *keyword, double mu, Error *error)
 {
   if (mu < 0.0) error->all(FLERR, "Fix contact/dynamics: {} must be >= 0, got {}", keyword, mu);
@@ -215,10 +222,9 @@ void FixContactDynamics::parse_arguments(int narg, char **arg)
       else if (norm == "maximum") solver_settings.norm = cd::ConvergenceNorm::maximum;
       else error->all(FLERR, "Fix contact/dynamics: norm must be quadratic or maximum, got '{}'", norm);
     } else if (keyword == "warm_start") {
-      const std::string flag = value;
-      if (flag != "yes" && flag != "no")
-        error->all(FLERR, "Fix contact/dynamics: warm_start must be yes or no, got '{}'", flag);
-      warm_start = flag == "yes";
+      warm_start = yes_or_no("warm_start", value, error);
+    } else if (keyword == "pair_forces") {
+      pair_forces = yes_or_no("pair_forces", value, error);
     } else if (keyword == "max_contacts") {
       max_contacts = integer_for("max_contacts", value, error);
       if (max_contacts < 1)
@@ -344,6 +350,7 @@ void FixContactDynamics::init()
   if (atom->ntypes + 1 != static_cast<int>(std::sqrt(static_cast<double>(type_laws.size()))))
     error->all(FLERR, "Fix contact/dynamics: the number of atom types changed since the fix was defined");
   check_integrators();
+  check_pair_style();
 
   // Largest radius now or announced by an insertion fix (fix pour, fix deposit).
   double rmax_local = 0.0;
@@ -403,6 +410,28 @@ void FixContactDynamics::check_integrators()
       error->all(FLERR, "Fix contact/dynamics: fix {} ({}) also integrates atoms of group {}",
                  other->id, other->style, group->names[igroup]);
   }
+}
+
+// A pair style's forces between two grains of the group would act on top of the rigid
+// contacts (springs added to contacts that never overlap): refused unless pair_forces yes says
+// they are wanted (e.g. cohesion). Pair::init() has set cutsq for every type pair by now; a
+// type pair with no interaction (pair_style none, hybrid none) has cutsq 0, pair_style zero
+// exerts no force.
+void FixContactDynamics::check_pair_style()
+{
+  Pair *pair = force->pair;
+  if (pair_forces || !pair || !pair->cutsq || utils::strmatch(force->pair_style, "^zero")) return;
+  const int ntypes = atom->ntypes;
+  std::vector<int> present_local(ntypes + 1, igroup == 0 ? 1 : 0), present(ntypes + 1, 0);
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->mask[i] & groupbit) present_local[atom->type[i]] = 1;
+  MPI_Allreduce(present_local.data(), present.data(), ntypes + 1, MPI_INT, MPI_MAX, world);
+  for (int itype = 1; itype <= ntypes; itype++)
+    for (int jtype = itype; jtype <= ntypes; jtype++)
+      if (present[itype] && present[jtype] && pair->cutsq[itype][jtype] > 0.0)
+        error->all(FLERR, "Fix contact/dynamics: pair style {} also acts on atoms of group {} (types {} and {}); "
+                   "remove it, or add pair_forces yes to keep its forces", force->pair_style,
+                   group->names[igroup], itype, jtype);
 }
 
 // Disks need m = pi r^2 rho. Sphere masses (4/3 pi r^3 rho, as fix pour and set density give)

@@ -103,6 +103,7 @@ class FixContactDynamics : public Fix {
   double alert_distance;  // candidate pairs: gap closed at free velocity <= alert (m)
   bool alert_given;
   bool narrow_subdomains_reported;  // the narrow-subdomain warning is given once per fix
+  bool pair_forces = false;         // a pair style may act on the group's pairs too
   std::vector<cd::ContactLaw> type_laws;  // (ntypes+1)^2, row-major
   std::vector<cd::Wall> walls;
   std::mt19937_64 shuffle_rng;
@@ -151,6 +152,7 @@ class FixContactDynamics : public Fix {
   int parse_wall(int iarg, int narg, char **arg);
   void parse_type_law(const char *keyword, int iarg, int narg, char **arg, bool friction);
   void check_integrators();
+  void check_pair_style();
   void check_disk_masses();
   void assign_disc_masses();
   void request_neighbor_list();

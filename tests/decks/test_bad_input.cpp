@@ -142,6 +142,10 @@ const BadCase bad_cases[] = {
      "atom 1 moved 0.0002 in step 1, more than half the neighbour skin 0.0001"},
     {"second_integrator", preamble + "fix nve all nve/sphere\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
      "fix nve (nve/sphere) also integrates atoms of group all"},
+    {"pair_style_on_the_group",
+     preamble + "pair_style gran/hooke 2000 NULL 0 NULL 0.5 0\npair_coeff * *\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
+     "pair style gran/hooke also acts on atoms of group all (types 1 and 1); remove it, or add pair_forces yes"},
+    {"pair_forces_not_yes_or_no", with_fix("0.5 0.5 pair_forces maybe"), "pair_forces must be yes or no, got 'maybe'"},
     {"sphere_masses",
      preamble + "set atom 2 diameter 4e-4\nset group all density 2500\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
      "has sphere masses"},
@@ -180,6 +184,37 @@ TEST(Warnings, OverlapsAtTheStartOfARunAreReported)
             std::string::npos) << overlapping.output;
   const RunResult apart = run_deck("no_initial_overlap", with_fix("0.5 0.5"));
   EXPECT_EQ(apart.output.find("overlap by up to"), std::string::npos) << apart.output;
+}
+
+TEST(PairForces, KeptWhenAskedFor)
+{
+  // Two grains 0.4 d apart, centre to centre: the rigid contacts keep the overlap, a Hooke
+  // spring pushes them apart; with pair_forces yes both act and the pair separates.
+  const std::string deck = preamble + "set atom 2 x 0.0052\npair_style gran/hooke 2000 NULL 0 NULL 0.5 0\n"
+                           "pair_coeff * *\nfix cd all contact/dynamics 0.5 0.5 pair_forces yes\nrun 20\n"
+                           "print \"SEPARATION $(x[2]-x[1])\"\n";
+  const RunResult result = run_deck("pair_forces_yes", deck);
+  EXPECT_EQ(result.exit_status, 0) << result.output;
+  EXPECT_EQ(error_line(result.output), "") << result.output;
+  const std::size_t at = result.output.find("\nSEPARATION ");
+  ASSERT_NE(at, std::string::npos) << result.output;
+  EXPECT_GT(std::stod(result.output.substr(at + 12)), 2.1e-4) << result.output;
+}
+
+TEST(PairForces, PairStyleZeroAndTypesOutsideTheGroupAreAccepted)
+{
+  // pair_style zero exerts no force; a pair style acting only on type 2 (not in the group,
+  // hybrid none for the group's type pairs) leaves the group's contacts alone.
+  const RunResult zero = run_deck("pair_zero", preamble + "pair_style zero 1e-3\npair_coeff * *\n"
+                                  "fix cd all contact/dynamics 0.5 0.5\nrun 5\n");
+  EXPECT_EQ(zero.exit_status, 0) << zero.output;
+  EXPECT_EQ(error_line(zero.output), "") << zero.output;
+  const RunResult other_types =
+      run_deck("pair_other_types", preamble + "set atom 2 type 2\ngroup grains type 1\n"
+               "pair_style hybrid gran/hooke 2000 NULL 0 NULL 0.5 0\npair_coeff 1 * none\n"
+               "pair_coeff 2 2 gran/hooke\nfix cd grains contact/dynamics 0.5 0.5\nrun 5\n");
+  EXPECT_EQ(other_types.exit_status, 0) << other_types.output;
+  EXPECT_EQ(error_line(other_types.output), "") << other_types.output;
 }
 
 TEST(MultipleRanks, SubdomainsThinnerThanTheContactCutoffAreRefused)
