@@ -638,10 +638,12 @@ def postprocess_series(jobs, cdpost, args):
         manifest = os.path.join(folder, "manifest.csv")
         with open(manifest, "w") as out:
             out.write(f"# {analysis}: run folders relative to this file\n")
-            out.write("run,mu,theta,L\n")
+            # L only where it varies: cdpost correlates the results with L when it is given.
+            with_length = len({j.vars["L"] for j in runs}) > 1
+            out.write("run,mu,theta" + (",L" if with_length else "") + "\n")
             for j in runs:
                 rel = os.path.relpath(j.folder, folder)
-                out.write(f"{rel},{j.vars['mu']},{j.vars['theta']},{j.vars['L']}\n")
+                out.write(f"{rel},{j.vars['mu']},{j.vars['theta']}" + (f",{j.vars['L']}" if with_length else "") + "\n")
         y_top = float(runs[0].vars["wall_height"]) * float(runs[0].vars["d"])
         cmd = [cdpost, "series", manifest, "--z0", repr(y_top)] + args.cdpost_option
         result = subprocess.run(cmd, capture_output=True, text=True)
@@ -799,6 +801,8 @@ def after_run(job, args, cdpost, pending):
 
 
 def run_campaign(args):
+    if args.report:
+        return write_results(args)
     jobs = build_jobs(args)
     if args.list:
         for job in jobs:
@@ -946,6 +950,29 @@ def run_campaign(args):
     return 1 if failures else 0
 
 
+def write_results(args):
+    """--report: cdpost on the finished runs it has not analysed yet, the series analyses made
+    again from every analysed run, then the results folder."""
+    import chute_report
+    cdpost = find_cdpost(args)
+    if cdpost is None:
+        print("--report needs cdpost (build/postproc/cdpost, --cdpost)", file=sys.stderr)
+        return 2
+    jobs = build_jobs(args)
+    for job in jobs:
+        if job.kind == "run" and job.done and not os.path.exists(os.path.join(job.folder, "post", "results.csv")):
+            ok, message = postprocess_run(job, cdpost, args)
+            print(f"cdpost run {job.name}: " + ("done" if ok else "failed: " + message), flush=True)
+    postprocess_series(jobs, cdpost, args)
+    records = [chute_report.RunRecord(job, run_cost(job, job.legs())) for job in jobs if job.kind == "run"]
+    series = {analysis: os.path.join(args.out, "series", analysis) for analysis in ANALYSES}
+    command = " ".join(shlex.quote(a) for a in ["scripts/chute_campaign.py"] + args.argv)
+    readme = chute_report.write_report(records, series, args.comparison, args.report, command)
+    analysed = sum(r.results is not None for r in records)
+    print(f"{readme}: {analysed} of {len(records)} runs analysed", flush=True)
+    return 0
+
+
 def open_text(folder):
     text = []
     for name in ("log.lammps", "screen.txt"):
@@ -989,6 +1016,12 @@ def parse_args(argv):
     parser.add_argument("--cdpost-option", action="append", default=[], metavar="OPT",
                         help="extra cdpost option, e.g. --cdpost-option=--segment --cdpost-option=0.5")
     parser.add_argument("--list", action="store_true", help="list the jobs and their state, run nothing")
+    parser.add_argument("--report", metavar="DIR",
+                        help="run nothing: analyse the series again from the finished runs and write "
+                             "the results folder DIR (e.g. results)")
+    parser.add_argument("--comparison", action="append", default=[], metavar="DIR",
+                        help="with --report: a reference/run_comparison.sh output folder to include "
+                             "(repeatable)")
     parser.add_argument("--dry-run", action="store_true", help="print the commands of the pending jobs")
     parser.add_argument("--progress-interval", type=float, default=60.0, help="seconds between progress lines")
     parser.add_argument("--poll", type=float, default=2.0, help=argparse.SUPPRESS)
@@ -1016,8 +1049,14 @@ def parse_args(argv):
     args.lmp = os.path.abspath(args.lmp)
     if args.max_duration < args.duration:
         args.max_duration = args.duration
-    if not os.access(args.lmp, os.X_OK) and not (args.list or args.dry_run):
+    if not os.access(args.lmp, os.X_OK) and not (args.list or args.dry_run or args.report):
         parser.error(f"--lmp {args.lmp}: not an executable (build it: make -C build lmp_cd)")
+    if args.comparison and not args.report:
+        parser.error("--comparison goes with --report")
+    for folder in args.comparison:
+        if not os.path.isdir(folder):
+            parser.error(f"--comparison {folder}: not a folder")
+    args.argv = list(argv)
     return args
 
 

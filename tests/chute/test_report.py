@@ -1,0 +1,205 @@
+#!/usr/bin/env python3
+"""scripts/chute_campaign.py --report on a synthetic campaign, run by ctest.
+
+    test_report.py --cdpost build/postproc/cdpost --work DIR
+
+The campaign folder is written here as the runner leaves it (run folders with their spliced
+outputs and legs, DONE), for the mu = 0.5 series and its replica, with flows that follow a
+known mu(I) rule, phi(U) law and oscillation; one run of the series is left unstarted. The
+report must analyse every finished run with cdpost, recover the laws from the series fit,
+measure the replica scatter, list the unstarted run, hold no dump or restart, and keep a
+hand-written discussion when it is made again. Standard library only.
+"""
+
+import argparse
+import csv
+import gzip
+import math
+import os
+import random
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOP = os.path.dirname(os.path.dirname(HERE))
+RUNNER = os.path.join(TOP, "scripts", "chute_campaign.py")
+
+D, G = 5.0e-4, 9.81
+SQRT_GD = math.sqrt(G * D)
+Y_TOP = 30 * D                          # the deck's wall tops
+H = 40.0                                # flowing-layer thickness (d)
+THETA1, THETA2, I0 = 20.0, 32.0, 0.3    # the mu(I) rule the flows follow
+PHI_C, K = 0.82, 0.002                  # phi = PHI_C - K U/sqrt(g d)
+SAMPLE_RATE, DURATION, DT = 1000, 4.0, 1.0e-4
+REPLICA_SHIFT = 0.2                     # U of the replica run minus the original (sqrt(g d))
+SERIES_ARGS = ["--series", "mu0.5", "--series", "replicas", "--only", "mu0.5_*"]
+
+
+class Failure(Exception):
+    pass
+
+
+def check(condition, message):
+    if not condition:
+        raise Failure(message)
+
+
+def flow_velocity(theta):
+    """U/sqrt(g d) of the mu(I) rule at this tilt and h = H."""
+    t, t1, t2 = (math.tan(math.radians(a)) for a in (theta, THETA1, THETA2))
+    inertial = I0 * (t - t1) / (t2 - t)
+    return inertial * H ** 1.5
+
+
+def write_flow_time(folder, u, frequency, rng):
+    amplitude = 0.002 * u * SQRT_GD
+    with open(os.path.join(folder, "flow.time"), "w") as out:
+        out.write("# synthetic chute flow\n# TimeStep v_time v_u_all v_u_flow v_v_flow v_phi_flow v_h v_n_flow\n")
+        for k in range(int(DURATION * SAMPLE_RATE) + 1):
+            t = k / SAMPLE_RATE
+            u_flow = u * SQRT_GD * (1 + 0.005 * rng.gauss(0, 1))
+            v = amplitude * math.sin(2 * math.pi * frequency * t) + 0.1 * amplitude * rng.gauss(0, 1)
+            phi = PHI_C - K * u + 1e-4 * rng.gauss(0, 1)
+            out.write(f"{int(round(t / DT))} {t:.10g} {0.6 * u_flow:.8g} {u_flow:.8g} {v:.8g} {phi:.8g} "
+                      f"{H * D:.8g} 2500\n")
+
+
+def write_profile(folder, u):
+    """u(z): Bagnold in the layer, exponential creep (lambda 2 d) below the wall tops."""
+    bins = int(Y_TOP / D + H + 5)
+    a = 0.5 * u / H ** 1.5
+    with open(os.path.join(folder, "profile.chunk"), "w") as out:
+        out.write("# synthetic profile\n# Timestep Number-of-chunks Total-count\n# Chunk Coord1 Ncount vx vy\n")
+        for block in range(int(DURATION * 10)):
+            out.write(f"{(block + 1) * 1000} {bins} {bins * 40}\n")
+            for b in range(bins):
+                z = (b + 0.5) - Y_TOP / D
+                if z < 0:
+                    vx = 0.5 * u * math.exp(z / 2.0)
+                elif z <= H:
+                    vx = 0.5 * u + a * (H ** 1.5 - (H - z) ** 1.5)
+                else:
+                    vx = 0.0
+                count = 40 if z <= H else 0
+                out.write(f"  {b + 1} {(b + 0.5) * D:.6g} {count} {vx * SQRT_GD:.6g} 0\n")
+
+
+def write_layers(folder, frequency):
+    layers = int(H / 5)
+    with open(os.path.join(folder, "layers.chunk"), "w") as out:
+        out.write("# synthetic layers\n# Timestep Number-of-chunks Total-count\n# Chunk Coord1 Ncount vy\n")
+        for k in range(int(DURATION * SAMPLE_RATE) + 1):
+            t = k / SAMPLE_RATE
+            out.write(f"{int(round(t / DT))} {layers} {layers * 200}\n")
+            for n in range(layers):
+                z = 2.5 + 5 * n
+                vy = 0.05 * math.exp((z - H) / 10.0) * math.sin(2 * math.pi * frequency * t)
+                out.write(f"  {n + 1} {Y_TOP + z * D:.6g} 200 {vy:.6g}\n")
+
+
+def write_dump(folder):
+    with gzip.open(os.path.join(folder, "dump.chute.gz"), "wt") as out:
+        out.write(f"ITEM: TIMESTEP\n{int(DURATION / DT)}\nITEM: NUMBER OF ATOMS\n20\nITEM: BOX BOUNDS pp fm pp\n"
+                  f"0 {45 * D}\n0 {Y_TOP + 2 * H * D}\n-3e-4 3e-4\nITEM: ATOMS id type x y vx vy radius ix\n")
+        for n in range(20):
+            out.write(f"{n + 1} 1 {(n + 0.5) * 2.2 * D:.6g} {Y_TOP + D:.6g} 0.1 0 {D / 2} 0\n")
+
+
+def write_run(campaign, name, theta, seed_shift, frequency):
+    """A finished run folder as the runner leaves it, with one leg and its timers."""
+    folder = os.path.join(campaign, "runs", name)
+    leg = os.path.join(folder, "legs", "00")
+    os.makedirs(leg)
+    rng = random.Random(name)
+    u = flow_velocity(theta) + seed_shift
+    write_flow_time(folder, u, frequency, rng)
+    write_profile(folder, u)
+    write_layers(folder, frequency)
+    write_dump(folder)
+    for restart in ("chute.restart", os.path.join("legs", "00", "chute.restart")):
+        open(os.path.join(folder, restart), "w").write("a restart the report must not copy\n")
+    shutil.copy(os.path.join(folder, "flow.time"), leg)
+    with open(os.path.join(leg, "log.lammps"), "w") as out:
+        out.write(f"Loop time of 400 on 1 procs for 40000 steps with 3967 atoms\n\n100.0% CPU use with 1 MPI tasks\n")
+    with open(os.path.join(leg, "command.sh"), "w") as out:
+        out.write(f"#!/bin/sh\n# synthetic leg of {name}\n")
+    open(os.path.join(folder, "DONE"), "w").close()
+
+
+def write_campaign(campaign):
+    for theta in range(22, 28):             # theta 28 is left unstarted
+        write_run(campaign, f"mu0.5_theta{theta}_L45", theta, 0.0, 15.0 + theta - 22)
+    write_run(campaign, "mu0.5_theta24_L45_seed20261123", 24, REPLICA_SHIFT, 17.0)
+
+
+def read_csv(path):
+    with open(path, newline="") as src:
+        return {row["name"]: row for row in csv.DictReader(src)}
+
+
+def report(cdpost, campaign, results):
+    cmd = [sys.executable, RUNNER, "--out", campaign, "--cdpost", cdpost, "--report", results] + SERIES_ARGS
+    done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    check(done.returncode == 0, "--report failed:\n" + done.stdout + done.stderr)
+    return open(os.path.join(results, "README.md")).read()
+
+
+def check_within(fits, name, truth, sigmas=3.0):
+    check(name in fits, f"fits.csv has no {name}")
+    value, error = float(fits[name]["value"]), float(fits[name]["error"] or 0)
+    check(abs(value - truth) <= sigmas * error + 1e-3 * abs(truth),
+          f"{name} = {value} ± {error}, expected {truth}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--cdpost", required=True)
+    parser.add_argument("--work", required=True)
+    args = parser.parse_args()
+    work = os.path.abspath(args.work)
+    shutil.rmtree(work, ignore_errors=True)
+    campaign, results = os.path.join(work, "campaign"), os.path.join(work, "results")
+    try:
+        write_campaign(campaign)
+        readme = report(os.path.abspath(args.cdpost), campaign, results)
+
+        analysed = sorted(os.listdir(os.path.join(results, "runs")))
+        check(len(analysed) == 7, f"results/runs holds {analysed}, expected the 7 finished runs")
+        for name in analysed:
+            check(os.path.exists(os.path.join(results, "runs", name, "results.csv")), f"{name}: no results.csv")
+        check("| mu0.5_theta28_L45 |" in readme and "not started" in readme,
+              "the unstarted run is not listed with its state")
+        big = [os.path.join(d, f) for d, _, files in os.walk(results) for f in files
+               if "restart" in f or f.startswith("dump") or os.path.getsize(os.path.join(d, f)) > 2_000_000]
+        check(not big, f"results/ holds restarts, dumps or large files: {big}")
+
+        fits = read_csv(os.path.join(results, "series", "flow_rules", "fits.csv"))
+        check_within(fits, "muI_I0", I0)
+        check_within(fits, "muI_theta1_mu0.5", THETA1)
+        check_within(fits, "muI_theta2_mu0.5", THETA2)
+        check_within(fits, "phi_k", K)
+        check_within(fits, "phi_c_mu0.5", PHI_C)
+        check("![U_vs_theta](series/flow_rules/figures/U_vs_theta.png)" in readme, "the flow-rule figure is not shown")
+
+        # The replica pair differs by REPLICA_SHIFT in U (each run's own noise is ~1e-3 of it).
+        line = next((l for l in readme.splitlines() if l.startswith("| U |")), None)
+        check(line is not None, "no replica scatter of U in the README")
+        scatter = float(line.split("|")[2])
+        expected = REPLICA_SHIFT / math.sqrt(2)
+        check(abs(scatter - expected) < 0.05 * expected, f"replica scatter of U {scatter}, expected {expected:.3g}")
+
+        path = os.path.join(results, "README.md")
+        text = readme.replace("(no discussion yet)", "The flows follow the rule they were made with.")
+        open(path, "w").write(text)
+        again = report(os.path.abspath(args.cdpost), campaign, results)
+        check("The flows follow the rule they were made with." in again, "the discussion was lost on regeneration")
+    except Failure as failure:
+        print(f"FAILED report: {failure}")
+        return 1
+    print("report: 7 runs analysed, mu(I) and phi(U) recovered, replica scatter measured, discussion kept")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
