@@ -1,5 +1,7 @@
 #include "analysis/snapshot.h"
 
+#include <limits>
+
 #include "io/dump.h"
 #include "io/progress.h"
 
@@ -36,6 +38,10 @@ Figure snapshot_figure(const SnapshotRequest& request, const Units& units, doubl
   const double to_reduced = units.velocity_unit_mps() / units.reduced_velocity_mps();
   const double length = (frame.xhi - frame.xlo) * to_d, xlo = frame.xlo * to_d, xhi = frame.xhi * to_d;
   const double margin = request.image_fraction * length;
+  // The bed-trapping walls stand on the periodic boundary from the floor (the box bottom) to
+  // the wall tops z = 0: only a grain whose centre is above them can cross to the other side.
+  const double floor_z = (frame.ylo - z0) * to_d;
+  const bool walls = floor_z < 0.0;
 
   Curve grains{"grains", CurveStyle::Circles, {}, {}, {}, {}, {}};
   Curve images{"periodic images", CurveStyle::ShadedCircles, {}, {}, {}, {}, {}};
@@ -49,6 +55,7 @@ Figure snapshot_figure(const SnapshotRequest& request, const Units& units, doubl
       curve.colour.push_back(u);
     };
     add(grains, gx);
+    if (walls && gz <= 0.0) continue;
     if (gx - xlo < margin) add(images, gx + length);
     if (xhi - gx < margin) add(images, gx - length);
   }
@@ -62,7 +69,13 @@ Figure snapshot_figure(const SnapshotRequest& request, const Units& units, doubl
   panel.x_range = std::make_pair(xlo - margin, xhi + margin);
   panel.curves = {grains};
   if (!images.x.empty()) panel.curves.push_back(images);
-  Figure figure{"snapshot", "Snapshot of the cell, grains coloured by x-velocity; periodic images shaded", {panel}, 1400, 700};
+  std::string caption = "Snapshot of the cell, grains coloured by x-velocity; periodic images shaded";
+  if (walls) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();  // a break between the two walls
+    panel.curves.push_back(Curve{"walls", CurveStyle::Walls, {xlo, xlo, nan, xhi, xhi}, {floor_z, 0.0, nan, floor_z, 0.0}, {}, {}, {}});
+    caption += " above the wall tops (z = 0), where grains cross the periodic boundary; the walls in black";
+  }
+  Figure figure{"snapshot", caption, {panel}, 1400, 700};
   return figure;
 }
 

@@ -1,5 +1,8 @@
-// A picture of the cell from a LAMMPS dump: grains coloured by their x-velocity, with the
-// periodic images beyond the x boundaries shaded. The dump is streamed.
+// A picture of the cell from a LAMMPS dump: grains coloured by their x-velocity, the
+// bed-trapping walls on the periodic boundary (from the box bottom up to the wall tops z0),
+// and the periodic images beyond the x boundaries shaded where grains can cross, above the
+// wall tops (everywhere when there are no walls, z0 at or below the box bottom). The dump is
+// streamed.
 #pragma once
 
 #include <optional>
@@ -18,7 +21,8 @@ struct SnapshotRequest {
 };
 
 // Figure named "snapshot" of the chosen frame (dump columns x y vx radius; lengths in d,
-// z = y - z0, colour in sqrt(g d)).
+// z = y - z0, colour in sqrt(g d)): curves "grains", "periodic images" (when any) and
+// "walls" (when z0 is above the box bottom).
 Figure snapshot_figure(const SnapshotRequest& request, const Units& units, double z0);
 
 }  // namespace cdpost

@@ -24,7 +24,7 @@ const char* const overview =
     "  run DIR          analyse one run directory (flow.time, profile.chunk, layers.chunk)\n"
     "  series MANIFEST  analyse the runs listed in a CSV (run,mu,theta[,L]) and fit the flow rules\n"
     "  spectrum FILE    spectrum of one column of a fix ave/time file\n"
-    "  snapshot DUMP    picture of one frame of a dump (grains coloured by x-velocity)\n"
+    "  snapshot DUMP    picture of one frame of a dump (grains coloured by x-velocity, walls)\n"
     "\n"
     "Results go to CSV and JSON beside the report; see doc/postproc.md.\n";
 
@@ -191,7 +191,7 @@ int command_spectrum(const std::vector<std::string>& arguments) {
 int command_snapshot(const std::vector<std::string>& arguments) {
   auto specs = unit_options();
   specs.insert(specs.end(), {{"timestep", "N", "frame to draw (default: the last)"},
-                             {"z0", "LENGTH", "height of the wall tops in input length units (default 0)"},
+                             {"z0", "LENGTH", "height of the wall tops in input length units: walls on the periodic boundary from the box bottom up to it, periodic images shaded above it (default 0: no walls)"},
                              {"out", "DIR", "output directory (default: the dump's directory)"}});
   auto options = parse_or_help("cdpost snapshot", "cdpost snapshot DUMP [options]", arguments, specs, 1);
   if (!options) return 0;

@@ -1,5 +1,6 @@
 #include "output/gnuplot.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -23,6 +24,10 @@ std::string block_name(size_t panel, size_t curve) {
 void write_data_block(std::ostream& out, const std::string& name, const Curve& curve) {
   out << name << " << EOD\n";
   for (size_t i = 0; i < curve.x.size(); ++i) {
+    if (std::isnan(curve.x[i])) {  // a blank line breaks a line plot
+      out << '\n';
+      continue;
+    }
     out << curve.x[i] << ' ' << curve.y[i];
     if (curve.style == CurveStyle::ErrorBars) out << ' ' << curve.y_error[i];
     if (curve.style == CurveStyle::Circles || curve.style == CurveStyle::ShadedCircles)
@@ -41,6 +46,7 @@ std::string plot_clause(const Curve& curve, const std::string& block) {
     case CurveStyle::ErrorBars: with = "using 1:2:3 with yerrorbars pt 7"; break;
     case CurveStyle::Circles: with = "using 1:2:3:4 with circles lc palette fs solid 1.0 noborder"; break;
     case CurveStyle::ShadedCircles: with = "using 1:2:3:4 with circles lc palette fs transparent solid 0.3 noborder"; break;
+    case CurveStyle::Walls: with = "using 1:2 with lines lw 3 lc rgb 'black'"; break;
   }
   return block + " " + with + (curve.title.empty() ? " notitle" : " title " + quoted(curve.title));
 }

@@ -9,7 +9,8 @@
 
 namespace cdpost {
 
-enum class CurveStyle { Points, Lines, LinesPoints, ErrorBars, Circles, ShadedCircles };
+// Walls: black lines; in Lines and Walls a NaN point breaks the line.
+enum class CurveStyle { Points, Lines, LinesPoints, ErrorBars, Circles, ShadedCircles, Walls };
 
 struct Curve {
   std::string title;
