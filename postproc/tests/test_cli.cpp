@@ -145,10 +145,106 @@ TEST(Cli, SeriesRecoversTheFlowRulesAndScalings) {
   for (const char* figure : {"f_vs_scale", "f_vs_shear_rate", "A_vs_U", "A_vs_phi", "phi_vs_U", "U_vs_theta", "L_series"})
     EXPECT_TRUE(std::filesystem::exists(dir / "post/figures" / (std::string(figure) + ".png"))) << figure;
   EXPECT_EQ(line_count(slurp(dir / "post/runs.csv")), 11u);
+  // No stopped run: beta free gives l/beta only, and says why.
+  EXPECT_GT(csv_value(fits, "pouliquen_betafree_ell_over_beta_mu0.5"), 0);
+  EXPECT_EQ(slurp(fits).find("pouliquen_betafree_beta_mu"), std::string::npos);
+  EXPECT_NE(slurp(dir / "post/fits.json").find("mu = 0.5: no stopped run, so beta and l are not determined separately"), std::string::npos);
+  // Residuals: 10 runs in each of pouliquen, pouliquen_betafree, muI and phi_U, plus the header.
+  EXPECT_EQ(line_count(slurp(dir / "post/residuals.csv")), 41u);
+  EXPECT_GT(csv_value(fits, "muI_rms_residual"), 0);
+  // Significance overall and per friction (5 runs each).
+  EXPECT_EQ(csv_value(fits, "f_vs_scale_n"), 10);
+  EXPECT_LT(csv_value(fits, "f_vs_scale_p_value"), 1e-3);  // r > 0.95 over 10 runs
+  EXPECT_EQ(csv_value(fits, "f_vs_scale_n_mu0.05"), 5);
+  // f = c (U/h)^(-1/2) exactly at each mu: a curve on linear scales, a line in log-log, whose
+  // significance is that of the log-log correlation (r = -1 up to the measurement noise).
+  EXPECT_GT(csv_value(fits, "f_vs_shear_rate_correlation_mu0.5"), -0.95);
+  EXPECT_LT(csv_value(fits, "f_vs_shear_rate_log_correlation_mu0.5"), -0.999);
+  EXPECT_LT(csv_value(fits, "f_vs_shear_rate_p_value_mu0.5"), 1e-4);
+  EXPECT_NEAR(csv_value(fits, "f_vs_scale_exponent_mu0.5"), 1.0, 0.1);
+  EXPECT_GE(csv_value(fits, "correlation_A_U_p_value_mu0.5"), 0);
+  EXPECT_EQ(csv_value(fits, "correlation_f_L_n"), 10);
 
   std::ofstream(dir / "bad.csv") << "run,mu,theta\nrun1,0.5\n";
   auto bad = cdpost("series " + (dir / "bad.csv").string());
   EXPECT_EQ(bad.err, "cdpost: error: " + (dir / "bad.csv").string() + ":2: expected 3 fields (run, mu, theta), found 2\n");
+}
+
+// Pouliquen's rule with beta = 0.3, l = 6 (theta1 = 20, theta2 = 33 deg) at mu = 0.5: five
+// flowing runs with layers (amplitude decaying as exp((z - h)/20 d)), two at mu = 2, and three stopped runs,
+// which have no run directory (a stopped run is not read).
+TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay) {
+  auto dir = testing::scratch_dir();
+  const double beta = 0.3, ell = 6, tan1 = std::tan(20 * M_PI / 180), tan2 = std::tan(33 * M_PI / 180);
+  auto h_stop = [&](double theta) { return -ell * std::log((std::tan(theta * M_PI / 180) - tan1) / (tan2 - tan1)); };
+  std::ofstream manifest(dir / "series.csv");
+  manifest << "run,mu,theta,L,stopped,h_stop\n";
+  int index = 0;
+  // Two runs at mu = 2 make a friction too small for a correlation.
+  for (auto [mu, theta] : {std::pair{0.5, 21.0}, {0.5, 22.5}, {0.5, 24.0}, {0.5, 25.5}, {0.5, 27.0}, {2.0, 28.0}, {2.0, 29.0}}) {
+    testing::SyntheticRun run;
+    run.duration = 2.5;
+    run.relaxation = 0.1;
+    run.seed = static_cast<unsigned>(++index);
+    run.u_final = beta / h_stop(theta) * std::pow(run.h, 1.5);  // I = beta d/h_stop
+    const std::string name = "run" + std::to_string(index);
+    testing::write_synthetic_run(dir / name, run);
+    manifest << name << "," << mu << "," << theta << ",45,0,\n";
+  }
+  for (double theta : {20.5, 21.0, 21.5}) manifest << "stopped" << theta << ",0.5," << theta << ",45,1," << h_stop(theta) << "\n";
+  manifest.close();
+  auto outcome = cdpost("series " + (dir / "series.csv").string() + " --out " + (dir / "post").string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const auto fits = dir / "post/fits.csv";
+  // The runs measure U within 1.5 % (the stationarity criterion's drift) and h within 0.1 d: I, and
+  // with it beta at a given l, within 2 %; the fit's own error adds three sigma.
+  auto error_of = [&](const std::string& name) {
+    std::istringstream lines(slurp(fits));
+    std::string line;
+    while (std::getline(lines, line))
+      if (line.rfind(name + ",", 0) == 0) return std::stod(line.substr(line.find(',', name.size() + 1) + 1));
+    ADD_FAILURE() << "no error of " << name;
+    return 0.0;
+  };
+  EXPECT_NEAR(csv_value(fits, "pouliquen_betafree_beta_mu0.5"), beta, 3 * error_of("pouliquen_betafree_beta_mu0.5") + 0.02 * beta);
+  EXPECT_NEAR(csv_value(fits, "pouliquen_betafree_ell_mu0.5"), ell, 3 * error_of("pouliquen_betafree_ell_mu0.5") + 0.02 * ell);
+  EXPECT_EQ(csv_value(fits, "pouliquen_betafree_stopped_runs_mu0.5"), 3);
+  EXPECT_EQ(line_count(slurp(dir / "post/runs.csv")), 8u);
+  const auto residuals = slurp(dir / "post/residuals.csv");
+  EXPECT_NE(residuals.find((dir / "stopped21.5").string() + ",0.5,21.5,pouliquen_betafree,tan_theta,"), std::string::npos) << residuals;
+  EXPECT_EQ(line_count(residuals), 1u + 5 + 8 + 7 + 7);  // pouliquen, betafree (5 + 3) at mu 0.5; muI, phi_U over all
+  EXPECT_EQ(line_count(slurp(dir / "post/layer_amplitudes.csv")), 1u + 7 * 5);  // 5 filled layers per run
+  const auto json = slurp(dir / "post/fits.json");
+  EXPECT_NE(json.find("correlation of A with U (mu = 2): 2 runs, no correlation or p-value (they need 3)"), std::string::npos);
+  EXPECT_EQ(slurp(fits).find("correlation_A_U_p_value_mu2"), std::string::npos);
+  EXPECT_NE(json.find("correlation of f with L not fitted: correlation is undefined: one of the series is constant"), std::string::npos);
+  EXPECT_EQ(slurp(fits).find("correlation_f_L"), std::string::npos);
+  for (const char* figure : {"amplitude_vs_depth", "pouliquen_beta_free"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "post/figures" / (std::string(figure) + ".png"))) << figure;
+  // The layers' white noise (0.1 sqrt(g d) a sample) reads about 0.008 in a 1 Hz bin; added in
+  // quadrature to the deepest layers' amplitude it lengthens lambda by about 0.3 d: 1 d allowed.
+  std::istringstream decay(slurp(dir / "post/depth_decay.csv"));
+  std::string line;
+  std::getline(decay, line);
+  EXPECT_EQ(line, "run,mu,theta_deg,decay_length_d,decay_length_error_d,layers,log_rms_residual");
+  int rows = 0;
+  while (std::getline(decay, line)) {
+    ++rows;
+    std::istringstream fields(line);
+    std::vector<std::string> f;
+    for (std::string field; std::getline(fields, field, ',');) f.push_back(field);
+    ASSERT_EQ(f.size(), 7u) << line;
+    EXPECT_NEAR(std::stod(f[3]), 20, 3 * std::stod(f[4]) + 1.0) << line;
+    EXPECT_GE(std::stoi(f[5]), 3) << line;  // layers 5 ... 35 d; the top one ends at the surface h = 40 d, the measured h may cut it
+  }
+  EXPECT_EQ(rows, 7);
+
+  std::ofstream(dir / "bad.csv") << "run,mu,theta,stopped,h_stop\nrun1,0.5,21,0,12\n";
+  auto bad = cdpost("series " + (dir / "bad.csv").string());
+  EXPECT_EQ(bad.err, "cdpost: error: " + (dir / "bad.csv").string() + ":2: h_stop is given for a run that did not stop (stopped is not 1)\n");
+  std::ofstream(dir / "bad.csv") << "run,mu,theta,stopped\nrun1,0.5,21,1\n";
+  bad = cdpost("series " + (dir / "bad.csv").string());
+  EXPECT_EQ(bad.err, "cdpost: error: " + (dir / "bad.csv").string() + ":2: a stopped run needs its deposit thickness in the column h_stop (d)\n");
 }
 
 }  // namespace

@@ -64,6 +64,39 @@ std::vector<FlowPoint> series(double mu, const std::vector<double>& angles, cons
   return points;
 }
 
+// a(z) = 0.2 exp((z - h)/15) with 3 % log-normal noise in the flowing layer, layers 10 d apart,
+// h = 42 d; two bed layers far below the exponential and one astride the surface must be left out.
+TEST(ProfileFits, DepthDecayRecoversTheDecayLength) {
+  std::mt19937 rng(13);
+  std::normal_distribution<double> noise(0, 0.03);
+  const double h = 42, lambda = 15;
+  std::vector<double> z, a;
+  for (double zi = -15; zi <= 45; zi += 10) {
+    z.push_back(zi);
+    a.push_back(zi < 0 ? 1e-5 : zi < 40 ? 0.2 * std::exp((zi - h) / lambda) * std::exp(noise(rng)) : 5.0);
+  }
+  auto decay = fit_depth_decay(z, a, h);
+  EXPECT_EQ(decay.layers, 4);
+  expect_recovers(decay.lambda, lambda, "lambda");
+  // rms = 0.03 sqrt(chi2_2 / 4); chi2 with 2 degrees of freedom lies in (0.002, 13.8) with 99.8 % probability.
+  EXPECT_GT(decay.log_rms_residual, 0.03 * std::sqrt(0.002 / 4));
+  EXPECT_LT(decay.log_rms_residual, 0.03 * std::sqrt(13.8 / 4));
+}
+
+TEST(ProfileFits, DepthDecayRefusesProfilesWithoutAResolvedDecay) {
+  std::mt19937 rng(14);
+  std::normal_distribution<double> noise(0, 0.1);
+  std::vector<double> z{-5, 5, 15, 25, 35}, flat;
+  for (size_t i = 0; i < z.size(); ++i) flat.push_back(0.05 * std::exp(noise(rng)));
+  EXPECT_THROW(fit_depth_decay(z, flat, 42), AnalysisError);  // no decay beyond the noise
+  std::vector<double> decaying;
+  for (double zi : z) decaying.push_back(std::exp(zi / 10));
+  EXPECT_NO_THROW(fit_depth_decay(z, decaying, 42));
+  EXPECT_THROW(fit_depth_decay(z, decaying, 28), AnalysisError);  // 2 layers wholly in the flowing layer
+  decaying[1] = 0;
+  EXPECT_THROW(fit_depth_decay(z, decaying, 42), AnalysisError);  // a layer without amplitude
+}
+
 TEST(FlowRules, PouliquenRecoversAnglesAndLength) {
   const double tan1 = std::tan(20 * M_PI / 180), tan2 = std::tan(33 * M_PI / 180), ell = 1.5, beta = 0.136;
   auto inverse = [&](double t) { return -beta / (ell * std::log((t - tan1) / (tan2 - tan1))); };
@@ -76,6 +109,80 @@ TEST(FlowRules, PouliquenRecoversAnglesAndLength) {
   ASSERT_TRUE(i);
   EXPECT_NEAR(pouliquen_tan(*i, tan1, tan2, ell, beta), std::tan(24 * M_PI / 180), 0.01);
   EXPECT_THROW(fit_pouliquen({points[0], points[1]}, beta), AnalysisError);
+}
+
+// Pouliquen's rule with β = 0.3 and ℓ = 6 (β away from 0.136, so a fit that fell back on it
+// would fail): flowing runs with 1 % noise on I, stopped runs with 2 % noise on h_stop.
+struct PouliquenTruth {
+  double tan1 = std::tan(20 * M_PI / 180), tan2 = std::tan(33 * M_PI / 180), ell = 6, beta = 0.3;
+  double h_stop(double theta) const { return -ell * std::log((std::tan(theta * M_PI / 180) - tan1) / (tan2 - tan1)); }
+  std::vector<FlowPoint> flowing() const {
+    auto points = series(0.5, {21, 22, 23, 24, 25, 26, 27, 28}, [&](double t) {
+      return -beta / (ell * std::log((t - tan1) / (tan2 - tan1)));
+    }, 11);
+    for (size_t i = 0; i < points.size(); ++i) points[i].run = "flowing" + std::to_string(i);
+    return points;
+  }
+  std::vector<StopPoint> stopped() const {
+    std::mt19937 rng(12);
+    std::normal_distribution<double> noise(0, 0.02);
+    std::vector<StopPoint> points;
+    for (double theta : {20.5, 21.0, 21.5, 22.0})
+      points.push_back({"stopped" + std::to_string(points.size()), 0.5, theta, h_stop(theta) * (1 + noise(rng))});
+    return points;
+  }
+};
+
+TEST(FlowRules, PouliquenBetaFreeRecoversBetaAndEllWithStoppedRuns) {
+  const PouliquenTruth truth;
+  auto fit = fit_pouliquen_free(truth.flowing(), truth.stopped());
+  ASSERT_TRUE(fit.beta && fit.ell);
+  expect_recovers(*fit.beta, truth.beta, "beta");
+  expect_recovers(*fit.ell, truth.ell, "ell");
+  expect_recovers(fit.ell_over_beta, truth.ell / truth.beta, "ell/beta");
+  expect_recovers(fit.angles.theta1_deg, 20, "theta1");
+  expect_recovers(fit.angles.theta2_deg, 33, "theta2");
+  EXPECT_EQ(fit.stopped_runs, 4);
+  ASSERT_EQ(fit.residuals.size(), 12u);  // 8 flowing, then 4 stopped
+  EXPECT_EQ(fit.residuals[8].run, "stopped0");
+  // The stopped run's residual is its tan θ minus the fitted tan θ_stop(h_stop).
+  const auto stop = truth.stopped()[0];
+  const double fitted = pouliquen_stop_tan(stop.h_stop_d, fit.raw["tan_theta1"].value, fit.raw["tan_theta2"].value, fit.ell->value);
+  EXPECT_NEAR(fit.residuals[8].value, std::tan(stop.theta_deg * M_PI / 180) - fitted, 1e-12);
+}
+
+TEST(FlowRules, PouliquenBetaFreeWithoutStoppedRunsGivesOnlyTheRatio) {
+  const PouliquenTruth truth;
+  const auto flowing = truth.flowing();
+  auto fit = fit_pouliquen_free(flowing, {});
+  EXPECT_FALSE(fit.beta);
+  EXPECT_FALSE(fit.ell);
+  expect_recovers(fit.ell_over_beta, truth.ell / truth.beta, "ell/beta");
+  // Any fixed beta gives the same rule: l/beta is invariant (to the fit's convergence tolerance).
+  auto fixed = fit_pouliquen(flowing, 0.136);
+  EXPECT_NEAR(fixed.ell.value / 0.136, fit.ell_over_beta.value, 1e-6 * fit.ell_over_beta.value);
+  EXPECT_NEAR(*fixed.ell.error / 0.136, *fit.ell_over_beta.error, 1e-4 * *fit.ell_over_beta.error);
+  EXPECT_THROW(fit_pouliquen_free({flowing[0], flowing[1]}, truth.stopped()), AnalysisError);
+}
+
+TEST(FlowRules, ResidualsAreObservedMinusFittedPerRun) {
+  const PouliquenTruth truth;
+  const auto points = truth.flowing();
+  auto fit = fit_pouliquen(points, truth.beta);
+  ASSERT_EQ(fit.residuals.size(), points.size());
+  double squares = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const double fitted = pouliquen_tan(points[i].inertial_number, fit.raw["tan_theta1"].value, fit.raw["tan_theta2"].value,
+                                        fit.ell.value, truth.beta);
+    EXPECT_EQ(fit.residuals[i].run, points[i].run);
+    EXPECT_NEAR(fit.residuals[i].value, std::tan(points[i].theta_deg * M_PI / 180) - fitted, 1e-12);
+    squares += fit.residuals[i].value * fit.residuals[i].value;
+  }
+  EXPECT_NEAR(squares, fit.raw.chi2, 1e-12 * std::max(squares, 1e-30));
+  EXPECT_NEAR(fit.raw.rms_residual(), std::sqrt(squares / points.size()), 1e-15);
+  // 1 % noise on I moves tan θ by at most dtan/dI * 1 % of I: the rms is of that order, not zero.
+  EXPECT_GT(fit.raw.rms_residual(), 1e-5);
+  EXPECT_LT(fit.raw.rms_residual(), 5e-3);
 }
 
 TEST(FlowRules, MuOfIRecoversSharedI0AndAnglesPerFriction) {
@@ -112,6 +219,9 @@ TEST(FlowRules, PhiVelocityHasOneSlopeAndOnePhiCPerFriction) {
   points.back().mu = 7;
   auto fit = fit_phi_velocity(points);
   expect_recovers(fit.k, 0.003, "k");
+  ASSERT_EQ(fit.residuals.size(), 15u);  // the run without phi has none
+  const double fitted = fit.phi_c[0].second.value - fit.k.value * points[0].velocity;
+  EXPECT_NEAR(fit.residuals[0].value, *points[0].phi - fitted, 1e-12);
   ASSERT_EQ(fit.phi_c.size(), 3u);
   expect_recovers(fit.phi_c[2].second, 0.78, "phi_c(2)");
   EXPECT_EQ(fit.raw.points, 15);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <sstream>
 
 #include "io/ave_time.h"
@@ -33,33 +34,66 @@ std::string mu_label(double mu) { return format_estimate(mu, std::nullopt); }
 
 }  // namespace
 
+namespace {
+
+// Column positions of a manifest header; -1 for an absent optional column.
+struct ManifestColumns {
+  std::vector<std::string> header;
+  int run = -1, mu = -1, theta = -1, length = -1, stopped = -1, h_stop = -1;
+
+  explicit ManifestColumns(std::vector<std::string> names) : header(std::move(names)) {
+    run = index_of("run"), mu = index_of("mu"), theta = index_of("theta"), length = index_of("L");
+    stopped = index_of("stopped"), h_stop = index_of("h_stop");
+  }
+  int index_of(const std::string& name) const {
+    auto found = std::find(header.begin(), header.end(), name);
+    return found == header.end() ? -1 : static_cast<int>(found - header.begin());
+  }
+};
+
+// stopped is 0 or 1 (empty: 0); h_stop is given exactly for the stopped runs.
+void read_stop_fields(const std::vector<std::string>& fields, const ManifestColumns& columns, const LineSource& source,
+                      ManifestEntry& entry) {
+  if (columns.stopped >= 0 && !fields[static_cast<size_t>(columns.stopped)].empty()) {
+    const double flag = parse_number(fields[static_cast<size_t>(columns.stopped)], source, "stopped");
+    if (flag != 0 && flag != 1) source.fail("stopped must be 0 or 1, found " + fields[static_cast<size_t>(columns.stopped)]);
+    entry.stopped = flag == 1;
+  }
+  const bool has_h_stop = columns.h_stop >= 0 && !fields[static_cast<size_t>(columns.h_stop)].empty();
+  if (has_h_stop && !entry.stopped) source.fail("h_stop is given for a run that did not stop (stopped is not 1)");
+  if (entry.stopped && !has_h_stop) source.fail("a stopped run needs its deposit thickness in the column h_stop (d)");
+  if (!has_h_stop) return;
+  entry.h_stop_d = parse_number(fields[static_cast<size_t>(columns.h_stop)], source, "h_stop");
+  if (!(*entry.h_stop_d > 0)) source.fail("h_stop must be positive");
+}
+
+}  // namespace
+
 std::vector<ManifestEntry> read_manifest(const std::string& path) {
   LineSource source(path);
   const auto base = std::filesystem::path(path).parent_path();
-  std::vector<std::string> header;
+  std::optional<ManifestColumns> columns;
   std::vector<ManifestEntry> entries;
   std::string line;
-  auto index_of = [&](const std::string& name) {
-    auto found = std::find(header.begin(), header.end(), name);
-    return found == header.end() ? -1 : static_cast<int>(found - header.begin());
-  };
-  int run = -1, mu = -1, theta = -1, length = -1;
   while (source.next(line)) {
     if (trim(line).empty() || trim(line)[0] == '#') continue;
     auto fields = split_commas(line);
-    if (header.empty()) {
-      header = fields;
-      run = index_of("run"), mu = index_of("mu"), theta = index_of("theta"), length = index_of("L");
-      if (run < 0 || mu < 0 || theta < 0) source.fail("the header must name the columns run, mu, theta (and optionally L)");
+    if (!columns) {
+      columns.emplace(fields);
+      if (columns->run < 0 || columns->mu < 0 || columns->theta < 0)
+        source.fail("the header must name the columns run, mu, theta (and optionally L, stopped, h_stop)");
       continue;
     }
-    if (fields.size() != header.size())
-      source.fail("expected " + std::to_string(header.size()) + " fields (" + join_names(header) + "), found " + std::to_string(fields.size()));
+    if (fields.size() != columns->header.size())
+      source.fail("expected " + std::to_string(columns->header.size()) + " fields (" + join_names(columns->header) + "), found " +
+                  std::to_string(fields.size()));
     ManifestEntry entry;
-    entry.directory = (base / fields[static_cast<size_t>(run)]).string();
-    entry.mu = parse_number(fields[static_cast<size_t>(mu)], source, "mu");
-    entry.theta_deg = parse_number(fields[static_cast<size_t>(theta)], source, "theta");
-    if (length >= 0) entry.length_d = parse_number(fields[static_cast<size_t>(length)], source, "L");
+    entry.name = fields[static_cast<size_t>(columns->run)];
+    entry.directory = (base / entry.name).string();
+    entry.mu = parse_number(fields[static_cast<size_t>(columns->mu)], source, "mu");
+    entry.theta_deg = parse_number(fields[static_cast<size_t>(columns->theta)], source, "theta");
+    if (columns->length >= 0) entry.length_d = parse_number(fields[static_cast<size_t>(columns->length)], source, "L");
+    read_stop_fields(fields, *columns, source, entry);
     entry.line = source.line_number();
     entries.push_back(entry);
   }
@@ -90,6 +124,7 @@ struct SeriesFitter {
     for (const auto& run : series.runs) {
       if (!run.estimate("I")) continue;
       FlowPoint p;
+      p.run = run.entry.directory;
       p.mu = run.entry.mu;
       p.theta_deg = run.entry.theta_deg;
       p.inertial_number = run.value("I");
@@ -97,6 +132,13 @@ struct SeriesFitter {
       if (auto phi = run.estimate("phi")) p.phi = phi->value;
       points.push_back(p);
     }
+    return points;
+  }
+
+  std::vector<StopPoint> stop_points(double mu) const {
+    std::vector<StopPoint> points;
+    for (const auto& entry : series.stopped)
+      if (entry.mu == mu) points.push_back({entry.directory, entry.mu, entry.theta_deg, *entry.h_stop_d});
     return points;
   }
 
@@ -110,18 +152,71 @@ struct SeriesFitter {
     }
   }
 
+  const ManifestEntry& entry_of(const std::string& directory) const {
+    for (const auto& run : series.runs)
+      if (run.entry.directory == directory) return run.entry;
+    // Every residual names a run of the manifest, flowing or stopped.
+    return *std::find_if(series.stopped.begin(), series.stopped.end(), [&](const ManifestEntry& e) { return e.directory == directory; });
+  }
+
+  // The rms residual as a fit result, and every residual in series.residuals.
+  void record_residuals(const std::string& fit_name, const std::string& suffix, const std::string& quantity, const FitResult& raw,
+                        const std::vector<PointResidual>& residuals) {
+    series.fits.add(fit_name + "_rms_residual" + suffix, raw.rms_residual(), "",
+                    "rms of the " + std::to_string(raw.points) + " residuals in " + quantity + " of the fit (" +
+                        std::to_string(raw.dof) + " degrees of freedom); per run in residuals.csv");
+    for (const auto& r : residuals) {
+      const auto& entry = entry_of(r.run);
+      series.residuals.push_back({r.run, entry.mu, entry.theta_deg, fit_name, quantity, r.value});
+    }
+  }
+
+  void pouliquen_fixed(const std::vector<FlowPoint>& points, double mu) {
+    const std::string suffix = "_mu" + mu_label(mu);
+    attempt("Pouliquen's rule for mu = " + mu_label(mu), [&] {
+      auto fit = fit_pouliquen(points, series.settings.beta);
+      auto& r = series.fits;
+      r.add("pouliquen_theta1" + suffix, fit.angles.theta1_deg, "deg", "theta1 of Pouliquen's rule (beta = " + format_estimate(fit.beta, std::nullopt) + ")");
+      r.add("pouliquen_theta2" + suffix, fit.angles.theta2_deg, "deg", "theta2 of Pouliquen's rule");
+      r.add("pouliquen_ell" + suffix, fit.ell, "", "l of Pouliquen's rule");
+      record_residuals("pouliquen", suffix, "tan_theta", fit.raw, fit.residuals);
+      series.pouliquen.push_back(fit);
+    });
+  }
+
+  void pouliquen_free(const std::vector<FlowPoint>& points, double mu) {
+    const std::string suffix = "_mu" + mu_label(mu), what = " of Pouliquen's rule with beta free";
+    attempt("Pouliquen's rule with beta free for mu = " + mu_label(mu), [&] {
+      auto fit = fit_pouliquen_free(points, stop_points(mu));
+      auto& r = series.fits;
+      r.add("pouliquen_betafree_ell_over_beta" + suffix, fit.ell_over_beta, "", "l/beta" + what + " (the only combination the flowing runs determine)");
+      if (fit.beta) {
+        r.add("pouliquen_betafree_theta1" + suffix, fit.angles.theta1_deg, "deg", "theta1" + what + ", flowing and stopped runs");
+        r.add("pouliquen_betafree_theta2" + suffix, fit.angles.theta2_deg, "deg", "theta2" + what);
+        r.add("pouliquen_betafree_ell" + suffix, *fit.ell, "", "l" + what + ", fixed by h_stop of the stopped runs");
+        r.add("pouliquen_betafree_beta" + suffix, *fit.beta, "", "beta" + what);
+        r.add("pouliquen_betafree_stopped_runs" + suffix, fit.stopped_runs, "", "stopped runs in the fit with beta free");
+      } else {
+        series.warnings.push_back("Pouliquen's rule with beta free, mu = " + mu_label(mu) +
+                                  ": no stopped run, so beta and l are not determined separately (flowing runs depend on them only "
+                                  "through beta/l; h_stop of a stopped run fixes l): only l/beta is given");
+      }
+      record_residuals("pouliquen_betafree", suffix, "tan_theta", fit.raw, fit.residuals);
+      series.pouliquen_free.push_back(fit);
+    });
+  }
+
   void flow_rules() {
     const auto points = flow_points();
     auto& r = series.fits;
-    for (double mu : friction_values(points))
-      attempt("Pouliquen's rule for mu = " + mu_label(mu), [&] {
-        auto fit = fit_pouliquen(points_with_mu(points, mu), series.settings.beta);
-        const std::string suffix = "_mu" + mu_label(mu);
-        r.add("pouliquen_theta1" + suffix, fit.angles.theta1_deg, "deg", "theta1 of Pouliquen's rule (beta = " + format_estimate(fit.beta, std::nullopt) + ")");
-        r.add("pouliquen_theta2" + suffix, fit.angles.theta2_deg, "deg", "theta2 of Pouliquen's rule");
-        r.add("pouliquen_ell" + suffix, fit.ell, "", "l of Pouliquen's rule");
-        series.pouliquen.push_back(fit);
-      });
+    const auto mus = friction_values(points);
+    for (double mu : mus) {
+      pouliquen_fixed(points_with_mu(points, mu), mu);
+      pouliquen_free(points_with_mu(points, mu), mu);
+    }
+    for (const auto& entry : series.stopped)
+      if (std::find(mus.begin(), mus.end(), entry.mu) == mus.end())
+        series.warnings.push_back("stopped run " + entry.directory + " (mu = " + mu_label(entry.mu) + ") not used: no flowing run at that mu");
     attempt("the mu(I) rule", [&] {
       auto fit = fit_mu_of_i(points);
       r.add("muI_I0", fit.i0, "", "I0 of the mu(I) rule, shared by every mu");
@@ -129,41 +224,94 @@ struct SeriesFitter {
         r.add("muI_theta1_mu" + mu_label(a.mu), a.theta1_deg, "deg", "theta1 of the mu(I) rule");
         r.add("muI_theta2_mu" + mu_label(a.mu), a.theta2_deg, "deg", "theta2 of the mu(I) rule");
       }
+      record_residuals("muI", "", "tan_theta", fit.raw, fit.residuals);
       series.mu_of_i = fit;
     });
     attempt("phi = phi_c(mu) - k U/sqrt(g d)", [&] {
       auto fit = fit_phi_velocity(points);
       r.add("phi_k", fit.k, "", "k of phi = phi_c(mu) - k U/sqrt(g d), shared by every mu");
       for (const auto& [mu, phi_c] : fit.phi_c) r.add("phi_c_mu" + mu_label(mu), phi_c, "", "phi_c of the linear phi(U) law");
+      record_residuals("phi_U", "", "phi", fit.raw, fit.residuals);
       series.phi_of_u = fit;
     });
   }
 
-  // The runs having both results, as two columns.
-  std::pair<std::vector<double>, std::vector<double>> columns(const std::string& x, const std::string& y) const {
+  // A result of a run by name; "L" is the manifest's cell length.
+  static std::optional<double> quantity(const SeriesRun& run, const std::string& name) {
+    if (name == "L") return run.entry.length_d;
+    auto e = run.estimate(name);
+    return e ? std::optional<double>(e->value) : std::nullopt;
+  }
+
+  // The runs (of friction `mu`, if given) having both quantities, as two columns.
+  std::pair<std::vector<double>, std::vector<double>> columns(const std::string& x, const std::string& y,
+                                                              std::optional<double> mu = std::nullopt) const {
     std::pair<std::vector<double>, std::vector<double>> xy;
-    for (const auto& run : series.runs)
-      if (run.estimate(x) && run.estimate(y)) {
-        xy.first.push_back(run.value(x));
-        xy.second.push_back(run.value(y));
+    for (const auto& run : series.runs) {
+      auto xv = quantity(run, x), yv = quantity(run, y);
+      if (xv && yv && (!mu || run.entry.mu == *mu)) {
+        xy.first.push_back(*xv);
+        xy.second.push_back(*yv);
       }
+    }
     return xy;
   }
 
+  // Each analysis over all runs (suffix and scope "") and, when the series has several
+  // frictions, per mu (suffix "_mu<mu>", scope " (mu = <mu>)").
+  template <class Analysis>
+  void overall_and_per_friction(Analysis analysis) {
+    analysis(std::optional<double>(), std::string(), std::string());
+    std::set<double> mus;
+    for (const auto& run : series.runs) mus.insert(run.entry.mu);
+    if (mus.size() > 1)
+      for (double mu : mus) analysis(std::optional<double>(mu), "_mu" + mu_label(mu), " (mu = " + mu_label(mu) + ")");
+  }
+
+  // Rows r_name, stem_n and stem_p_value (each + suffix): r, n and the p-value of a correlation;
+  // with fewer than 3 runs a warning says why they are missing.
+  void significance(const std::string& r_name, const std::string& stem, const std::string& suffix, const std::string& scope,
+                    const std::string& what, const std::vector<double>& x, const std::vector<double>& y) {
+    if (x.size() < 3) {
+      series.warnings.push_back("correlation of " + what + scope + ": " + std::to_string(x.size()) +
+                                " runs, no correlation or p-value (they need 3)");
+      return;
+    }
+    attempt("correlation of " + what + scope, [&] {
+      auto test = test_correlation(x, y);
+      series.fits.add(r_name + suffix, test.r, "", "Pearson correlation r of " + what + scope);
+      series.fits.add(stem + "_n" + suffix, test.n, "", "runs in the correlation of " + what + scope);
+      series.fits.add(stem + "_p_value" + suffix, test.p_value, "",
+                      "two-sided p-value of r under no correlation (Student t, n - 2 degrees of freedom)");
+    });
+  }
+
+  // The law is a line in log-log, so its significance is that of the correlation of ln f with
+  // ln x (the t-test of the exponent); the correlation on linear scales is kept beside it.
   void power_law(const std::string& x, const std::string& name, const std::string& meaning, std::optional<PowerLaw>& slot) {
-    attempt(meaning, [&] {
-      auto [xs, fs] = columns(x, "f");
-      auto law = fit_power_law(xs, fs);
-      series.fits.add(name + "_exponent", law.exponent, "", "exponent n of " + meaning);
-      series.fits.add(name + "_prefactor", law.prefactor, "", "prefactor c of " + meaning);
-      if (law.correlation) series.fits.add(name + "_correlation", *law.correlation, "", "Pearson correlation of " + meaning.substr(0, meaning.find(':')));
-      slot = law;
+    overall_and_per_friction([&](std::optional<double> mu, const std::string& suffix, const std::string& scope) {
+      auto [xs, fs] = columns(x, "f", mu);
+      attempt(meaning + scope, [&] {
+        auto law = fit_power_law(xs, fs);
+        series.fits.add(name + "_exponent" + suffix, law.exponent, "", "exponent n of " + meaning + scope);
+        series.fits.add(name + "_prefactor" + suffix, law.prefactor, "", "prefactor c of " + meaning + scope);
+        if (law.correlation)
+          series.fits.add(name + "_correlation" + suffix, *law.correlation, "", "Pearson correlation of f with " + x + " on linear scales" + scope);
+        if (!mu) slot = law;
+        auto logarithms = [](std::vector<double> v) {
+          for (double& e : v) e = std::log(e);
+          return v;
+        };
+        significance(name + "_log_correlation", name, suffix, scope, "ln f with ln " + x, logarithms(xs), logarithms(fs));
+      });
     });
   }
 
   void correlation_of(const std::string& x, const std::string& y, const std::string& label) {
-    auto [xs, ys] = columns(x, y);
-    if (xs.size() >= 3) series.fits.add("correlation_" + label, correlation(xs, ys), "", "Pearson correlation of " + y + " with " + x);
+    overall_and_per_friction([&](std::optional<double> mu, const std::string& suffix, const std::string& scope) {
+      auto [xs, ys] = columns(x, y, mu);
+      if (!xs.empty()) significance("correlation_" + label, "correlation_" + label, suffix, scope, y + " with " + x, xs, ys);
+    });
   }
 
   void scalings() {
@@ -173,21 +321,29 @@ struct SeriesFitter {
     correlation_of("phi", "A", "A_phi");
   }
 
+  // Over the runs with an L column only (the L series is at one friction).
   void length_dependence() {
-    std::vector<double> lengths, f, a, a_mean;
-    for (const auto& run : series.runs)
-      if (run.entry.length_d) {
-        lengths.push_back(*run.entry.length_d);
-        f.push_back(run.value("f"));
-        a.push_back(run.value("A"));
-        a_mean.push_back(run.value("A_mean"));
-      }
-    if (lengths.size() < 3) return;
-    series.fits.add("correlation_f_L", correlation(lengths, f), "", "Pearson correlation of f with L");
-    series.fits.add("correlation_A_L", correlation(lengths, a), "", "Pearson correlation of A with L");
-    series.fits.add("correlation_A_mean_L", correlation(lengths, a_mean), "", "Pearson correlation of A_mean with L");
+    for (const auto& [y, label] : {std::pair{"f", "f_L"}, {"A", "A_L"}, {"A_mean", "A_mean_L"}}) {
+      auto [lengths, ys] = columns("L", y);
+      if (!lengths.empty()) significance("correlation_" + std::string(label), "correlation_" + std::string(label), "", "", std::string(y) + " with L", lengths, ys);
+    }
   }
 };
+
+// The decay length of the amplitude at f with depth, for each run with layers and h.
+void depth_decay(SeriesAnalysis& series) {
+  for (auto& run : series.runs) {
+    const auto& layers = run.analysis.layers;
+    if (layers.empty() || !run.estimate("h")) continue;
+    std::vector<double> z, amplitude;
+    for (const auto& layer : layers) z.push_back(layer.z_d), amplitude.push_back(layer.amplitude_at_f);
+    try {
+      run.depth_decay = fit_depth_decay(z, amplitude, run.value("h"));
+    } catch (const AnalysisError& e) {
+      series.warnings.push_back(run.entry.directory + ": no decay length of the amplitude with depth: " + e.what());
+    }
+  }
+}
 
 }  // namespace
 
@@ -197,20 +353,26 @@ SeriesAnalysis analyse_series(const SeriesSettings& settings) {
   const auto entries = read_manifest(settings.manifest);
   Progress progress("analysing runs", true, settings.run.progress);
   for (size_t i = 0; i < entries.size(); ++i) {
+    if (entries[i].stopped) {
+      series.stopped.push_back(entries[i]);
+      continue;
+    }
     progress.update(static_cast<double>(i) / entries.size(), entries[i].directory);
     RunSettings run_settings = settings.run;
     run_settings.directory = entries[i].directory;
     try {
-      series.runs.push_back({entries[i], analyse_run(run_settings)});
+      series.runs.push_back({entries[i], analyse_run(run_settings), std::nullopt});
     } catch (const std::exception& e) {
       throw InputError(settings.manifest, entries[i].line, std::string("run failed: ") + e.what());
     }
     for (const auto& w : series.runs.back().analysis.warnings) series.warnings.push_back(entries[i].directory + ": " + w);
   }
+  if (series.runs.empty()) throw InputError(settings.manifest, 0, "every run listed has stopped: nothing flows to analyse");
   SeriesFitter fitter{series};
   fitter.flow_rules();
   fitter.scalings();
   fitter.length_dependence();
+  depth_decay(series);
   return series;
 }
 

@@ -155,6 +155,69 @@ std::optional<Figure> length_figure(const SeriesAnalysis& series) {
   return figure;
 }
 
+// A run's label in figures and tables: its manifest name, friction and tilt.
+std::string run_label(const ManifestEntry& entry) {
+  return entry.name + " (mu " + label(entry.mu) + ", " + label(entry.theta_deg) + " deg)";
+}
+
+std::optional<Figure> depth_figure(const SeriesAnalysis& series) {
+  std::vector<Curve> curves;
+  for (const auto& run : series.runs) {
+    Curve curve;
+    curve.title = run_label(run.entry);
+    curve.style = CurveStyle::LinesPoints;
+    for (const auto& layer : run.analysis.layers)
+      if (layer.amplitude_at_f > 0) {  // the axis is logarithmic
+        curve.x.push_back(layer.z_d);
+        curve.y.push_back(layer.amplitude_at_f);
+      }
+    if (!curve.x.empty()) curves.push_back(curve);
+  }
+  if (curves.empty()) return std::nullopt;
+  auto p = panel("Amplitude at each run's f by layer", "z / d (layer centre)", "amplitude at f / sqrt(g d)", curves);
+  p.log_y = true;
+  p.key = "outside right top";
+  return Figure{"amplitude_vs_depth", "Amplitude of v at the run's peak frequency f in each layer, one curve per run", {p}, 1200, 650};
+}
+
+// h_stop against theta (stopped runs, fitted h_stop(theta)) and Fr = U/sqrt(g h) against
+// h/h_stop(theta) (flowing runs, Fr = beta h/h_stop): the evidence of each beta fitted.
+std::optional<Figure> beta_free_figure(const SeriesAnalysis& series) {
+  std::vector<Curve> stops, froude;
+  for (const auto& fit : series.pouliquen_free) {
+    if (!fit.beta) continue;
+    const double mu = fit.angles.mu, tan1 = fit.raw["tan_theta1"].value, tan2 = fit.raw["tan_theta2"].value, ell = fit.ell->value;
+    Curve measured, flowing;
+    measured.title = "stopped runs, mu = " + label(mu);
+    flowing.title = "flowing runs, mu = " + label(mu);
+    for (const auto& entry : series.stopped)
+      if (entry.mu == mu) measured.x.push_back(entry.theta_deg), measured.y.push_back(*entry.h_stop_d);
+    auto h_stop = [&](double theta) { return pouliquen_stop_thickness(std::tan(theta * M_PI / 180), tan1, tan2, ell); };
+    for (const auto& run : series.runs)
+      if (auto hs = h_stop(run.entry.theta_deg); run.entry.mu == mu && hs && run.estimate("h")) {
+        const double h = run.value("h");
+        flowing.x.push_back(h / *hs);
+        flowing.y.push_back(run.value("U") / std::sqrt(h));
+      }
+    stops.push_back(measured);
+    stops.push_back(sampled("h_stop(theta), mu = " + label(mu), fit.angles.theta1_deg.value, fit.angles.theta2_deg.value, h_stop));
+    froude.push_back(flowing);
+    if (!flowing.x.empty())
+      froude.push_back(sampled("Fr = beta h/h_stop, beta = " + format_estimate(fit.beta->value, fit.beta->error), 0,
+                               *std::max_element(flowing.x.begin(), flowing.x.end()), [&](double x) { return fit.beta->value * x; }));
+  }
+  if (stops.empty()) return std::nullopt;
+  double h_max = 0;
+  for (const auto& entry : series.stopped) h_max = std::max(h_max, *entry.h_stop_d);
+  auto left = panel("Deposit thickness of the stopped runs", "theta (deg)", "h_stop / d", stops);
+  left.y_range = std::make_pair(0.0, 2 * h_max);  // h_stop(theta) diverges at theta1
+  left.width = 0.5;
+  auto right = panel("Froude number of the flowing runs", "h / h_stop(theta)", "Fr = U / sqrt(g h)", froude);
+  right.width = 0.5;
+  right.origin_x = 0.5;
+  return Figure{"pouliquen_beta_free", "Pouliquen's rule with beta free: h_stop(theta) and Fr = beta h/h_stop", {left, right}, 1300, 600};
+}
+
 std::vector<Figure> series_figures(const SeriesAnalysis& series) {
   std::vector<Figure> figures{
       power_law_figure(series, "f_vs_scale", "f_scale", "(sqrt(g d)/U g/d)^(1/2) (Hz)", series.f_vs_scale),
@@ -164,6 +227,8 @@ std::vector<Figure> series_figures(const SeriesAnalysis& series) {
       phi_figure(series),
       flow_rule_figure(series)};
   if (auto lengths = length_figure(series)) figures.push_back(*lengths);
+  if (auto depth = depth_figure(series)) figures.push_back(*depth);
+  if (auto beta = beta_free_figure(series)) figures.push_back(*beta);
   return figures;
 }
 
@@ -184,18 +249,100 @@ void write_runs_table(const SeriesAnalysis& series, const std::string& path) {
   }
 }
 
+// One CSV row per residual: run, mu, theta, fit, quantity, observed − fitted.
+void write_residuals(const SeriesAnalysis& series, const std::string& path) {
+  auto out = open_output(path);
+  out.precision(10);
+  out << "run,mu,theta_deg,fit,quantity,residual\n";
+  for (const auto& r : series.residuals)
+    out << r.run << ',' << r.mu << ',' << r.theta_deg << ',' << r.fit << ',' << r.quantity << ',' << r.value << '\n';
+}
+
+// One row per run and layer: the amplitude at the run's f against the layer's z.
+void write_layer_amplitudes(const SeriesAnalysis& series, const std::string& path) {
+  auto out = open_output(path);
+  out.precision(10);
+  out << "run,mu,theta_deg,z_d,amplitude_at_f\n";
+  for (const auto& run : series.runs)
+    for (const auto& layer : run.analysis.layers)
+      out << run.entry.directory << ',' << run.entry.mu << ',' << run.entry.theta_deg << ',' << layer.z_d << ','
+          << layer.amplitude_at_f << '\n';
+}
+
+// One row per run whose decay length could be fitted (the others are warnings).
+void write_depth_decay(const SeriesAnalysis& series, const std::string& path) {
+  auto out = open_output(path);
+  out.precision(10);
+  out << "run,mu,theta_deg,decay_length_d,decay_length_error_d,layers,log_rms_residual\n";
+  for (const auto& run : series.runs)
+    if (const auto& decay = run.depth_decay)
+      out << run.entry.directory << ',' << run.entry.mu << ',' << run.entry.theta_deg << ',' << decay->lambda.value << ','
+          << *decay->lambda.error << ',' << decay->layers << ',' << decay->log_rms_residual << '\n';
+}
+
+// Per run (flowing, then stopped), the residual of each flow-rule fit; empty where a fit left the run out.
+void residual_table(MarkdownReport& report, const SeriesAnalysis& series) {
+  std::vector<std::string> fits;
+  for (const auto& r : series.residuals)
+    if (std::find(fits.begin(), fits.end(), r.fit) == fits.end()) fits.push_back(r.fit);
+  if (fits.empty()) return;
+  std::vector<const ManifestEntry*> entries;
+  for (const auto& run : series.runs) entries.push_back(&run.entry);
+  for (const auto& entry : series.stopped) entries.push_back(&entry);
+  std::vector<std::vector<std::string>> rows;
+  for (const auto* entry : entries) {
+    std::vector<std::string> row{run_label(*entry) + (entry->stopped ? ", stopped" : "")};
+    for (const auto& fit : fits) {
+      auto found = std::find_if(series.residuals.begin(), series.residuals.end(),
+                                [&](const SeriesResidual& r) { return r.run == entry->directory && r.fit == fit; });
+      row.push_back(found == series.residuals.end() ? "" : format_estimate(found->value, std::nullopt));
+    }
+    rows.push_back(row);
+  }
+  std::vector<std::string> header{"run"};
+  for (const auto& fit : fits) header.push_back(fit + (fit == "phi_U" ? " (phi)" : " (tan theta)"));
+  report.table(header, rows);
+}
+
+void depth_table(MarkdownReport& report, const SeriesAnalysis& series) {
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& run : series.runs)
+    if (const auto& decay = run.depth_decay)
+      rows.push_back({run_label(run.entry), format_estimate(decay->lambda.value, decay->lambda.error), std::to_string(decay->layers),
+                      format_estimate(decay->log_rms_residual, std::nullopt)});
+  if (rows.empty())
+    report.paragraph("No run has a decay length (see the warnings).");
+  else
+    report.table({"run", "decay length lambda (d)", "layers fitted", "rms of ln a about the fit"}, rows);
+}
+
 }  // namespace
 
 void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir) {
   const std::string figures_dir = out_dir + "/figures";
   std::filesystem::create_directories(figures_dir);
   MarkdownReport report("Series " + series.settings.manifest);
-  report.paragraph(std::to_string(series.runs.size()) +
-                   " runs, each analysed as by `cdpost run` (see its report for the method). Fits by GSL least squares; "
+  report.paragraph(std::to_string(series.runs.size()) + " flowing runs, each analysed as by `cdpost run` (see its report for the method), and " +
+                   std::to_string(series.stopped.size()) +
+                   " stopped runs (manifest: stopped = 1, deposit thickness h_stop; not analysed). Fits by GSL least squares; "
                    "errors are one sigma from the covariance scaled by the residual variance. Pouliquen's rule with beta = " +
-                   label(series.settings.beta) + ". Per-run numbers: runs.csv.");
+                   label(series.settings.beta) +
+                   " (`pouliquen_*`) and with beta free (`pouliquen_betafree_*`): the flowing runs depend on beta and l only through "
+                   "l/beta, so beta and l are given separately only for a friction with stopped runs, whose h_stop(theta) fixes l. "
+                   "Correlations are Pearson's r with the number of runs n and the two-sided p-value of r (Student t, n - 2 degrees "
+                   "of freedom); over all runs and, when the series has several frictions, per mu (`_mu<mu>`). Per-run numbers: runs.csv.");
   report.heading("Fitted numbers");
   report.table(series.fits);
+  report.heading("Residuals of the flow-rule fits");
+  report.paragraph("Observed minus fitted, in tan theta for the flow rules and in phi for phi(U); the rms of each fit is in the table "
+                   "above (`*_rms_residual*`); every residual is in residuals.csv.");
+  residual_table(report, series);
+  report.heading("Decay of the oscillation with depth");
+  report.paragraph("The amplitude of v at each run's f per layer (layer_amplitudes.csv, figure amplitude_vs_depth), fitted as "
+                   "a = a_s exp(z/lambda) over the layers lying wholly in the flowing layer 0 <= z <= h (the bed is left out); given "
+                   "only when at least 3 layers qualify and 1/lambda exceeds twice its error (depth_decay.csv). A layer at the noise "
+                   "floor flattens the profile; the rms of ln a shows how far the profile is from one exponential.");
+  depth_table(report, series);
   report.heading("Figures");
   for (const auto& figure : series_figures(series)) {
     if (auto problem = render_figure(figure, figures_dir))
@@ -205,6 +352,9 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir) {
   }
   report.warnings(series.warnings);
   write_runs_table(series, out_dir + "/runs.csv");
+  write_residuals(series, out_dir + "/residuals.csv");
+  write_layer_amplitudes(series, out_dir + "/layer_amplitudes.csv");
+  write_depth_decay(series, out_dir + "/depth_decay.csv");
   series.fits.write_csv(out_dir + "/fits.csv");
   series.fits.write_json(out_dir + "/fits.json", series.warnings);
   report.write(out_dir + "/report.md");

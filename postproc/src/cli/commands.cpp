@@ -22,7 +22,7 @@ const char* const overview =
     "\n"
     "commands:\n"
     "  run DIR          analyse one run directory (flow.time, profile.chunk, layers.chunk)\n"
-    "  series MANIFEST  analyse the runs listed in a CSV (run,mu,theta[,L]) and fit the flow rules\n"
+    "  series MANIFEST  analyse the runs listed in a CSV (run,mu,theta[,L,stopped,h_stop]) and fit the flow rules\n"
     "  spectrum FILE    spectrum of one column of a fix ave/time file\n"
     "  snapshot DUMP    picture of one frame of a dump (grains coloured by x-velocity, walls)\n"
     "\n"
@@ -166,7 +166,8 @@ int command_series(const std::vector<std::string>& arguments) {
   auto out = options->text("out").value_or((std::filesystem::path(series.manifest).parent_path() / "series-post").string());
   auto result = analyse_series(series);
   write_series_outputs(result, out);
-  std::cout << result.fits.text() << "results: " << out << "/fits.csv, " << out << "/runs.csv, report: " << out << "/report.md\n";
+  std::cout << result.fits.text() << "results: " << out << "/fits.csv, " << out << "/runs.csv, " << out << "/residuals.csv, " << out
+            << "/depth_decay.csv, report: " << out << "/report.md\n";
   print_warnings(result.warnings);
   return 0;
 }

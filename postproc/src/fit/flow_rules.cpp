@@ -19,10 +19,38 @@ Estimate angle_of_tangent(const Estimate& tangent) {
   return angle;
 }
 
-std::vector<double> tangents(const std::vector<FlowPoint>& points) {
+template <class Point>
+std::vector<double> tangents(const std::vector<Point>& points) {
   std::vector<double> t;
   for (const auto& p : points) t.push_back(tan_deg(p.theta_deg));
   return t;
+}
+
+template <class Point>
+std::vector<std::string> run_names(const std::vector<Point>& points) {
+  std::vector<std::string> names;
+  for (const auto& p : points) names.push_back(p.run);
+  return names;
+}
+
+// The residuals of `fit`, whose points are those of the runs named, in order.
+std::vector<PointResidual> named_residuals(const std::vector<std::string>& runs, const FitResult& fit) {
+  std::vector<PointResidual> residuals;
+  for (size_t i = 0; i < runs.size(); ++i) residuals.push_back({runs[i], fit.residuals[i]});
+  return residuals;
+}
+
+// p[a]/p[b] with its error from the covariance (first order).
+Estimate parameter_ratio(const FitResult& fit, Eigen::Index a, Eigen::Index b) {
+  const double pa = fit.parameters[a].value, pb = fit.parameters[b].value;
+  Estimate ratio{pa / pb, std::nullopt};
+  if (fit.covariance.size() == 0) return ratio;
+  Eigen::VectorXd gradient = Eigen::VectorXd::Zero(fit.covariance.rows());
+  gradient(a) = 1 / pb;
+  gradient(b) = -pa / (pb * pb);
+  const double variance = gradient.dot(fit.covariance * gradient);
+  if (std::isfinite(variance) && variance >= 0) ratio.error = std::sqrt(variance);
+  return ratio;
 }
 
 // Starting bounds just outside the observed range of tan θ.
@@ -73,14 +101,80 @@ PouliquenFit fit_pouliquen(const std::vector<FlowPoint>& points, double beta) {
   fit.angles = {points.front().mu, angle_of_tangent(fit.raw["tan_theta1"]), angle_of_tangent(fit.raw["tan_theta2"])};
   fit.ell = fit.raw["ell"];
   fit.beta = beta;
+  fit.residuals = named_residuals(run_names(points), fit.raw);
   return fit;
 }
 
-std::optional<double> pouliquen_inertial_number(double tan_theta, const PouliquenFit& fit) {
-  double tan1 = fit.raw["tan_theta1"].value, tan2 = fit.raw["tan_theta2"].value;
+double pouliquen_stop_tan(double h_stop_d, double tan1, double tan2, double ell) {
+  return tan1 + (tan2 - tan1) * std::exp(-h_stop_d / ell);
+}
+
+std::optional<double> pouliquen_stop_thickness(double tan_theta, double tan1, double tan2, double ell) {
   double fraction = (tan_theta - tan1) / (tan2 - tan1);
   if (!(fraction > 0 && fraction < 1)) return std::nullopt;
-  return -fit.beta / (fit.ell.value * std::log(fraction));
+  return -ell * std::log(fraction);
+}
+
+// Fr = β h/h_stop is I = β/(h_stop/d).
+std::optional<double> pouliquen_inertial_number(double tan_theta, const PouliquenFit& fit) {
+  auto h_stop = pouliquen_stop_thickness(tan_theta, fit.raw["tan_theta1"].value, fit.raw["tan_theta2"].value, fit.ell.value);
+  if (!h_stop) return std::nullopt;
+  return fit.beta / *h_stop;
+}
+
+namespace {
+
+// Start of the joint fit: the bounds widened to hold every run, ℓ from the stopped runs at
+// those bounds (median), β from the flowing runs' ℓ/β.
+std::vector<double> joint_start(const std::vector<FlowPoint>& flowing, const std::vector<StopPoint>& stopped,
+                                const PouliquenFit& ratio) {
+  auto all = tangents(flowing);
+  for (double t : tangents(stopped)) all.push_back(t);
+  const auto around_all = initial_tangents(all);
+  const double tan1 = std::min(ratio.raw["tan_theta1"].value, around_all.first);
+  const double tan2 = std::max(ratio.raw["tan_theta2"].value, around_all.second);
+  std::vector<double> lengths;
+  for (const auto& s : stopped)
+    if (double fraction = (tan_deg(s.theta_deg) - tan1) / (tan2 - tan1); fraction > 0 && fraction < 1)
+      lengths.push_back(-s.h_stop_d / std::log(fraction));
+  double ell = stopped.front().h_stop_d;  // when no stopped run lies between the bounds
+  if (!lengths.empty()) {
+    std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+    ell = lengths[lengths.size() / 2];
+  }
+  return {tan1, tan2, ell, ell / ratio.ell.value};
+}
+
+}  // namespace
+
+PouliquenFreeFit fit_pouliquen_free(const std::vector<FlowPoint>& flowing, const std::vector<StopPoint>& stopped) {
+  const auto ratio = fit_pouliquen(flowing, 1.0);  // ℓ at β = 1 is ℓ/β
+  PouliquenFreeFit fit;
+  fit.stopped_runs = static_cast<int>(stopped.size());
+  if (stopped.empty()) {
+    fit.angles = ratio.angles;
+    fit.ell_over_beta = ratio.ell;
+    fit.raw = ratio.raw;
+    fit.residuals = ratio.residuals;
+    return fit;
+  }
+  auto observed = tangents(flowing);
+  for (double t : tangents(stopped)) observed.push_back(t);
+  const size_t n_flowing = flowing.size();
+  auto model = [&](const std::vector<double>& p, size_t i) {
+    return i < n_flowing ? pouliquen_tan(flowing[i].inertial_number, p[0], p[1], p[2], p[3])
+                         : pouliquen_stop_tan(stopped[i - n_flowing].h_stop_d, p[0], p[1], p[2]);
+  };
+  fit.raw = fit_nonlinear(observed, model, joint_start(flowing, stopped, ratio), {"tan_theta1", "tan_theta2", "ell", "beta"});
+  fit.ell = fit.raw["ell"];
+  fit.beta = fit.raw["beta"];
+  if (!(fit.ell->value > 0 && fit.beta->value > 0)) throw AnalysisError("the joint fit gives a length l or a beta that is not positive");
+  fit.angles = {flowing.front().mu, angle_of_tangent(fit.raw["tan_theta1"]), angle_of_tangent(fit.raw["tan_theta2"])};
+  fit.ell_over_beta = parameter_ratio(fit.raw, 2, 3);
+  auto runs = run_names(flowing);
+  for (const auto& name : run_names(stopped)) runs.push_back(name);
+  fit.residuals = named_residuals(runs, fit.raw);
+  return fit;
 }
 
 double mu_of_i_tan(double inertial_number, double tan1, double tan2, double i0) {
@@ -111,6 +205,7 @@ MuIFit fit_mu_of_i(const std::vector<FlowPoint>& points) {
   MuIFit fit;
   fit.raw = fit_nonlinear(observed, model, initial, names);
   fit.i0 = fit.raw.parameters[0];
+  fit.residuals = named_residuals(run_names(points), fit.raw);
   for (size_t m = 0; m < mus.size(); ++m)
     fit.angles.push_back({mus[m], angle_of_tangent(fit.raw.parameters[1 + 2 * m]), angle_of_tangent(fit.raw.parameters[2 + 2 * m])});
   return fit;
@@ -135,6 +230,7 @@ PhiFit fit_phi_velocity(const std::vector<FlowPoint>& points) {
   fit.raw = fit_linear(design, phi, names);
   fit.k = fit.raw["k"];
   for (size_t m = 0; m < mus.size(); ++m) fit.phi_c.emplace_back(mus[m], fit.raw.parameters[m]);
+  fit.residuals = named_residuals(run_names(with_phi), fit.raw);
   return fit;
 }
 

@@ -15,16 +15,24 @@ const Estimate& FitResult::operator[](const std::string& name) const {
 
 void use_gsl_error_codes() { gsl_set_error_handler_off(); }
 
-std::vector<Estimate> with_errors(const std::vector<double>& parameters, const Eigen::MatrixXd& covariance,
-                                  double chi2, int dof) {
-  std::vector<Estimate> estimates;
+FitResult fit_result(std::vector<std::string> names, const std::vector<double>& parameters,
+                     const Eigen::MatrixXd& unscaled_covariance, std::vector<double> residuals) {
+  FitResult fit;
+  fit.names = std::move(names);
+  fit.points = static_cast<int>(residuals.size());
+  fit.dof = fit.points - static_cast<int>(parameters.size());
+  for (double r : residuals) fit.chi2 += r * r;
+  fit.residuals = std::move(residuals);
+  if (fit.dof > 0) fit.covariance = unscaled_covariance * (fit.chi2 / fit.dof);
   for (size_t i = 0; i < parameters.size(); ++i) {
     Estimate e{parameters[i], std::nullopt};
-    double variance = covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
-    if (dof > 0 && std::isfinite(variance) && variance >= 0) e.error = std::sqrt(variance * chi2 / dof);
-    estimates.push_back(e);
+    if (fit.dof > 0) {
+      double variance = fit.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
+      if (std::isfinite(variance) && variance >= 0) e.error = std::sqrt(variance);
+    }
+    fit.parameters.push_back(e);
   }
-  return estimates;
+  return fit;
 }
 
 FitResult fit_linear(const Eigen::MatrixXd& design, const std::vector<double>& y, std::vector<std::string> names) {
@@ -51,10 +59,12 @@ FitResult fit_linear(const Eigen::MatrixXd& design, const std::vector<double>& y
   gsl_vector_free(c);
   if (status != GSL_SUCCESS || rank < p) throw AnalysisError("linear fit is degenerate (the data do not determine every parameter)");
   const int dof = static_cast<int>(n - p);
-  // gsl returns the covariance already scaled by chi2/dof when dof > 0; undo it for with_errors.
+  // gsl returns the covariance already scaled by chi2/dof when dof > 0; undo it for fit_result.
   if (dof > 0 && chi2 > 0) covariance *= dof / chi2;
-  FitResult fit{std::move(names), with_errors(parameters, covariance, chi2, dof), chi2, static_cast<int>(n), dof};
-  return fit;
+  Eigen::VectorXd fitted = design * Eigen::Map<const Eigen::VectorXd>(parameters.data(), static_cast<Eigen::Index>(p));
+  std::vector<double> residuals;
+  for (size_t i = 0; i < n; ++i) residuals.push_back(y[i] - fitted(static_cast<Eigen::Index>(i)));
+  return fit_result(std::move(names), parameters, covariance, std::move(residuals));
 }
 
 PowerLaw fit_power_law(const std::vector<double>& x, const std::vector<double>& y) {

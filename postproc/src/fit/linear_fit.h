@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -15,18 +16,22 @@ namespace cdpost {
 struct FitResult {
   std::vector<std::string> names;
   std::vector<Estimate> parameters;
+  Eigen::MatrixXd covariance;     // of the parameters, scaled like their errors; empty when dof == 0
+  std::vector<double> residuals;  // observed − fitted, one per point in the order given
   double chi2 = 0;  // sum of squared residuals, in squared data units
   int points = 0;
   int dof = 0;
   const Estimate& operator[](const std::string& name) const;
+  double rms_residual() const { return std::sqrt(chi2 / points); }
 };
 
 // GSL aborts on errors by default; the fits report them as AnalysisError instead.
 void use_gsl_error_codes();
 
-// Errors of `parameters` from an unscaled covariance matrix (J^T J)^-1, scaled by chi2/dof.
-std::vector<Estimate> with_errors(const std::vector<double>& parameters, const Eigen::MatrixXd& covariance,
-                                  double chi2, int dof);
+// A fit's result from its parameters, the unscaled covariance (J^T J)^-1 and the residuals
+// (observed − fitted): errors and covariance scaled by chi2/dof.
+FitResult fit_result(std::vector<std::string> names, const std::vector<double>& parameters,
+                     const Eigen::MatrixXd& unscaled_covariance, std::vector<double> residuals);
 
 // y ≈ design * p. Needs at least as many points as parameters and a full-rank design.
 FitResult fit_linear(const Eigen::MatrixXd& design, const std::vector<double>& y, std::vector<std::string> names);

@@ -1,6 +1,5 @@
 #include "fit/nonlinear_fit.h"
 
-#include <gsl/gsl_blas.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit_nlinear.h>
 
@@ -58,8 +57,8 @@ FitResult fit_nonlinear(const std::vector<double>& observed, const PointModel& m
   gsl_vector* x = gsl_multifit_nlinear_position(work.w);
   std::vector<double> parameters(x->data, x->data + p);
   gsl_vector* f = gsl_multifit_nlinear_residual(work.w);
-  double chi2 = 0;
-  gsl_blas_ddot(f, f, &chi2);
+  std::vector<double> residuals;
+  for (size_t i = 0; i < n; ++i) residuals.push_back(-gsl_vector_get(f, i));  // f holds fitted − observed
   gsl_matrix* cov = gsl_matrix_alloc(p, p);
   gsl_multifit_nlinear_covar(gsl_multifit_nlinear_jac(work.w), 0.0, cov);
   Eigen::MatrixXd covariance(p, p);
@@ -68,8 +67,7 @@ FitResult fit_nonlinear(const std::vector<double>& observed, const PointModel& m
   gsl_matrix_free(cov);
   for (double v : parameters)
     if (!std::isfinite(v)) throw AnalysisError("nonlinear fit diverged");
-  const int dof = static_cast<int>(n - p);
-  return FitResult{std::move(names), with_errors(parameters, covariance, chi2, dof), chi2, static_cast<int>(n), dof};
+  return fit_result(std::move(names), parameters, covariance, std::move(residuals));
 }
 
 }  // namespace cdpost

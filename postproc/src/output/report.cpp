@@ -10,6 +10,17 @@ void MarkdownReport::paragraph(const std::string& text) { text_ << text << "\n\n
 
 void MarkdownReport::table(const ResultTable& results) { text_ << results.markdown() << "\n"; }
 
+void MarkdownReport::table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {
+  auto row_text = [](const std::vector<std::string>& cells) {
+    std::string line = "|";
+    for (const auto& cell : cells) line += " " + cell + " |";
+    return line + "\n";
+  };
+  text_ << row_text(header) << row_text(std::vector<std::string>(header.size(), "---"));
+  for (const auto& row : rows) text_ << row_text(row);
+  text_ << "\n";
+}
+
 void MarkdownReport::figure(const std::string& figures_dir, const std::string& name, const std::string& caption) {
   const std::string stem = figures_dir + "/" + name;
   text_ << "![" << caption << "](" << stem << ".png)\n\n*" << caption << "* ([SVG](" << stem << ".svg))\n\n";

@@ -1,7 +1,9 @@
 #include "signal/statistics.h"
 
+#include <gsl/gsl_cdf.h>
 #include <gsl/gsl_statistics_double.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -26,7 +28,25 @@ Estimate block_mean(const std::vector<double>& x, size_t begin, size_t end, int 
 double correlation(const std::vector<double>& x, const std::vector<double>& y) {
   if (x.size() != y.size() || x.size() < 3)
     throw AnalysisError("correlation needs two series of at least 3 points");
+  auto constant = [](const std::vector<double>& v) { return std::all_of(v.begin(), v.end(), [&](double e) { return e == v[0]; }); };
+  if (constant(x) || constant(y)) throw AnalysisError("correlation is undefined: one of the series is constant");
   return gsl_stats_correlation(x.data(), 1, y.data(), 1, x.size());
+}
+
+double correlation_p_value(double r, int n) {
+  if (n < 3) throw AnalysisError("a p-value of a correlation needs at least 3 points");
+  if (!(std::abs(r) < 1)) return 0;  // a perfect correlation (or rounding past it)
+  const double dof = n - 2;
+  const double t = std::abs(r) * std::sqrt(dof / (1 - r * r));
+  return 2 * gsl_cdf_tdist_Q(t, dof);
+}
+
+CorrelationTest test_correlation(const std::vector<double>& x, const std::vector<double>& y) {
+  CorrelationTest test;
+  test.r = correlation(x, y);
+  test.n = static_cast<int>(x.size());
+  test.p_value = correlation_p_value(test.r, test.n);
+  return test;
 }
 
 }  // namespace cdpost

@@ -25,7 +25,20 @@ struct Estimate {
 // correlation time). Needs at least 2 samples per block.
 Estimate block_mean(const std::vector<double>& x, size_t begin, size_t end, int blocks = 10);
 
-// Pearson correlation coefficient of two equally long series (at least 3 points).
+// Pearson correlation coefficient of two equally long series (at least 3 points, neither
+// constant: r is undefined then).
 double correlation(const std::vector<double>& x, const std::vector<double>& y);
+
+// Two-sided p-value of a Pearson correlation r of n points under no correlation: Student's t
+// = r sqrt((n-2)/(1-r^2)) with n-2 degrees of freedom (GSL). Needs n >= 3; |r| = 1 gives 0.
+double correlation_p_value(double r, int n);
+
+// r, n and its p-value together.
+struct CorrelationTest {
+  double r = 0;
+  int n = 0;
+  double p_value = 1;
+};
+CorrelationTest test_correlation(const std::vector<double>& x, const std::vector<double>& y);
 
 }  // namespace cdpost
