@@ -34,7 +34,7 @@ import time
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DECK = os.path.join(TOP, "inputs", "in.chute")
 
-# The two cells: the default scene (inputs/in.default_scene) and the scene of SCENE.md.
+# The two cells: the default scene (inputs/in.default_scene) and the scene of doc/scene.md.
 SCENES = {
     "small": dict(L="20", grains="400", wall_height="10", mu="0.5", theta="24"),
     "full": dict(L="45", grains="0", wall_height="30", mu="0.5", theta="24"),

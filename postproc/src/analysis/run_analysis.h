@@ -1,5 +1,5 @@
 // The analysis of one chute run: from the files a deck writes to every measured number of
-// SCENE.md (stationary window, U, phi, h, u(z) fits, spectra of v(t), shear rate, I).
+// doc/scene.md (stationary window, U, phi, h, u(z) fits, spectra of v(t), shear rate, I).
 #pragma once
 
 #include <limits>
