@@ -1,0 +1,310 @@
+"""results/ from a chute campaign: per run its cdpost results and commands, per series the
+cdpost fits and figures, the replica scatter, the rigid/soft comparisons, and README.md.
+
+Called by `scripts/chute_campaign.py --report DIR` after the series analyses were made
+again from every finished run. Only small files are written (CSV, JSON, Markdown, figures):
+no dumps, no restarts. A hand-written discussion between the DISCUSSION markers of an
+existing README.md is kept; everything else is regenerated. Standard library only.
+"""
+
+import csv
+import glob
+import json
+import math
+import os
+import shutil
+
+DISCUSSION_BEGIN = "<!-- discussion: kept when the report is regenerated -->"
+DISCUSSION_END = "<!-- end of discussion -->"
+
+# Per-run files of cdpost run that results/ keeps (figures: only those the README shows).
+RUN_FILES = ("results.csv", "results.json", "spectrum.csv", "profile.csv", "layers.csv")
+SERIES_FILES = ("*.csv", "*.json", "report.md", "figures/*.png", "figures/*.svg")
+COMPARISON_FILES = ("table.csv", "fits.csv", "report.md", "commands.txt", "figures/*.png", "figures/*.svg")
+
+# The per-run columns of the tables: (result name, heading).
+FLOW_COLUMNS = (("U", "U (√(gd))"), ("phi", "φ"), ("h", "h (d)"), ("I", "I"))
+OSCILLATION_COLUMNS = (("f", "f (Hz)"), ("A", "A (√(gd))"), ("A_mean", "A_mean (√(gd))"),
+                       ("f_scale", "f_scale (Hz)"), ("shear_rate", "U/h (1/s)"))
+PROFILE_COLUMNS = (("bagnold_slip", "slip (√(gd))"), ("bagnold_amplitude", "a (√(gd)/d^1.5)"),
+                   ("bagnold_r2", "R²"), ("creep_lambda", "λ (d)"))
+# Quantities whose scatter between two depositions the replicas measure.
+REPLICA_QUANTITIES = ("U", "phi", "h", "f", "A", "A_mean", "creep_lambda")
+
+
+def read_results(path):
+    """cdpost results.csv -> {name: (value, error or None, unit)}."""
+    rows = {}
+    with open(path, newline="") as src:
+        for row in csv.DictReader(src):
+            error = float(row["error"]) if row["error"] else None
+            rows[row["name"]] = (float(row["value"]), error, row["unit"])
+    return rows
+
+
+def significant(value, digits=3):
+    if value is None or not math.isfinite(value):
+        return "–"
+    return f"{value:.{digits}g}"
+
+
+def with_error(entry):
+    """'value ± error' with the error to two significant digits."""
+    if entry is None:
+        return "–"
+    value, error, _ = entry
+    if error is None or error <= 0:
+        return significant(value, 4)
+    places = max(0, 1 - int(math.floor(math.log10(error))))
+    return f"{value:.{places}f} ± {error:.{places}f}" if places < 8 else f"{value:.3g} ± {error:.2g}"
+
+
+def table(headings, rows):
+    lines = ["| " + " | ".join(headings) + " |", "|" + "---|" * len(headings)]
+    lines += ["| " + " | ".join(str(cell) for cell in row) + " |" for row in rows]
+    return "\n".join(lines) + "\n"
+
+
+def copy_matching(source, patterns, destination):
+    """Copies the files of `source` matching `patterns` (relative globs) under `destination`;
+    returns the relative paths copied."""
+    copied = []
+    for pattern in patterns:
+        for path in sorted(glob.glob(os.path.join(source, pattern))):
+            relative = os.path.relpath(path, source)
+            os.makedirs(os.path.dirname(os.path.join(destination, relative)), exist_ok=True)
+            shutil.copy2(path, os.path.join(destination, relative))
+            copied.append(relative)
+    return copied
+
+
+class RunRecord:
+    """A run of the campaign as the report sees it: parameters, state, results, cost."""
+
+    def __init__(self, job, cost):
+        self.name = job.name
+        self.series = job.series
+        self.vars = job.vars
+        self.folder = job.folder
+        self.cost = cost
+        post = os.path.join(job.folder, "post", "results.csv")
+        self.results = read_results(post) if job.done and os.path.exists(post) else None
+        self.state = self._state(job)
+
+    def _state(self, job):
+        if self.results is not None:
+            return "analysed"
+        if job.done:
+            log = os.path.join(job.folder, "cdpost.log")
+            reason = open(log).read().strip().splitlines()[-1] if os.path.exists(log) else "no cdpost result"
+            return "finished, not analysed: " + reason
+        return "running or pending" if job.legs() else "not started"
+
+    def get(self, name):
+        return self.results.get(name) if self.results else None
+
+    def window_seconds(self):
+        """The stationary window in s ('–' before the analysis): cdpost gives it in sqrt(d/g)."""
+        start, end = self.get("t_start"), self.get("t_end")
+        if not start or not end:
+            return "–"
+        unit = math.sqrt(float(self.vars["d"]) / float(self.vars["g"]))
+        return f"{start[0] * unit:.2f}–{end[0] * unit:.2f}"
+
+
+def write_run(record, destination):
+    """results/runs/<name>/: cdpost's results, the cost and every command that made them."""
+    folder = os.path.join(destination, "runs", record.name)
+    os.makedirs(folder, exist_ok=True)
+    copy_matching(os.path.join(record.folder, "post"), RUN_FILES, folder)
+    with open(os.path.join(folder, "cost.json"), "w") as out:
+        json.dump(record.cost, out, indent=2, sort_keys=True)
+    commands = [open(path).read().strip() for path in sorted(glob.glob(os.path.join(record.folder, "legs", "*", "command.sh")))]
+    log = os.path.join(record.folder, "cdpost.log")
+    if os.path.exists(log):
+        commands.append(open(log).readline().strip())
+    with open(os.path.join(folder, "commands.txt"), "w") as out:
+        out.write("\n".join(commands) + "\n")
+    params = {k: record.vars[k] for k in sorted(record.vars)}
+    with open(os.path.join(folder, "params.json"), "w") as out:
+        json.dump(dict(name=record.name, series=record.series, vars=params), out, indent=2, sort_keys=True)
+
+
+def replica_pairs(records):
+    """(replica, original) pairs: a run of another seed and the run at the same mu, theta, L."""
+    by_point = {}
+    for r in records:
+        by_point.setdefault((r.vars["mu"], r.vars["theta"], r.vars["L"]), []).append(r)
+    pairs = []
+    for runs in by_point.values():
+        analysed = [r for r in runs if r.results]
+        seeds = sorted(analysed, key=lambda r: r.series == "replicas")
+        if len(seeds) >= 2 and seeds[-1].series == "replicas":
+            pairs.append((seeds[-1], seeds[0]))
+    return pairs
+
+
+def replica_scatter(pairs):
+    """Per quantity: the standard deviation of one run estimated from the replica pairs,
+    s = sqrt(sum d^2 / (2 n)), and the number of pairs."""
+    scatter = {}
+    for name in REPLICA_QUANTITIES:
+        differences = [a.get(name)[0] - b.get(name)[0] for a, b in pairs if a.get(name) and b.get(name)]
+        if differences:
+            scatter[name] = (math.sqrt(sum(d * d for d in differences) / (2 * len(differences))), len(differences))
+    return scatter
+
+
+def section_runs(records):
+    rows = []
+    for r in records:
+        cost = r.cost.get("cpu_per_physical_second")
+        rows.append([r.name, r.vars["mu"], r.vars["theta"], r.vars["L"], r.vars["seed"], r.vars["duration"],
+                     r.window_seconds(), significant(cost, 3) if cost else "–", r.state])
+    return ("## The runs\n\nEach run rains its packing (seed), tilts gravity and flows for the chute time "
+            "given; cdpost finds the stationary window of each. CPU s per physical s from LAMMPS's own "
+            "timers over the chute time the runs covered.\n\n"
+            + table(["run", "mu", "θ (°)", "L (d)", "seed", "chute time (s)", "window (s)", "CPU s / phys s",
+                     "state"], rows))
+
+
+def section_quantities(title, text, records, columns):
+    analysed = [r for r in records if r.results]
+    if not analysed:
+        return ""
+    rows = [[r.name] + [with_error(r.get(name)) for name, _ in columns] for r in analysed]
+    return f"## {title}\n\n{text}\n\n" + table(["run"] + [h for _, h in columns], rows)
+
+
+def read_fits(folder):
+    path = os.path.join(folder, "fits.csv")
+    return read_results(path) if os.path.exists(path) else {}
+
+
+def section_fits(title, folder, prefixes, figures, destination):
+    fits = read_fits(folder)
+    rows = [[name, with_error(entry), entry[2]] for name, entry in sorted(fits.items())
+            if name.startswith(prefixes)]
+    shown = [f for f in figures if os.path.exists(os.path.join(folder, "figures", f + ".png"))]
+    if not rows and not shown:
+        return ""
+    relative = os.path.relpath(folder, destination)
+    text = f"## {title}\n\n"
+    if rows:
+        text += table(["fit parameter", "value", "unit"], rows) + "\n"
+    text += "".join(f"![{f}]({relative}/figures/{f}.png) " for f in shown) + "\n"
+    return text
+
+
+def section_replicas(pairs, scatter):
+    if not pairs:
+        return ""
+    rows = [[name, significant(s, 3), n] for name, (s, n) in scatter.items()]
+    listed = ", ".join(f"{a.name} / {b.name}" for a, b in pairs)
+    return ("## Scatter between depositions\n\nTwo runs at the same point from different rains "
+            f"({listed}); the standard deviation of one run, s = √(Σ d² / 2n) over the n pairs of "
+            "differences d, is the honest error bar of a single run (the block errors of one run's "
+            "window are smaller: they miss the slow fluctuations of one realisation).\n\n"
+            + table(["quantity", "s (one run)", "pairs"], rows))
+
+
+def section_comparisons(comparisons, destination):
+    text = ""
+    for source in comparisons:
+        name = os.path.basename(os.path.normpath(source))
+        target = os.path.join(destination, "soft", name)
+        copied = copy_matching(os.path.join(source, "comparison") if os.path.isdir(os.path.join(source, "comparison")) else source,
+                               COMPARISON_FILES, target)
+        if "table.csv" not in copied:
+            text += f"## Rigid against soft: {name}\n\nno comparison table in {source}\n\n"
+            continue
+        with open(os.path.join(target, "table.csv"), newline="") as src:
+            reader = csv.reader(src)
+            headings = next(reader)
+            rows = list(reader)
+        relative = os.path.relpath(target, destination)
+        text += (f"## Rigid against soft: {name}\n\nThe same packing run by each model (reference/run_comparison.sh, "
+                 f"its commands in [{relative}/commands.txt]({relative}/commands.txt), the full report in "
+                 f"[{relative}/report.md]({relative}/report.md)).\n\n" + table(headings, rows))
+        spectra = [f for f in copied if f.startswith("figures/spectra") and f.endswith(".png")]
+        text += "\n" + "".join(f"![{os.path.basename(f)}]({relative}/{f}) " for f in spectra[:2]) + "\n\n"
+    return text
+
+
+def section_snapshots(records, destination):
+    """The snapshot of the fastest and of the slowest analysed run."""
+    analysed = [r for r in records if r.results and r.get("U")]
+    if not analysed:
+        return ""
+    chosen = {max(analysed, key=lambda r: r.get("U")[0]).name: "fastest",
+              min(analysed, key=lambda r: r.get("U")[0]).name: "slowest"}
+    text = "## Snapshots\n\nGrains coloured by their x-velocity; periodic images shaded.\n\n"
+    for r in analysed:
+        if r.name not in chosen:
+            continue
+        copied = copy_matching(os.path.join(r.folder, "post"), ("figures/snapshot.png", "figures/snapshot.svg",
+                                                                 "figures/profile.png", "figures/profile.svg"),
+                               os.path.join(destination, "runs", r.name))
+        for figure in (f for f in copied if f.endswith(".png")):
+            text += f"![{chosen[r.name]} run, {r.name}](runs/{r.name}/{figure}) "
+        text += "\n"
+    return text + "\n"
+
+
+def kept_discussion(path):
+    """The hand-written discussion of an existing README.md, markers included."""
+    try:
+        text = open(path).read()
+    except OSError:
+        return None
+    begin, end = text.find(DISCUSSION_BEGIN), text.find(DISCUSSION_END)
+    if begin < 0 or end < begin:
+        return None
+    return text[begin:end + len(DISCUSSION_END)]
+
+
+def write_report(records, series_folders, comparisons, destination, command):
+    """Writes results/ (see the module's docstring); returns the README's path."""
+    os.makedirs(destination, exist_ok=True)
+    for r in records:
+        if r.results:
+            write_run(r, destination)
+    copied_series = {}
+    for analysis, folder in series_folders.items():
+        post = os.path.join(folder, "series-post")
+        if os.path.isdir(post):
+            target = os.path.join(destination, "series", analysis)
+            copy_matching(post, SERIES_FILES, target)
+            copy_matching(folder, ("manifest.csv",), target)
+            copied_series[analysis] = target
+    pairs = replica_pairs(records)
+    readme = os.path.join(destination, "README.md")
+    discussion = kept_discussion(readme) or f"{DISCUSSION_BEGIN}\n(no discussion yet)\n{DISCUSSION_END}"
+    flow_rules = copied_series.get("flow_rules", os.path.join(destination, "series", "flow_rules"))
+    length = copied_series.get("L_series", os.path.join(destination, "series", "L_series"))
+    parts = [
+        "# Results: the erodible-bed chute\n\nGenerated from the campaign's runs by\n\n    " + command
+        + "\n\n(every number below comes from the files beside this page; errors are one standard error"
+        " unless said otherwise).\n",
+        discussion + "\n",
+        section_runs(records),
+        section_quantities("Flow", "Means over each run's stationary window (block standard errors).",
+                           records, FLOW_COLUMNS),
+        section_fits("Flow rules and packing", flow_rules, ("pouliquen", "muI", "phi_"),
+                     ("U_vs_theta", "phi_vs_U"), destination),
+        section_quantities("Oscillation of the flowing layer", "f: spectral peak of v(t) (error: half width at "
+                           "half power); A its amplitude; A_mean the mean amplitude at f ≥ 100 Hz.",
+                           records, OSCILLATION_COLUMNS),
+        section_fits("Frequency laws and correlations", flow_rules, ("f_vs", "correlation", "depth"),
+                     ("f_vs_scale", "f_vs_shear_rate", "A_vs_U", "A_vs_phi", "depth_amplitude"), destination),
+        section_quantities("Velocity profiles", "Bagnold fit u = slip + a (h^1.5 − (h − z)^1.5) over the layer; "
+                           "creep length λ of u ∝ exp(z/λ) below the wall tops.", records, PROFILE_COLUMNS),
+        section_fits("Cell length", length, ("correlation",), ("L_series",), destination),
+        section_replicas(pairs, replica_scatter(pairs)),
+        section_comparisons(comparisons, destination),
+        section_snapshots(records, destination),
+    ]
+    with open(readme + ".tmp", "w") as out:
+        out.write("\n".join(p for p in parts if p))
+    os.replace(readme + ".tmp", readme)
+    return readme
