@@ -1,4 +1,4 @@
-// Flow rules across a series of runs (SCENE.md): Pouliquen's rule, the mu(I) rule, and the
+// Flow rules across a series of runs (doc/scene.md): Pouliquen's rule, the mu(I) rule, and the
 // linear phi(U) law. Angles in degrees, I = d U / (sqrt(g) h^1.5) dimensionless.
 //
 // Pouliquen's tan θ = tan θ1 + (tan θ2 − tan θ1) exp(−(β h / (ℓ d)) sqrt(g h) / U) depends on
