@@ -52,13 +52,7 @@ double wall_key(int wall_index, cd::WallPart part)
 
 /* ---------------------------------------------------------------------- */
 
-FixContactDynamics::FixContactDynamics(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), theta(0.5), order(ContactOrder::fixed), warm_start(true),
-    max_contacts(12), disc_density(0.0), alert_distance(-1.0), alert_given(false), narrow_subdomains_reported(false), list(nullptr), covered_radius(0.0), mean_diameter(0.0),
-    natoms_checked(-1), distributed(false), max_overlap(0.0), mean_overlap(0.0),
-    solved_contacts_total(0.0), loaded_contacts_total(0.0), loaded_contacts(0),
-    total_iterations(0.0), total_unconverged_steps(0.0), total_steps(0.0), history(nullptr),
-    local_rows_allocated(0)
+FixContactDynamics::FixContactDynamics(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
 {
   if (domain->dimension != 2) error->all(FLERR, "Fix contact/dynamics requires dimension 2");
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
@@ -164,8 +158,8 @@ void FixContactDynamics::parse_arguments(int narg, char **arg)
   const double e = number_for("e", arg[4], error);
   check_friction("mu", mu, error);
   check_restitution("e", e, error);
-  const int ntypes = atom->ntypes;
-  type_laws.assign((ntypes + 1) * (ntypes + 1), cd::ContactLaw{mu, e});
+  law_types = atom->ntypes;
+  type_laws.assign((law_types + 1) * (law_types + 1), cd::ContactLaw{mu, e});
 
   int iarg = 5;
   while (iarg < narg) {
@@ -271,16 +265,15 @@ void FixContactDynamics::parse_type_law(const char *keyword, int iarg, int narg,
 {
   require_values(keyword, iarg, 3, narg, error);
   int ilo, ihi, jlo, jhi;
-  const int ntypes = atom->ntypes;
-  utils::bounds(FLERR, arg[iarg + 1], 1, ntypes, ilo, ihi, error);
-  utils::bounds(FLERR, arg[iarg + 2], 1, ntypes, jlo, jhi, error);
+  utils::bounds(FLERR, arg[iarg + 1], 1, law_types, ilo, ihi, error);
+  utils::bounds(FLERR, arg[iarg + 2], 1, law_types, jlo, jhi, error);
   const double value = number_for(keyword, arg[iarg + 3], error);
   if (friction) check_friction(keyword, value, error);
   else check_restitution(keyword, value, error);
   for (int i = ilo; i <= ihi; i++)
     for (int j = jlo; j <= jhi; j++) {
-      cd::ContactLaw &ij = type_laws[i * (ntypes + 1) + j];
-      cd::ContactLaw &ji = type_laws[j * (ntypes + 1) + i];
+      cd::ContactLaw &ij = type_laws[i * (law_types + 1) + j];
+      cd::ContactLaw &ji = type_laws[j * (law_types + 1) + i];
       (friction ? ij.mu : ij.restitution) = value;
       (friction ? ji.mu : ji.restitution) = value;
     }
@@ -347,7 +340,7 @@ void FixContactDynamics::init()
                "neigh_modify delay 0 every 1 check yes");
   if (utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "Fix contact/dynamics does not support run_style respa");
-  if (atom->ntypes + 1 != static_cast<int>(std::sqrt(static_cast<double>(type_laws.size()))))
+  if (atom->ntypes != law_types)
     error->all(FLERR, "Fix contact/dynamics: the number of atom types changed since the fix was defined");
   check_integrators();
   check_pair_style();
@@ -434,13 +427,23 @@ void FixContactDynamics::check_pair_style()
                    group->names[igroup], itype, jtype);
 }
 
+// At setup and whenever the atom count changed (insertions): the masses checked, the mean
+// diameter (the unit of the overlap outputs) and the default alert distance that follows it.
+void FixContactDynamics::survey_group()
+{
+  check_disk_masses();
+  mean_diameter = group_mean_diameter();
+  if (!alert_given) alert_distance = default_alert_fraction * mean_diameter;
+  reach.set_margin_floor(alert_distance);
+  natoms_surveyed = atom->natoms;
+}
+
 // Disks need m = pi r^2 rho. Sphere masses (4/3 pi r^3 rho, as fix pour and set density give)
 // show in a polydisperse group as a uniform mass/r^3 with a non-uniform mass/r^2.
 void FixContactDynamics::check_disk_masses()
 {
-  double local[4] = {0.0, 0.0, 0.0, 0.0};    // max m/r^2, max -m/r^2, max m/r^3, max -m/r^3
-  double diameter_sum_local[2] = {0.0, 0.0};
-  for (int i = 0; i < 4; i++) local[i] = -HUGE_VAL;
+  double local[4];    // max m/r^2, max -m/r^2, max m/r^3, max -m/r^3
+  for (double &value : local) value = -HUGE_VAL;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(atom->mask[i] & groupbit)) continue;
     const double r = atom->radius[i];
@@ -453,23 +456,30 @@ void FixContactDynamics::check_disk_masses()
     local[1] = std::max(local[1], -per_area);
     local[2] = std::max(local[2], per_volume);
     local[3] = std::max(local[3], -per_volume);
-    diameter_sum_local[0] += 2.0 * r;
-    diameter_sum_local[1] += 1.0;
   }
-  double global[4], diameter_sum[2];
+  double global[4];
   MPI_Allreduce(local, global, 4, MPI_DOUBLE, MPI_MAX, world);
-  MPI_Allreduce(diameter_sum_local, diameter_sum, 2, MPI_DOUBLE, MPI_SUM, world);
-  natoms_checked = atom->natoms;
-  mean_diameter = diameter_sum[1] > 0.0 ? diameter_sum[0] / diameter_sum[1] : 2.0 * covered_radius;
-  if (!alert_given) alert_distance = default_alert_fraction * mean_diameter;
-  reach.set_margin_floor(alert_distance);
-  if (diameter_sum[1] == 0.0) return;
-  if (disc_density > 0.0) return;
+  if (disc_density > 0.0 || global[0] == -HUGE_VAL) return;    // masses set here, or no grain
   const bool area_uniform = global[0] <= -global[1] * (1.0 + uniform_ratio_tolerance);
   const bool volume_uniform = global[2] <= -global[3] * (1.0 + uniform_ratio_tolerance);
   if (!area_uniform && volume_uniform)
     error->all(FLERR, "Fix contact/dynamics: group {} has sphere masses (4/3 pi r^3 rho); use set "
                "density/disc or the density keyword", group->names[igroup]);
+}
+
+// Of the group's grains; before any exists (an insertion fix fills the box later), the largest
+// announced one.
+double FixContactDynamics::group_mean_diameter()
+{
+  double local[2] = {0.0, 0.0};    // sum of diameters, count
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->mask[i] & groupbit) {
+      local[0] += 2.0 * atom->radius[i];
+      local[1] += 1.0;
+    }
+  double global[2];
+  MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_SUM, world);
+  return global[1] > 0.0 ? global[0] / global[1] : 2.0 * covered_radius;
 }
 
 void FixContactDynamics::assign_disc_masses()
@@ -482,7 +492,7 @@ void FixContactDynamics::assign_disc_masses()
 void FixContactDynamics::setup(int)
 {
   if (disc_density > 0.0) assign_disc_masses();
-  check_disk_masses();
+  survey_group();
   check_subdomains();
   warn_initial_overlaps();
   if (adaptive_step) init_step_grid();
@@ -643,9 +653,9 @@ void FixContactDynamics::initial_integrate(int)
 
 void FixContactDynamics::final_integrate()
 {
-  if (atom->natoms != natoms_checked) {
+  if (atom->natoms != natoms_surveyed) {
     if (disc_density > 0.0) assign_disc_masses();
-    check_disk_masses();
+    survey_group();
   }
   if (neighbor->ago == 0) check_subdomains();
   gather_bodies();
@@ -697,7 +707,7 @@ void FixContactDynamics::solve_contacts()
 
 const cd::ContactLaw &FixContactDynamics::law(int itype, int jtype) const
 {
-  return type_laws[itype * (atom->ntypes + 1) + jtype];
+  return type_laws[itype * (law_types + 1) + jtype];
 }
 
 // Bodies: 0 is the world, 1 + i an owned atom i, 1 + g a ghost g whose owner is on another
@@ -807,14 +817,37 @@ void FixContactDynamics::collect_grain_pairs(double from_margin, double to_margi
         error->one(FLERR, "Fix contact/dynamics: atom {} touches its own periodic image; the cell "
                    "is too short", tag[i]);
       const cd::ContactGeometry geometry = cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j);
-      // The warm start lives with the smaller ID, an owned atom by the rule above.
-      const bool i_keeps = tag[i] < tag[j];
-      add_pair(geometry, law(type[i], type[j]),
-               {tag[i], tag[j], 0, i_keeps ? i : j, static_cast<double>(i_keeps ? tag[j] : tag[i]),
-                geometry.point_x, geometry.point_y},
-               widening);
+      add_pair(geometry, law(type[i], type[j]), ContactRecord::between_atoms(tag, i, j, geometry), widening);
     }
   }
+}
+
+// By the rule of collect_grain_pairs the smaller ID is an owned atom.
+FixContactDynamics::ContactRecord FixContactDynamics::ContactRecord::between_atoms(
+    const tagint *tag, int i, int j, const cd::ContactGeometry &geometry)
+{
+  const int keeper = tag[i] < tag[j] ? i : j;
+  ContactRecord record;
+  record.atom_a = tag[i];
+  record.atom_b = tag[j];
+  record.history_atom = keeper;
+  record.history_key = static_cast<double>(keeper == i ? tag[j] : tag[i]);
+  record.point_x = geometry.point_x;
+  record.point_y = geometry.point_y;
+  return record;
+}
+
+FixContactDynamics::ContactRecord FixContactDynamics::ContactRecord::against_wall(
+    const tagint *tag, int i, int slot, cd::WallPart part, const cd::ContactGeometry &geometry)
+{
+  ContactRecord record;
+  record.atom_a = tag[i];
+  record.wall = slot + 1;
+  record.history_atom = i;
+  record.history_key = wall_key(slot, part);
+  record.point_x = geometry.point_x;
+  record.point_y = geometry.point_y;
+  return record;
 }
 
 cd::PeriodicBox FixContactDynamics::periodic_box() const
@@ -835,8 +868,7 @@ void FixContactDynamics::collect_wall_pairs(double from_margin, double to_margin
       const auto touch = cd::wall_contact(walls[w], 1 + i, disk, reach_i + to_margin, box);
       if (!touch || touch->geometry.gap <= reach_i + from_margin) continue;
       add_pair(touch->geometry, walls[w].law,
-               {atom->tag[i], 0, w + 1, i, wall_key(w, touch->part), touch->geometry.point_x,
-                touch->geometry.point_y},
+               ContactRecord::against_wall(atom->tag, i, w, touch->part, touch->geometry),
                std::isfinite(from_margin));
     }
   }

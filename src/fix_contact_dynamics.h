@@ -58,13 +58,19 @@ class FixContactDynamics : public Fix {
  private:
   // Who touches whom, for warm starts and the local output.
   struct ContactRecord {
-    tagint atom_a;      // atom ID of body a (always an owned atom)
-    tagint atom_b;      // atom ID of body b, 0 for a wall
-    int wall;           // 1-based wall index, 0 for an atom pair
-    int history_atom;   // owned atom whose row stores the warm start: the smaller ID of a pair
-    double history_key; // the partner in that row: the other atom ID, or -(wall slot)
-    double point_x;     // contact point at the predicted configuration
-    double point_y;
+    tagint atom_a = 0;         // atom ID of body a (always an owned atom)
+    tagint atom_b = 0;         // atom ID of body b, 0 for a wall
+    int wall = 0;              // 1-based wall index, 0 for an atom pair
+    int history_atom = -1;     // owned atom whose row stores the warm start: the smaller ID of a pair
+    double history_key = 0.0;  // the partner in that row: the other atom ID, or -(wall slot)
+    double point_x = 0.0;      // contact point at the predicted configuration
+    double point_y = 0.0;
+
+    // Atoms of local indices i and j (i owned): the warm start lives with the smaller ID.
+    static ContactRecord between_atoms(const tagint *tag, int i, int j, const cd::ContactGeometry &geometry);
+    // Owned atom i against wall slot `slot` (0-based) at the part `part` of that wall.
+    static ContactRecord against_wall(const tagint *tag, int i, int slot, cd::WallPart part,
+                                      const cd::ContactGeometry &geometry);
   };
 
   // Per-iteration exchange across MPI ranks: ghost velocity changes summed into their owners
@@ -94,17 +100,18 @@ class FixContactDynamics : public Fix {
   enum class ContactOrder { fixed, shuffled };
 
   // --- settings (from the command line) ---
-  double theta;
+  double theta = 0.5;
   cd::SolverSettings solver_settings;
-  ContactOrder order;
-  bool warm_start;
-  int max_contacts;
-  double disc_density;    // > 0: masses reset to pi r^2 rho
-  double alert_distance;  // candidate pairs: gap closed at free velocity <= alert (m)
-  bool alert_given;
-  bool narrow_subdomains_reported;  // the narrow-subdomain warning is given once per fix
-  bool pair_forces = false;         // a pair style may act on the group's pairs too
-  std::vector<cd::ContactLaw> type_laws;  // (ntypes+1)^2, row-major
+  ContactOrder order = ContactOrder::fixed;
+  bool warm_start = true;
+  int max_contacts = 12;
+  double disc_density = 0.0;    // > 0: masses reset to pi r^2 rho
+  double alert_distance = -1.0; // candidate pairs: gap closed at free velocity <= alert (m)
+  bool alert_given = false;
+  bool narrow_subdomains_reported = false;  // the narrow-subdomain warning is given once per fix
+  bool pair_forces = false;                 // a pair style may act on the group's pairs too
+  int law_types = 0;                        // atom types when the fix was defined
+  std::vector<cd::ContactLaw> type_laws;    // (law_types+1)^2, row-major
   std::vector<cd::Wall> walls;
   std::mt19937_64 shuffle_rng;
   // The step that follows the flow (dt_max given): the grid, the travel bound as a fraction of
@@ -118,14 +125,14 @@ class FixContactDynamics : public Fix {
   bool step_state_known = false;  // level and position set (by a run or a restart)
 
   // --- per-step state ---
-  class NeighList *list;
-  double covered_radius;  // largest radius the neighbour/ghost cutoff was set for
-  double mean_diameter;
-  bigint natoms_checked;
+  class NeighList *list = nullptr;
+  double covered_radius = 0.0;  // largest radius the neighbour/ghost cutoff was set for
+  double mean_diameter = 0.0;   // of the group at natoms_surveyed atoms (m)
+  bigint natoms_surveyed = -1;  // atom count at the last survey_group
   cd::BodySet bodies;                   // world, owned atoms, then ghosts owned elsewhere
   std::vector<int> body_of_atom;        // body of every owned and ghost atom this step
   std::vector<cd::BodyVelocity> ghost_reference;  // ghost velocities at the last forward comm
-  bool distributed;                     // more than one rank: exchange every sweep
+  bool distributed = false;             // more than one rank: exchange every sweep
   cd::PairReach reach;                  // which listed pairs a step looks at
   cd::StepContacts pairs;               // solved and watched pairs of this step
   std::vector<ContactRecord> records;   // of each solved pair, in sweep order
@@ -134,26 +141,28 @@ class FixContactDynamics : public Fix {
   std::vector<cd::Contact> reordered_contacts;       // scratch of reorder_contacts
   std::vector<ContactRecord> reordered_records;
   cd::SolveReport last_report;
-  double max_overlap, mean_overlap;  // in units of the mean diameter, over all ranks
-  double solved_contacts_total, loaded_contacts_total;  // over all ranks
-  int loaded_contacts;                                  // on this rank
+  double max_overlap = 0.0, mean_overlap = 0.0;  // in units of the mean diameter, over all ranks
+  double solved_contacts_total = 0.0, loaded_contacts_total = 0.0;  // over all ranks
+  int loaded_contacts = 0;                                          // on this rank
 
   // --- running totals (kept across restarts) ---
-  double total_iterations, total_unconverged_steps, total_steps;
+  double total_iterations = 0.0, total_unconverged_steps = 0.0, total_steps = 0.0;
 
   // --- per-atom warm-start store: [count, (partner key, p_n, p_t) x max_contacts] ---
-  double **history;
-  int history_width;
+  double **history = nullptr;
+  int history_width = 0;
 
   // --- local output: one row per loaded contact ---
-  int local_rows_allocated;
+  int local_rows_allocated = 0;
 
   void parse_arguments(int narg, char **arg);
   int parse_wall(int iarg, int narg, char **arg);
   void parse_type_law(const char *keyword, int iarg, int narg, char **arg, bool friction);
   void check_integrators();
   void check_pair_style();
+  void survey_group();
   void check_disk_masses();
+  double group_mean_diameter();
   void assign_disc_masses();
   void request_neighbor_list();
 
