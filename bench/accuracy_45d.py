@@ -15,50 +15,20 @@ import argparse
 import csv
 import math
 import os
-import statistics
 import subprocess
 import sys
 
-TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from cdtools.cdpost import read_results
+from cdtools.lammps_files import read_chunk_file, read_time_file
+from cdtools.run import BUILT_CDPOST
+from cdtools.stats import difference_in_errors, mean_sd_se
+
 D = 5e-4  # m, mean diameter of the scene
 # cdpost result names compared, and the quantities this script adds from the chunk files.
 QUANTITIES = ["U", "phi", "h", "f", "A", "A_mean", "creep_lambda", "bagnold_amplitude", "bagnold_slip",
               "bed_u", "phi_bed", "phi_layer"]
 UNITS = dict(U="sqrt(g d)", h="d", f="Hz", A="sqrt(g d)", A_mean="sqrt(g d)", creep_lambda="d",
              bagnold_amplitude="sqrt(g d)", bagnold_slip="sqrt(g d)", bed_u="sqrt(g d)")
-
-
-def read_table(path):
-    """Rows of a LAMMPS fix ave/time file as dicts keyed by its column names."""
-    names, rows = None, []
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#"):
-                names = line[1:].split()
-                continue
-            values = [float(v) for v in line.split()]
-            if names is None or len(values) != len(names):
-                raise SystemExit(f"accuracy_45d.py: {path}: a row of {len(values)} values, expected {len(names or [])}")
-            rows.append(dict(zip(names, values)))
-    return rows
-
-
-def read_chunks(path):
-    """Blocks of a fix ave/chunk file: [(timestep, [row dicts])]."""
-    blocks, names = [], None
-    with open(path) as f:
-        lines = [l for l in f]
-    names = lines[2][1:].split()
-    i = 3
-    while i < len(lines):
-        head = lines[i].split()
-        step, count = float(head[0]), int(head[1])
-        rows = [dict(zip(names, map(float, l.split()))) for l in lines[i + 1:i + 1 + count]]
-        if len(rows) != count:
-            raise SystemExit(f"accuracy_45d.py: {path}: block at step {step:.0f} is cut")
-        blocks.append((step, rows))
-        i += 1 + count
-    return blocks
 
 
 def step_clock(flow):
@@ -74,11 +44,10 @@ def step_clock(flow):
 
 def cdpost(folder, z0, t0, t1, name):
     post = os.path.join(folder, name)
-    cmd = [os.path.join(TOP, "build", "postproc", "cdpost"), "run", folder, "--z0", f"{z0:g}",
-           "--t-start", f"{t0:g}", "--t-end", f"{t1:g}", "--out", post]
+    cmd = [BUILT_CDPOST, "run", folder, "--z0", f"{z0:g}", "--t-start", f"{t0:g}", "--t-end", f"{t1:g}",
+           "--out", post]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-    with open(os.path.join(post, "results.csv")) as f:
-        return {r["name"]: float(r["value"]) for r in csv.DictReader(f)}
+    return {name: entry[0] for name, entry in read_results(os.path.join(post, "results.csv")).items()}
 
 
 def chunk_means(folder, z0, t0, t1, time_of):
@@ -86,9 +55,11 @@ def chunk_means(folder, z0, t0, t1, time_of):
     the mean area fraction of the bed (-20 d < z < 0) and of the layer (0 < z < 40 d) from
     packing.chunk, over the blocks ending in (t0, t1]."""
     sqrt_gd = math.sqrt(9.81 * D)
-    inside = lambda step: t0 < time_of(step) <= t1 + 1e-9
+
+    def inside(step):
+        return t0 < time_of(step) <= t1 + 1e-9
     momentum = weight = 0.0
-    for step, rows in read_chunks(os.path.join(folder, "profile.chunk")):
+    for step, rows in read_chunk_file(os.path.join(folder, "profile.chunk")):
         if not inside(step):
             continue
         for r in rows:
@@ -97,7 +68,7 @@ def chunk_means(folder, z0, t0, t1, time_of):
                 weight += r["Ncount"]
     bands = dict(phi_bed=(-20, 0), phi_layer=(0, 40))
     sums = {k: [0.0, 0] for k in bands}
-    for step, rows in read_chunks(os.path.join(folder, "packing.chunk")):
+    for step, rows in read_chunk_file(os.path.join(folder, "packing.chunk")):
         if not inside(step):
             continue
         for r in rows:
@@ -112,7 +83,7 @@ def chunk_means(folder, z0, t0, t1, time_of):
 
 
 def window_values(folder, z0, windows):
-    flow = read_table(os.path.join(folder, "flow.time"))
+    flow = read_time_file(os.path.join(folder, "flow.time"))
     time_of = step_clock(flow)
     values = []
     for k, (t0, t1) in enumerate(windows):
@@ -123,10 +94,8 @@ def window_values(folder, z0, windows):
 
 
 def group(values, name):
-    xs = [v[name] for v in values if name in v and math.isfinite(v[name])]
-    if len(xs) < 2:    # one window: a value without an error
-        return (xs[0] if xs else float("nan")), float("nan")
-    return statistics.mean(xs), statistics.stdev(xs) / math.sqrt(len(xs))
+    mean, _, error = mean_sd_se(v[name] for v in values if name in v and math.isfinite(v[name]))
+    return mean, error    # one window: a value without an error
 
 
 def cost(folder):
@@ -135,7 +104,7 @@ def cost(folder):
     if len(fields) < 3 or not fields[-3].replace(".", "").isdigit():
         return float("nan")    # a run stopped before it finished: no time of its own
     user = float(fields[-3])
-    flow = read_table(os.path.join(folder, "flow.time"))
+    flow = read_time_file(os.path.join(folder, "flow.time"))
     return user / (flow[-1]["v_time"] - flow[0]["v_time"])
 
 
@@ -163,7 +132,7 @@ def compare(args):
     for q in QUANTITIES:
         (rm, rs), (nm, ns) = group(ref, q), group(new, q)
         combined = math.hypot(rs, ns)
-        t = (nm - rm) / combined if combined > 0 else float("nan")
+        t = difference_in_errors(nm, ns, rm, rs)
         rows.append(dict(quantity=q, unit=UNITS.get(q, ""), reference=rm, reference_se=rs, candidate=nm,
                          candidate_se=ns, difference=nm - rm, combined_se=combined, t=t,
                          agrees=abs(t) <= 2 if math.isfinite(t) else False))
@@ -176,10 +145,11 @@ def compare(args):
              "|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['quantity']} ({r['unit']}) | {r['reference']:.4g} ± {r['reference_se']:.2g} | "
-                     f"{r['candidate']:.4g} ± {r['candidate_se']:.2g} | {r['t']:+.2f} | {'yes' if r['agrees'] else 'NO'} |")
-    first = lambda names: names.split(",")[0]
-    lines.append(f"\ncost: {first(args.reference)} {cost(os.path.join(args.runs, first(args.reference))):.0f}, "
-                 f"{first(args.candidate)} {cost(os.path.join(args.runs, first(args.candidate))):.1f} CPU s per physical s; "
+                     f"{r['candidate']:.4g} ± {r['candidate_se']:.2g} | {r['t']:+.2f} | "
+                     f"{'yes' if r['agrees'] else 'NO'} |")
+    reference, candidate = args.reference.split(",")[0], args.candidate.split(",")[0]
+    lines.append(f"\ncost: {reference} {cost(os.path.join(args.runs, reference)):.0f}, "
+                 f"{candidate} {cost(os.path.join(args.runs, candidate)):.1f} CPU s per physical s; "
                  f"{len(ref)} and {len(new)} windows ({args.windows} s of {args.reference} and {args.candidate})")
     open(stem + ".md", "w").write("\n".join(lines) + "\n")
     print("\n".join(lines))
@@ -206,13 +176,22 @@ def convergence(args):
         for value, folder, g, c in series:
             f.write(f"{value:g},{folder}," + ",".join(f"{g[q][0]:.6g},{g[q][1]:.3g}" for q in ("f", "A", "A_mean", "U"))
                     + f",{c:.1f}\n")
-    def band(q):
-        """The reference's mean and mean +- SE as horizontal lines, if there is a reference."""
-        if not reference:
-            return ""
-        m, e = reference[q]
-        return f", {m} with lines dt 2 lc 'black' title 'reference', {m - e} with lines dt 3 lc 'gray' notitle, " \
-               f"{m + e} with lines dt 3 lc 'gray' notitle"
+    convergence_figure(stem, args.setting, reference)
+    print(open(stem + ".csv").read())
+
+
+def reference_band(reference, q):
+    """The reference's mean and mean +- SE as horizontal lines, if there is a reference."""
+    if not reference:
+        return ""
+    m, e = reference[q]
+    return f", {m} with lines dt 2 lc 'black' title 'reference', {m - e} with lines dt 3 lc 'gray' notitle, " \
+           f"{m + e} with lines dt 3 lc 'gray' notitle"
+
+
+def convergence_figure(stem, setting, reference):
+    """stem.png and stem.svg from stem.csv: f, A and A_mean against the setting."""
+    band = {q: reference_band(reference, q) for q in ("f", "A", "A_mean")}
     for ext, term in (("png", "pngcairo size 1000,320"), ("svg", "svg size 1000,320")):
         script = f"""set terminal {term} noenhanced
 set output '{stem}.{ext}'
@@ -220,17 +199,16 @@ set datafile separator ','
 set logscale x
 set key top right font ",9"
 set multiplot layout 1,3
-set xlabel '{args.setting}'
+set xlabel '{setting}'
 set ylabel 'f (Hz)'
-plot '{stem}.csv' every ::1 using 1:3:4 with yerrorlines title 'mean of the windows +- SE'{band("f")}
+plot '{stem}.csv' every ::1 using 1:3:4 with yerrorlines title 'mean of the windows +- SE'{band["f"]}
 set ylabel 'A (sqrt(g d))'
-plot '{stem}.csv' every ::1 using 1:5:6 with yerrorlines notitle{band("A")}
+plot '{stem}.csv' every ::1 using 1:5:6 with yerrorlines notitle{band["A"]}
 set ylabel 'A_mean, f >= 100 Hz (sqrt(g d))'
-plot '{stem}.csv' every ::1 using 1:7:8 with yerrorlines notitle{band("A_mean")}
+plot '{stem}.csv' every ::1 using 1:7:8 with yerrorlines notitle{band["A_mean"]}
 unset multiplot
 """
         subprocess.run(["gnuplot"], input=script, text=True, check=True)
-    print(open(stem + ".csv").read())
 
 
 def main():
@@ -250,7 +228,10 @@ def main():
                                             help="VALUE=RUN[+RUN...],...: the run (or replicas) of each value")
     sub.choices["convergence"].add_argument("--reference", help="RUN[,RUN...]: drawn as a band")
     args = p.parse_args()
-    compare(args) if args.command == "compare" else convergence(args)
+    try:
+        compare(args) if args.command == "compare" else convergence(args)
+    except RuntimeError as error:    # a malformed output file of a run, named
+        sys.exit(f"accuracy_45d.py: {error}")
 
 
 if __name__ == "__main__":

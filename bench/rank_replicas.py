@@ -29,14 +29,14 @@ import csv
 import math
 import os
 import re
-import subprocess
 import sys
-import time
 
-TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-DECK = os.path.join(TOP, "inputs", "in.chute")
-sys.path.insert(0, os.path.join(TOP, "scripts"))
-from accuracy_study import group_stats, log_line  # noqa: E402  (tested in test_accuracy_study.py)
+from cdtools.cdpost import read_results
+from cdtools.lammps_files import read_time_file
+from cdtools.logs import log_summary
+from cdtools.run import BUILT_CDPOST, BUILT_LMP_CD, DECK, lmp_command, mpi_launcher, name_value_pairs, run_checked
+from cdtools.stats import mean_sd_se, pooled_sd
+
 CDPOST_QUANTITIES = ("U", "phi", "h", "f")
 STUDY_VARIABLES = {"stage", "start", "duration"}   # in.chute -vars the study sets (seed: the beds')
 QUANTITIES = CDPOST_QUANTITIES + ("sweeps",)    # sweeps: per step over the whole flow, from the log
@@ -68,8 +68,8 @@ def options():
     parser.add_argument("--cell", default="L=10 grains=200 wall_height=8 mu=0.5 theta=24",
                         help="in.chute -vars of the cell, 'name=value ...'")
     parser.add_argument("--solver", default="", help="extra in.chute -vars of the flow, 'name=value ...'")
-    parser.add_argument("--lmp", default=os.path.join(TOP, "build", "lmp_cd"))
-    parser.add_argument("--cdpost", default=os.path.join(TOP, "build", "postproc", "cdpost"))
+    parser.add_argument("--lmp", default=BUILT_LMP_CD)
+    parser.add_argument("--cdpost", default=BUILT_CDPOST)
     parser.add_argument("--mpirun", default="mpirun")
     parser.add_argument("--cores", type=int, default=os.cpu_count(), help="cores to fill (default all)")
     parser.add_argument("--beds", help="take the beds (seedN/deposition) from this study's folder: "
@@ -90,48 +90,26 @@ def options():
         parser.error("--timeline pairs runs: give two rank counts or --against")
     if not 0 <= args.t_start < args.duration:
         parser.error(f"--t-start {args.t_start} must lie in [0, --duration {args.duration})")
-    for name in ("cell", "solver"):
-        for pair in getattr(args, name).split():
-            if "=" not in pair:
-                parser.error(f"--{name}: '{pair}' is not name=value")
-    # LAMMPS keeps the first -var of a name: a second one would be ignored without a word.
-    both = variable_names(args.cell) & variable_names(args.solver)
-    if both:
-        parser.error(f"--solver sets {', '.join(sorted(both))}, already set by --cell (give it in one of them)")
-    for name, reserved in (("cell", STUDY_VARIABLES | {"seed"}), ("solver", STUDY_VARIABLES)):
-        taken = variable_names(getattr(args, name)) & reserved
-        if taken:
-            parser.error(f"--{name} sets {', '.join(sorted(taken))}, which the study sets itself")
+    check_variables(parser, args)
     return args
 
 
-def variable_names(text):
-    return {pair.split("=", 1)[0] for pair in text.split()}
-
-
-def deck_variables(text):
-    return [item for pair in text.split() for item in ("-var", *pair.split("=", 1))]
-
-
-def mpi_launcher(mpirun, ranks):
-    """mpirun -np ranks, oversubscribing if the cores are fewer (and allowed to run as root)."""
-    launcher = [mpirun, "-np", str(ranks), "--oversubscribe"]
-    if os.geteuid() == 0:
-        launcher.append("--allow-run-as-root")
-    return launcher
-
-
-def run_logged(command, folder):
-    """Run in folder; a failure raises RuntimeError with the command and the log's last error."""
-    os.makedirs(folder, exist_ok=True)
-    started = time.time()
-    done = subprocess.run(command, cwd=folder, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    if done.returncode != 0:
-        log = os.path.join(folder, "log.lammps")
-        errors = [l.strip() for l in open(log)] if os.path.exists(log) else []
-        errors = [l for l in errors if l.startswith("ERROR")] or done.stderr.strip().splitlines()[-1:]
-        raise RuntimeError(f"{' '.join(command)} failed in {folder}: {errors[-1:] or 'no message'}")
-    return time.time() - started
+def check_variables(parser, args):
+    """--cell and --solver as {name: value} (args.cell_vars, args.solver_vars): name=value pairs,
+    no name in both, none that the study sets itself."""
+    for name in ("cell", "solver"):
+        try:
+            setattr(args, name + "_vars", name_value_pairs(getattr(args, name)))
+        except ValueError as error:
+            parser.error(f"--{name}: {error}")
+    # LAMMPS keeps the first -var of a name: a second one would be ignored without a word.
+    both = set(args.cell_vars) & set(args.solver_vars)
+    if both:
+        parser.error(f"--solver sets {', '.join(sorted(both))}, already set by --cell (give it in one of them)")
+    for name, reserved in (("cell", STUDY_VARIABLES | {"seed"}), ("solver", STUDY_VARIABLES)):
+        taken = set(getattr(args, name + "_vars")) & reserved
+        if taken:
+            parser.error(f"--{name} sets {', '.join(sorted(taken))}, which the study sets itself")
 
 
 def deposition(args, seed):
@@ -140,8 +118,8 @@ def deposition(args, seed):
     if args.beds and not os.path.exists(restart):
         raise RuntimeError(f"--beds {args.beds}: no bed of seed {seed} ({restart})")
     if not os.path.exists(restart):
-        run_logged([args.lmp, "-in", DECK, "-var", "stage", "deposition", "-var", "seed", str(seed),
-                    *deck_variables(args.cell), "-log", "log.lammps", "-screen", "none"], folder)
+        variables = {"stage": "deposition", "seed": seed, **args.cell_vars}
+        run_checked(lmp_command(args.lmp, DECK, variables, screen="none"), folder)
     return restart
 
 
@@ -155,16 +133,16 @@ def flow(args, seed, ranks):
     if os.path.exists(os.path.join(folder, "post", "results.csv")):
         return 0.0
     start = deposition(args, seed)
-    spent = run_logged([*mpi_launcher(args.mpirun, ranks), args.lmp, "-in", DECK, "-var", "stage", "flow",
-                        "-var", "start", start,
-                        "-var", "duration", f"{args.duration:g}", *deck_variables(args.cell),
-                        *deck_variables(args.solver), "-log", "log.lammps", "-screen", "none"], folder)
+    variables = {"stage": "flow", "start": start, "duration": f"{args.duration:g}", **args.cell_vars,
+                 **args.solver_vars}
+    spent = run_checked(lmp_command(args.lmp, DECK, variables, screen="none",
+                                    launcher=mpi_launcher(args.mpirun, ranks)), folder)
     with open(os.path.join(folder, "log.lammps")) as src:
         grid = re.search(r"(\d+) by (\d+) by (\d+) MPI processor grid", src.read())
     if ranks > 1 and (not grid or int(grid.group(1)) != ranks):
         sys.exit(f"rank_replicas: {folder}: the cell was not split along x into {ranks}")
-    run_logged([args.cdpost, "run", folder, "--z0", log_line(folder, "CHUTE")["y_top_m"],
-                "--segment", f"{args.segment:g}", "--t-start", f"{args.t_start:g}"], folder)
+    run_checked([args.cdpost, "run", folder, "--z0", str(log_summary(folder, "CHUTE")["y_top_m"]),
+                 "--segment", f"{args.segment:g}", "--t-start", f"{args.t_start:g}"], folder)
     return spent
 
 
@@ -190,21 +168,13 @@ def results(study, seed, ranks):
     path = os.path.join(folder, "post", "results.csv")
     if not os.path.exists(path):
         return None
-    with open(path) as src:
-        values = {row["name"]: row["value"] for row in csv.DictReader(src)}
+    values = {name: entry[0] for name, entry in read_results(path).items()}
     missing = [q for q in CDPOST_QUANTITIES if q not in values]
     if missing:
         raise RuntimeError(f"{path}: no row {', '.join(missing)} (truncated or not cdpost's?)")
-    solver = log_line(folder, "CHUTE")
-    values["sweeps"] = float(solver["sweeps"]) / float(solver["steps_solved"])
-    return {q: float(values[q]) if values.get(q) not in (None, "") else math.nan for q in QUANTITIES}
-
-
-def mean_sd_error(values):
-    """Mean, standard deviation and standard error; nan where fewer values than they need."""
-    if len(values) < 2:
-        return (values[0] if values else math.nan), math.nan, math.nan
-    return group_stats(values)
+    solver = log_summary(folder, "CHUTE")
+    values["sweeps"] = solver["sweeps"] / solver["steps_solved"]
+    return {q: values[q] for q in QUANTITIES}
 
 
 def mean_run(runs, keys=QUANTITIES):
@@ -226,17 +196,10 @@ def paired_differences(table, seeds, baseline, others, keys=QUANTITIES):
 
 def difference_cell(values, pooled, with_sd=False):
     """'mean ± SE (t ...)' of paired differences, SE = the pooled sd / sqrt(pairs)."""
-    mean, sd, _ = mean_sd_error(values)
+    mean, sd, _ = mean_sd_se(values)
     error = pooled / math.sqrt(len(values)) if values else math.nan
     t = mean / error if error > 0 else math.nan    # nan also for identical runs (0 / 0)
     return f"{mean:+.3g} ± {error:.2g} (t {t:+.1f}" + (f"; sd {sd:.2g})" if with_sd else ")")
-
-
-def pooled_sd(groups):
-    """Standard deviation pooled over groups, each about its own mean (nan without 2 in a group)."""
-    squares = sum(sum((v - sum(g) / len(g)) ** 2 for v in g) for g in groups if len(g) > 1)
-    freedom = sum(len(g) - 1 for g in groups if len(g) > 1)
-    return math.sqrt(squares / freedom) if freedom else math.nan
 
 
 def write_csv(path, table):
@@ -253,15 +216,7 @@ def analyse(args):
     if not any(table.values()):
         raise RuntimeError(f"{args.out}: no finished run of these seeds and ranks (seedN/npR/post/results.csv)")
     print(f"window {args.t_start:g}-{args.duration:g} s; cell {args.cell}; {args.solver or 'default solver'}\n")
-    print("| ranks | seeds | " + " | ".join(f"{q} mean ± SE (sd)" for q in QUANTITIES) + " |")
-    print("|---" * (len(QUANTITIES) + 2) + "|")
-    for ranks in args.ranks:
-        done = [s for s in args.seeds if table[(s, ranks)]]
-        cells = []
-        for q in QUANTITIES:
-            mean, sd, error = mean_sd_error([table[(s, ranks)][q] for s in done])
-            cells.append(f"{mean:.4g} ± {error:.2g} ({sd:.2g})")
-        print(f"| {ranks} | {len(done)} | " + " | ".join(cells) + " |")
+    print_replicas(args, table)
     write_csv(os.path.join(args.out, "replicas.csv"), table)
     baseline, others = min(args.ranks), [r for r in args.ranks if r != min(args.ranks)]
     name = f"{baseline} rank(s)"
@@ -274,7 +229,26 @@ def analyse(args):
             table[(s, baseline)] = mean_run([results(study, s, 1) for study in args.against])
     if not others:
         return
-    differences = paired_differences(table, args.seeds, baseline, others)
+    print_differences(table, args.seeds, baseline, others, name)
+    if args.timeline:
+        print_timeline(args, table, baseline, others, name)
+
+
+def print_replicas(args, table):
+    """Per rank count: the mean over seeds, its standard error and the seeds' sd."""
+    print("| ranks | seeds | " + " | ".join(f"{q} mean ± SE (sd)" for q in QUANTITIES) + " |")
+    print("|---" * (len(QUANTITIES) + 2) + "|")
+    for ranks in args.ranks:
+        done = [s for s in args.seeds if table[(s, ranks)]]
+        cells = []
+        for q in QUANTITIES:
+            mean, sd, error = mean_sd_se([table[(s, ranks)][q] for s in done])
+            cells.append(f"{mean:.4g} ± {error:.2g} ({sd:.2g})")
+        print(f"| {ranks} | {len(done)} | " + " | ".join(cells) + " |")
+
+
+def print_differences(table, seeds, baseline, others, name):
+    differences = paired_differences(table, seeds, baseline, others)
     pooled = {q: pooled_sd([d[q] for d in differences.values()]) for q in QUANTITIES}
     print(f"\npaired differences from {name}, same start: mean ± SE (t = mean/SE; sd of "
           "the differences). SE = pooled sd / sqrt(pairs), the sd pooled over the rank counts, "
@@ -285,8 +259,6 @@ def analyse(args):
         pairs = len(per_quantity[QUANTITIES[0]])
         cells = [difference_cell(per_quantity[q], pooled[q], with_sd=True) for q in QUANTITIES]
         print(f"| {ranks} | {pairs} | " + " | ".join(cells) + " |")
-    if args.timeline:
-        print_timeline(args, table, baseline, others, name)
 
 
 # ---------------------------------------------------------------- timeline
@@ -296,21 +268,10 @@ def flow_series(folder):
     path = os.path.join(folder, "flow.time")
     if not os.path.exists(path):
         raise RuntimeError(f"{path}: missing (the flow's time series)")
-    columns, series = None, []
-    with open(path) as src:
-        for number, line in enumerate(src, 1):
-            fields = line.split()
-            if line.startswith("#"):
-                if "v_time" in fields and "v_u_flow" in fields:    # '# TimeStep v_time ...'
-                    columns = (fields.index("v_time") - 1, fields.index("v_u_flow") - 1)
-                continue
-            if columns is None:
-                raise RuntimeError(f"{path}: no header naming v_time and v_u_flow")
-            try:
-                series.append((float(fields[columns[0]]), float(fields[columns[1]])))
-            except (IndexError, ValueError):
-                raise RuntimeError(f"{path}:{number}: not a row of numbers under its header") from None
-    return series
+    rows = read_time_file(path)
+    if rows and not {"v_time", "v_u_flow"} <= set(rows[0]):
+        raise RuntimeError(f"{path}: no header naming v_time and v_u_flow")
+    return [(row["v_time"], row["v_u_flow"]) for row in rows]
 
 
 def bin_count(width, duration):

@@ -27,19 +27,18 @@ import csv
 import math
 import os
 import statistics
-import subprocess
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-from rank_replicas import DECK, TOP, deck_variables, mpi_launcher, run_logged, variable_names  # noqa: E402
+from cdtools.lammps_files import read_dump, read_time_file
+from cdtools.run import BUILT_LMP_CD, DECK, lmp_command, mpi_launcher, name_value_pairs, run_checked
 
 SAME_SOLUTION = 1e-3    # error below which two solves count as one solution (see doc/benchmarks.md)
-# Columns of in.chute's solver.time: step, then f_cd[1..7]; [1] sweeps, [7] fraction converged.
-SWEEPS_COLUMN, CONVERGED_COLUMN = 1, 7
+# Columns of in.chute's solver.time: the sweeps and the fraction of steps converged.
+SWEEPS_COLUMN, CONVERGED_COLUMN = "f_cd[1]", "f_cd[7]"
 # in.chute -vars each solve sets (--cell must leave them alone).
 STUDY_VARIABLES = {"stage", "start", "dt", "duration", "sample_rate", "solver_interval", "tolerance",
                    "max_iterations", "order", "seed", "warm_start"}
+VELOCITY_COLUMNS = ("id", "radius", "vx", "vy", "omegaz")
 ALTERNATIVE_ORDERS = [dict(order="shuffle", seed=str(s), warm_start=w) for w in ("yes", "no") for s in (1, 2, 3)]
 
 
@@ -55,7 +54,7 @@ def options(argv=None):
     parser.add_argument("--cell", default="L=10 grains=200 wall_height=8 mu=0.5 theta=24",
                         help="in.chute -vars of the snapshots' flow, 'name=value ...'")
     parser.add_argument("--dt", type=float, default=2.0e-5, help="time step of the snapshots' flow (s)")
-    parser.add_argument("--lmp", default=os.path.join(TOP, "build", "lmp_cd"))
+    parser.add_argument("--lmp", default=BUILT_LMP_CD)
     parser.add_argument("--mpirun", default="mpirun")
     args = parser.parse_args(argv)
     if min(args.ranks) < 1 or args.max_iterations < 1 or args.dt <= 0:
@@ -65,10 +64,12 @@ def options(argv=None):
     missing = [s for s in args.snapshots if not os.path.isfile(s)]
     if missing:
         parser.error(f"--snapshots: no file {missing[0]}")
-    if any("=" not in pair for pair in args.cell.split()):
-        parser.error(f"--cell '{args.cell}': not name=value pairs")
+    try:
+        args.cell_vars = name_value_pairs(args.cell)
+    except ValueError as error:
+        parser.error(f"--cell '{args.cell}': {error}")
     # LAMMPS keeps the first -var of a name: these would override the study's own settings.
-    taken = variable_names(args.cell) & STUDY_VARIABLES
+    taken = set(args.cell_vars) & STUDY_VARIABLES
     if taken:
         parser.error(f"--cell sets {', '.join(sorted(taken))}, which the study sets itself")
     return args
@@ -78,34 +79,26 @@ def options(argv=None):
 
 def read_velocities(path):
     """{id: (radius, vx, vy, spin)} and the time step of a dump written by velocity_dump."""
-    with open(path) as src:
-        text = src.read()
     try:
-        step = int(text.split("ITEM: TIMESTEP")[1].split()[0])
-        count = int(text.split("ITEM: NUMBER OF ATOMS")[1].split()[0])
-        header, *rows = text.split("ITEM: ATOMS")[1].strip().splitlines()
-        if header.split() != ["id", "radius", "vx", "vy", "omegaz"]:
-            raise ValueError(f"columns {header}")
-        atoms = {}
-        for row in rows:
-            fields = row.split()
-            if len(fields) != 5:
-                raise ValueError(f"row '{row}'")
-            atoms[int(fields[0])] = tuple(float(x) for x in fields[1:])
-        if len(atoms) != count:
-            raise ValueError(f"{len(atoms)} of {count} atoms")
-    except (IndexError, ValueError) as error:
+        frames = read_dump(path)
+        if not frames:
+            raise ValueError("no complete frame")
+        step, _, atoms = frames[0]
+        columns = sorted(next(iter(atoms.values()), {}))
+        if columns != sorted(VELOCITY_COLUMNS):
+            raise ValueError(f"columns {columns}")
+    except (OSError, RuntimeError, ValueError) as error:
         raise RuntimeError(f"{path}: not a complete velocity dump ({error})")
-    return atoms, step
+    return {i: tuple(a[c] for c in VELOCITY_COLUMNS[1:]) for i, a in atoms.items()}, step
 
 
 def velocity_dump(args, restart, dump):
     """The velocities stored in a restart file, through lmp's -restart2dump."""
     if not os.path.exists(dump):
         folder = os.path.dirname(dump)
-        run_logged([args.lmp, "-restart2dump", os.path.abspath(restart), "all", "custom", os.path.basename(dump),
-                    "id", "radius", "vx", "vy", "omegaz", "modify", "sort", "id", "format", "float", "%.17g",
-                    "-log", "none", "-screen", "none"], folder)
+        run_checked([args.lmp, "-restart2dump", os.path.abspath(restart), "all", "custom", os.path.basename(dump),
+                     *VELOCITY_COLUMNS, "modify", "sort", "id", "format", "float", "%.17g",
+                     "-log", "none", "-screen", "none"], folder)
     return read_velocities(dump)
 
 
@@ -118,17 +111,15 @@ def solve_one_step(args, snapshot, start_step, folder, ranks, solver):
         one_step = {"stage": "flow", "start": os.path.abspath(snapshot), "dt": f"{args.dt:.17g}",
                     "duration": f"{(start_step + 1) * args.dt:.17g}", "sample_rate": f"{1 / args.dt:.17g}",
                     "solver_interval": f"{args.dt:.17g}", **solver}
-        variables = [item for name, value in one_step.items() for item in ("-var", name, value)]
-        run_logged([*launcher, args.lmp, "-in", DECK, *deck_variables(args.cell), *variables,
-                    "-log", "log.lammps", "-screen", "none"], folder)
+        run_checked(lmp_command(args.lmp, DECK, {**args.cell_vars, **one_step}, screen="none", launcher=launcher),
+                    folder)
         velocity_dump(args, os.path.join(folder, "chute.restart"), os.path.join(folder, "after.dump"))
     after, step = read_velocities(os.path.join(folder, "after.dump"))
-    with open(solved) as src:
-        rows = [line.split() for line in src if not line.startswith("#")]
-    if step != start_step + 1 or not rows or int(rows[-1][0]) != step:
+    rows = read_time_file(solved)
+    if step != start_step + 1 or not rows or int(rows[-1]["TimeStep"]) != step:
         raise RuntimeError(f"{folder}: expected one step from step {start_step}, found step {step} "
                            "(snapshot written at another --dt?)")
-    return after, float(rows[-1][SWEEPS_COLUMN]), float(rows[-1][CONVERGED_COLUMN]) == 1.0
+    return after, rows[-1][SWEEPS_COLUMN], rows[-1][CONVERGED_COLUMN] == 1.0
 
 
 # ---------------------------------------------------------------- measures
@@ -148,8 +139,7 @@ def mean_vx_bias(after, reference, gravity_step):
 
 
 def cell_value(args, name, default):
-    pairs = dict(pair.split("=", 1) for pair in args.cell.split())
-    return float(pairs.get(name, default))
+    return float(args.cell_vars.get(name, default))
 
 
 # ---------------------------------------------------------------- study

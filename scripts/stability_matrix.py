@@ -27,20 +27,17 @@ import fnmatch
 import json
 import math
 import os
-import re
 import shutil
-import subprocess
 import sys
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 
-TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-CHUTE_DECK = os.path.join(TOP, "inputs", "in.chute")
-sys.dont_write_bytecode = True    # no __pycache__ in the source tree from the imports below
-sys.path[:0] = [os.path.join(TOP, "scripts"), os.path.join(TOP, "tests", "chute")]
-from chute_campaign import parse_summary            # noqa: E402  'TAG key value ...' lines
-from test_chute import read_dump, read_time_file, unwrapped    # noqa: E402  dumps, ave/time files
+from cdtools.lammps_files import read_dump, read_time_file, unwrapped
+from cdtools.logs import error_line, has_non_finite, tagged_line, thermo_rows
+from cdtools.run import BUILT_LMP_CD, DECK as CHUTE_DECK, lmp_command, run_timed
+from cdtools.stats import least_squares_slope
+from cdtools.text import markdown_table, number
 
 D = 5.0e-4          # mean diameter (m)
 G = 9.81            # gravity (m/s^2)
@@ -179,7 +176,7 @@ run {steps}
 
 
 # ---------------------------------------------------------------------------------------
-# Running and reading
+# Running
 # ---------------------------------------------------------------------------------------
 
 def run_process(args, folder, command, deck=None):
@@ -197,64 +194,9 @@ def run_process(args, folder, command, deck=None):
     if deck is not None:
         with open(os.path.join(folder, "in.case"), "w") as out:
             out.write(deck)
-    with open(screen_path, "w") as screen:
-        process = subprocess.Popen(["nice", "-n", "19"] + command, cwd=folder, stdout=screen,
-                                   stderr=subprocess.STDOUT)
-        timer = threading.Timer(CASE_TIMEOUT, process.kill)
-        timer.start()
-        _, status, usage = os.wait4(process.pid, 0)
-        timer.cancel()
-        process.returncode = os.waitstatus_to_exitcode(status)
+    status, cpu = run_timed(["nice", "-n", "19"] + command, folder, screen_path, CASE_TIMEOUT)
     with open(screen_path, errors="replace") as screen:
-        text = screen.read()
-    exit_status = "timeout" if process.returncode == -9 else process.returncode
-    return exit_status, usage.ru_utime + usage.ru_stime, text
-
-
-def error_line(text):
-    line = next((l for l in text.splitlines() if "ERROR" in l), None)
-    return line.strip() if line else None
-
-
-def tagged_line(text, tag):
-    """'TAG key value ...' -> dict of numbers (nan kept), or None."""
-    line = next((l for l in text.splitlines() if l.startswith(tag + " ")), None)
-    return None if line is None else parse_summary(line)
-
-
-def thermo_rows(text, first_column="Step"):
-    """Rows of every thermo block of a screen text, as dicts by column name."""
-    rows, names = [], None
-    for line in text.splitlines():
-        fields = line.split()
-        if fields and fields[0] == first_column:
-            names = fields
-            continue
-        if names is None:
-            continue
-        if len(fields) != len(names):
-            names = None
-            continue
-        try:
-            rows.append(dict(zip(names, map(float, fields))))
-        except ValueError:
-            names = None
-    return rows
-
-
-def has_non_finite(text):
-    return re.search(r"(?<![A-Za-z_])-?(nan|inf)(?![A-Za-z_])", text, re.IGNORECASE) is not None
-
-
-def least_squares_slope(ts, ys):
-    n = len(ts)
-    mt, my = sum(ts) / n, sum(ys) / n
-    stt = sum((t - mt) ** 2 for t in ts)
-    sty = sum((t - mt) * (y - my) for t, y in zip(ts, ys))
-    slope = sty / stt
-    residual = sum((y - my - slope * (t - mt)) ** 2 for t, y in zip(ts, ys))
-    total = sum((y - my) ** 2 for y in ys)
-    return slope, 1.0 - residual / total if total > 0 else 0.0
+        return status, cpu, screen.read()
 
 
 # ---------------------------------------------------------------------------------------
@@ -271,15 +213,19 @@ def result(status, overlap_max=None, overlap_mean=None, finite=None, sweeps=None
                 sweeps=sweeps, check=check, cpu=cpu)
 
 
+def stopped(status, text, **fields):
+    """The result of a case that did not finish: its ERROR line, else its exit status."""
+    error = error_line(text)
+    return result(f"stopped: {error}" if error else f"exit {status}", **fields)
+
+
 def generic_case(args, folder, deck, specific):
     """Runs a generic deck; `specific(summary, text)` gives the case's own check text."""
-    status, cpu, text = run_process(args, folder, [args.lmp, "-in", "in.case", "-log", "log.lammps"], deck)
-    error = error_line(text)
+    status, cpu, text = run_process(args, folder, lmp_command(args.lmp, "in.case", {}), deck)
     summary = tagged_line(text, "SUMMARY")
-    finite = not has_non_finite("\n".join(l for l in text.splitlines() if not l.startswith("ERROR")))
+    finite = not has_non_finite("\n".join(line for line in text.splitlines() if not line.startswith("ERROR")))
     if status != 0 or summary is None:
-        return result(f"stopped: {error}" if error else f"exit {status}", finite=finite, cpu=cpu,
-                      check="timeout" if status == "timeout" else "")
+        return stopped(status, text, finite=finite, cpu=cpu, check="timeout" if status == "timeout" else "")
     finite = finite and all(math.isfinite(v) for v in summary.values())
     return result("ok", summary["overlap_max"], summary["overlap_mean"], finite,
                   summary["sweeps"] / summary["steps"], specific(summary, text), cpu)
@@ -315,8 +261,8 @@ def time_step_case(dt, skin):
 
 def size_ratio_case(ratio):
     def run(args, folder):
-        return generic_case(args, folder, size_ratio_deck(ratio),
-                            lambda s, _: f"KE/grain {ke_per_grain(s):.2g} m g d at 60 ms; lowest centre {s['ymin'] / D:.3f} d")
+        return generic_case(args, folder, size_ratio_deck(ratio), lambda s, _: (
+            f"KE/grain {ke_per_grain(s):.2g} m g d at 60 ms; lowest centre {s['ymin'] / D:.3f} d"))
     return Case(f"size_{ratio:g}", "size ratio",
                 f"disks of {ratio:g} d dropped onto a rain of [0.8, 1.2] d disks, 40 d cell, 60 ms", run)
 
@@ -343,14 +289,11 @@ def gas_case(mu, spacing, dt=1e-5, duration=1.0):
 
 def chute_deposition_case(name, variables):
     def run(args, folder):
-        command = [args.lmp, "-in", CHUTE_DECK, "-log", "log.lammps", "-var", "stage", "deposition"]
-        for key, value in variables.items():
-            command += ["-var", key, str(value)]
+        command = lmp_command(args.lmp, CHUTE_DECK, {"stage": "deposition", **variables})
         status, cpu, text = run_process(args, folder, command)
         summary = tagged_line(text, "DEPOSITION")
         if status != 0 or summary is None:
-            error = error_line(text)
-            return result(f"stopped: {error}" if error else f"exit {status}", cpu=cpu)
+            return stopped(status, text, cpu=cpu)
         rows = thermo_rows(text)
         overlaps = [r["f_cd[5]"] for r in rows if "f_cd[5]" in r]
         sweeps = [r["f_cd[1]"] for r in rows if "f_cd[1]" in r]
@@ -365,17 +308,13 @@ def chute_deposition_case(name, variables):
 def chute_flow(args, folder, deposition, variables):
     """Runs in.chute stage flow with per-step solver.time rows; returns (result or None,
     status, cpu, text)."""
-    command = [args.lmp, "-in", CHUTE_DECK, "-log", "log.lammps", "-var", "stage", "flow",
-               "-var", "start", os.path.join(args.out, deposition, "deposition.restart")]
+    start = os.path.join(args.out, deposition, "deposition.restart")
     every_step = dict(solver_interval=variables.get("dt", 2e-5), snapshot_interval=0.1, restart_interval=0.1)
-    for key, value in dict(every_step, **variables).items():
-        command += ["-var", key, str(value)]
+    command = lmp_command(args.lmp, CHUTE_DECK, {"stage": "flow", "start": start, **every_step, **variables})
     status, cpu, text = run_process(args, folder, command)
     chute = tagged_line(text, "CHUTE")
     if status != 0 or chute is None:
-        error = error_line(text)
-        return result(f"stopped: {error}" if error else f"exit {status}", cpu=cpu,
-                      finite=not has_non_finite(text)), None
+        return stopped(status, text, cpu=cpu, finite=not has_non_finite(text)), None
     solver = read_time_file(os.path.join(folder, "solver.time"))
     finite = not has_non_finite(text) and all(math.isfinite(v) for v in chute.values())
     base = result("ok", max(r["f_cd[5]"] for r in solver), sum(r["f_cd[6]"] for r in solver) / len(solver),
@@ -464,29 +403,27 @@ def all_cases():
 # Table
 # ---------------------------------------------------------------------------------------
 
-def cell(value, digits=2):
-    return "–" if value is None else f"{value:.{digits}g}"
+TABLE_HEADINGS = ["case", "what", "status", "max overlap (d)", "mean overlap (d)", "finite", "sweeps/step", "check",
+                  "CPU s"]
 
 
 def table(cases, results):
-    lines = ["| case | what | status | max overlap (d) | mean overlap (d) | finite | sweeps/step | check | CPU s |",
-             "|---|---|---|---|---|---|---|---|---|"]
+    rows = []
     for case in cases:
         r = results.get(case.name)
         if r is None:
             continue
         finite = "–" if r["finite"] is None else ("yes" if r["finite"] else "**NO**")
         status, check = (r[k].replace("|", "\\|") for k in ("status", "check"))
-        lines.append(f"| {case.name} | {case.describe} | {status} | {cell(r['overlap_max'])} | "
-                     f"{cell(r['overlap_mean'])} | {finite} | {cell(r['sweeps'], 3)} | {check} | "
-                     f"{cell(r['cpu'], 3)} |")
-    return "\n".join(lines) + "\n"
+        rows.append([case.name, case.describe, status, number(r["overlap_max"], 2), number(r["overlap_mean"], 2),
+                     finite, number(r["sweeps"], 3), check, number(r["cpu"], 3)])
+    return markdown_table(TABLE_HEADINGS, rows)
 
 
-def main():
+def options():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--out", required=True, help="scratch folder for the runs and the results")
-    parser.add_argument("--lmp", default=os.environ.get("LMP_CD", os.path.join(TOP, "build", "lmp_cd")))
+    parser.add_argument("--lmp", default=os.environ.get("LMP_CD", BUILT_LMP_CD))
     parser.add_argument("--jobs", type=int, default=1, help="cases run at once (each under nice -n 19)")
     parser.add_argument("--only", action="append", help="run only cases matching this glob (repeatable)")
     parser.add_argument("--list", action="store_true", help="list the cases and exit")
@@ -494,14 +431,82 @@ def main():
                         help="analyse the finished runs already in --out again instead of running them")
     args = parser.parse_args()
     args.lmp, args.out = os.path.abspath(args.lmp), os.path.abspath(args.out)
+    return args
 
+
+def selected_cases(args):
+    """The cases --only selects, and the depositions they need (implied: reused if finished)."""
     cases = all_cases()
-    if args.only:
-        wanted = {c.name for c in cases if any(fnmatch.fnmatch(c.name, p) for p in args.only)}
-        implied = {c.needs for c in cases if c.name in wanted and c.needs} - wanted
-        cases = [c for c in cases if c.name in wanted | implied]
-    else:
-        implied = set()
+    if not args.only:
+        return cases, set()
+    wanted = {c.name for c in cases if any(fnmatch.fnmatch(c.name, p) for p in args.only)}
+    implied = {c.needs for c in cases if c.name in wanted and c.needs} - wanted
+    return [c for c in cases if c.name in wanted | implied], implied
+
+
+class CaseRunner:
+    """Runs cases on threads, each after the case it needs; keeps and prints their results."""
+
+    def __init__(self, args, implied, previous):
+        self.args, self.implied, self.previous = args, implied, previous
+        self.results, self.lock = {}, threading.Lock()
+        self.started = time.time()
+
+    def run_all(self, cases):
+        futures = {}
+        with ThreadPoolExecutor(max_workers=self.args.jobs) as pool:
+            for case in cases:    # dependencies are listed, hence submitted and started, first
+                futures[case.name] = pool.submit(self.run_case, case, futures.get(case.needs))
+        for future in futures.values():
+            future.result()
+        return len(futures)
+
+    def run_case(self, case, dependency):
+        if dependency is not None:
+            dependency.result()
+        outcome = self.outcome(case)
+        if outcome["cpu"] is None and case.name in self.previous:
+            outcome["cpu"] = self.previous[case.name]["cpu"]
+        with self.lock:
+            self.results[case.name] = outcome
+            print(f"[{time.time() - self.started:7.0f} s] {case.name}: {outcome['status']} "
+                  f"(max overlap {number(outcome['overlap_max'], 2)} d, {number(outcome['cpu'], 3)} CPU s) "
+                  f"{outcome['check']}", flush=True)
+
+    def outcome(self, case):
+        if case.needs and self.results[case.needs]["status"] != "ok":
+            return result(f"skipped: {case.needs} did not finish")
+        # A deposition added only because a chosen case needs it is reused when finished.
+        case_args = argparse.Namespace(**dict(vars(self.args), reuse=self.args.reuse or case.name in self.implied))
+        try:
+            return case.run(case_args, os.path.join(self.args.out, case.name))
+        except Exception as failure:    # a broken analysis must not lose the other cases
+            return result(f"analysis failed: {failure!r}")
+
+
+def write_results(args, runner, count):
+    """results.md and results.json: this invocation's cases and those of earlier invocations
+    in the same folder that it did not run again."""
+    results = dict(runner.results)
+    every_case = all_cases()
+    for case in every_case:
+        if case.name not in results and case.name in runner.previous:
+            results[case.name] = {k: v for k, v in runner.previous[case.name].items() if k != "describe"}
+    cases = [c for c in every_case if c.name in results]
+    cpu_total = sum(r["cpu"] for r in results.values() if r.get("cpu"))
+    header = (f"Stability matrix: {len(results)} cases, {cpu_total:.0f} CPU s in all, lmp_cd {args.lmp}, "
+              f"table made {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} "
+              f"(this invocation: {count} cases, {time.time() - runner.started:.0f} s wall, --jobs {args.jobs})\n\n")
+    with open(os.path.join(args.out, "results.md"), "w") as out:
+        out.write(header + table(cases, results))
+    with open(os.path.join(args.out, "results.json"), "w") as out:
+        json.dump({c.name: dict(results[c.name], describe=c.describe) for c in cases}, out, indent=1)
+    print(header + table(cases, results))
+
+
+def main():
+    args = options()
+    cases, implied = selected_cases(args)
     if args.list:
         for case in cases:
             print(f"{case.name:28s} {case.describe}")
@@ -510,53 +515,11 @@ def main():
         print(f"ERROR: no lmp_cd at {args.lmp} (--lmp or LMP_CD)")
         return 1
     os.makedirs(args.out, exist_ok=True)
-    # Results of earlier invocations in the same folder stay in the table unless rerun.
     previous_path = os.path.join(args.out, "results.json")
     previous = json.load(open(previous_path)) if os.path.exists(previous_path) else {}
-    results, lock = {}, threading.Lock()
-    started = time.time()
-
-    def run_case(case, dependency):
-        if dependency is not None:
-            dependency.result()
-        if case.needs and results[case.needs]["status"] != "ok":
-            outcome = result(f"skipped: {case.needs} did not finish")
-        else:
-            # A deposition added only because a chosen case needs it is reused when finished.
-            case_args = argparse.Namespace(**dict(vars(args), reuse=args.reuse or case.name in implied))
-            try:
-                outcome = case.run(case_args, os.path.join(args.out, case.name))
-            except Exception as failure:    # a broken analysis must not lose the other cases
-                outcome = result(f"analysis failed: {failure!r}")
-        if outcome["cpu"] is None and case.name in previous:
-            outcome["cpu"] = previous[case.name]["cpu"]
-        with lock:
-            results[case.name] = outcome
-            print(f"[{time.time() - started:7.0f} s] {case.name}: {outcome['status']} "
-                  f"(max overlap {cell(outcome['overlap_max'])} d, {cell(outcome['cpu'], 3)} CPU s) "
-                  f"{outcome['check']}", flush=True)
-
-    futures = {}
-    with ThreadPoolExecutor(max_workers=args.jobs) as pool:
-        for case in cases:    # dependencies are listed, hence submitted and started, first
-            futures[case.name] = pool.submit(run_case, case, futures.get(case.needs))
-    for name, future in futures.items():
-        future.result()
-
-    every_case = all_cases()
-    for case in every_case:
-        if case.name not in results and case.name in previous:
-            results[case.name] = {k: v for k, v in previous[case.name].items() if k != "describe"}
-    cases = [c for c in every_case if c.name in results]
-    cpu_total = sum(r["cpu"] for r in results.values() if r.get("cpu"))
-    header = (f"Stability matrix: {len(results)} cases, {cpu_total:.0f} CPU s in all, lmp_cd {args.lmp}, "
-              f"table made {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} "
-              f"(this invocation: {len(futures)} cases, {time.time() - started:.0f} s wall, --jobs {args.jobs})\n\n")
-    with open(os.path.join(args.out, "results.md"), "w") as out:
-        out.write(header + table(cases, results))
-    with open(os.path.join(args.out, "results.json"), "w") as out:
-        json.dump({c.name: dict(results[c.name], describe=c.describe) for c in cases}, out, indent=1)
-    print(header + table(cases, results))
+    runner = CaseRunner(args, implied, previous)
+    count = runner.run_all(cases)
+    write_results(args, runner, count)
     return 0
 
 

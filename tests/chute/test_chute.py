@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Deck-level tests of inputs/in.chute and scripts/chute_campaign.py, run by ctest.
 
-    test_chute.py CASE --lmp build/lmp_cd --work DIR
+    PYTHONPATH=scripts:bench tests/chute/test_chute.py CASE --lmp build/lmp_cd --work DIR
 
 Each case runs lmp_cd (or the runner) on a tiny erodible-bed cell (10 d long, 200 grains,
 walls 8 d high, so the flowing layer is about 12 d thick) and checks physics on its output.
@@ -10,7 +10,6 @@ fixture). Standard library only.
 """
 
 import argparse
-import gzip
 import math
 import os
 import shutil
@@ -19,9 +18,11 @@ import subprocess
 import sys
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-TOP = os.path.dirname(os.path.dirname(HERE))
-DECK = os.path.join(TOP, "inputs", "in.chute")
+import rank_solutions
+from cdtools.lammps_files import read_dump, read_time_file, unwrapped
+from cdtools.logs import tagged_line
+from cdtools.run import DECK, TOP, lmp_command, mpi_launcher
+
 RUNNER = os.path.join(TOP, "scripts", "chute_campaign.py")
 
 D = 5.0e-4                      # mean diameter (m), the deck's default
@@ -46,58 +47,20 @@ def run_lmp(lmp, folder, variables, expect_ok=True, launcher=()):
     """Run in.chute in folder with -var NAME VALUE (behind `launcher`, e.g. mpirun -np 2);
     returns (exit status, screen text)."""
     os.makedirs(folder, exist_ok=True)
-    cmd = list(launcher) + [lmp, "-in", DECK, "-log", "log.lammps"]
-    for key, value in variables.items():
-        cmd += ["-var", key, str(value)]
-    result = subprocess.run(cmd, cwd=folder, capture_output=True, text=True)
+    result = subprocess.run(lmp_command(lmp, DECK, variables, launcher=launcher), cwd=folder, capture_output=True,
+                            text=True)
     output = result.stdout + result.stderr
     if expect_ok and result.returncode != 0:
-        errors = [l for l in output.splitlines() if "ERROR" in l]
+        errors = [line for line in output.splitlines() if "ERROR" in line]
         raise Failure(f"lmp_cd failed in {folder}: {errors[:1] or output[-500:]}")
     return result.returncode, output
 
 
 def summary(output, tag):
-    """The 'TAG key value ...' line the deck prints, as a dict of floats."""
-    line = next((l for l in output.splitlines() if l.startswith(tag + " ")), None)
-    check(line is not None, f"no {tag} line in the output")
-    fields = line.split()[1:]
-    return {k: float(v) for k, v in zip(fields[0::2], fields[1::2])}
-
-
-def read_dump(path):
-    """Frames of a LAMMPS dump (plain or gzip): [(timestep, box, {id: {column: value}})]."""
-    opener = gzip.open if path.endswith(".gz") else open
-    with opener(path, "rt") as src:
-        lines = src.read().split("\n")
-    frames, i = [], 0
-    while i < len(lines):
-        if lines[i] != "ITEM: TIMESTEP":
-            i += 1
-            continue
-        step = int(lines[i + 1])
-        count = int(lines[i + 3])
-        box = [tuple(map(float, lines[i + 5 + k].split()[:2])) for k in range(3)]
-        columns = lines[i + 8].split()[2:]
-        atoms = {}
-        for row in lines[i + 9:i + 9 + count]:
-            values = dict(zip(columns, map(float, row.split())))
-            atoms[int(values["id"])] = values
-        frames.append((step, box, atoms))
-        i += 9 + count
-    return frames
-
-
-def read_time_file(path):
-    """fix ave/time file -> list of dict by the column names of its last header line."""
-    names, rows = None, []
-    with open(path) as src:
-        for line in src:
-            if line.startswith("#"):
-                names = line[1:].split()
-                continue
-            rows.append(dict(zip(names, map(float, line.split()))))
-    return rows
+    """The 'TAG key value ...' line the deck prints, as a dict."""
+    values = tagged_line(output, tag)
+    check(values is not None, f"no {tag} line in the output")
+    return values
 
 
 def mean(values):
@@ -227,8 +190,8 @@ def case_dt_change(args):
     steps = [r["TimeStep"] for r in rows]
     check(all(abs(s * 1e-5 - t) < 1e-9 for s, t in zip(steps, times)), "steps are not chute time / 1e-5 s")
     with open(os.path.join(folder, "log.lammps")) as f:
-        fix_lines = [l for l in f if l.startswith("fix cd all contact/dynamics")]
-    check(any("norm maximum warm_start no order shuffle" in l for l in fix_lines),
+        fix_lines = [line for line in f if line.startswith("fix cd all contact/dynamics")]
+    check(any("norm maximum warm_start no order shuffle" in line for line in fix_lines),
           f"the chute's fix line lacks the solver -vars: {fix_lines[-1:]}")
     extremes = summary(output, "SOLVER")
     check(1 <= extremes["max_sweeps_per_step"] <= 200, f"largest sweeps per step {extremes['max_sweeps_per_step']}")
@@ -268,7 +231,9 @@ def case_steady_flow(args):
     acceleration g sin(theta) t, and at least twice its mean over the first 0.1 s."""
     folder = os.path.join(args.work, "flow")
     rows = read_time_file(os.path.join(folder, "flow.time"))
-    u_flow = lambda a, b: mean(r["v_u_flow"] for r in rows if a <= r["v_time"] < b) / SQRT_GD
+
+    def u_flow(a, b):
+        return mean(r["v_u_flow"] for r in rows if a <= r["v_time"] < b) / SQRT_GD
     end = FLOW_DURATION
     early, late = u_flow(end - 0.4, end - 0.2), u_flow(end - 0.2, end + 1)
     start = u_flow(0.0, 0.1)
@@ -311,15 +276,15 @@ def case_flow_two_ranks(args):
     are the solver's: the deepest interpenetration (1.2-1.8e-3 d in 19 runs on 1, 2 and 4 ranks)
     stays below twice the 1-rank run's, and at most 5 % of the steps hit the iteration cap.
     Independent starts on 1, 2 and 4 ranks: bench/rank_replicas.py."""
-    launcher = [args.mpirun, "-np", str(args.ranks), "--oversubscribe"]
-    if os.geteuid() == 0:
-        launcher.append("--allow-run-as-root")
+    launcher = mpi_launcher(args.mpirun, args.ranks)
     folder, output = chute(args, f"flow_np{args.ranks}", FLOW_THETA, FLOW_DURATION, launcher=launcher)
     check(f"{args.ranks} by 1 by 1 MPI processor grid" in output,
           f"lmp_cd did not split the cell along x on {args.ranks} ranks")
     one = os.path.join(args.work, "flow")
     report = []
-    late = lambda rows: [r for r in rows if r["v_time"] >= FLOW_DURATION - 0.4]
+
+    def late(rows):
+        return [r for r in rows if r["v_time"] >= FLOW_DURATION - 0.4]
     rows_one = late(read_time_file(os.path.join(one, "flow.time")))
     rows_many = late(read_time_file(os.path.join(folder, "flow.time")))
     for column, scale, name in (("v_u_flow", SQRT_GD, "U"), ("v_phi_flow", 1.0, "phi"), ("v_h", D, "h")):
@@ -346,14 +311,11 @@ def case_solve_two_ranks(args):
     has several solutions, one that a 1-rank solve with another contact order or a cold start
     reaches too. At the deck's tolerance (1e-3) the 2-rank solve must stop no further from its
     solution than 2x the 1-rank one (ratios measured at 1e-3: 0.6-1.4 on 2 and 4 ranks)."""
-    sys.path.insert(0, os.path.join(TOP, "bench"))
-    import rank_solutions
     flow = os.path.join(args.work, "flow")
     work = os.path.join(args.work, "solve_two_ranks")
     shutil.rmtree(work, ignore_errors=True)
-    options = rank_solutions.options(["--out", work, "--ranks", "1", "2", "--tolerances", "1e-3",
-                                      "--cell", " ".join(f"{k}={v}" for k, v in CELL.items() if k not in ("dt", "tolerance"))
-                                      + f" theta={FLOW_THETA}",
+    cell = " ".join(f"{k}={v}" for k, v in CELL.items() if k not in ("dt", "tolerance")) + f" theta={FLOW_THETA}"
+    options = rank_solutions.options(["--out", work, "--ranks", "1", "2", "--tolerances", "1e-3", "--cell", cell,
                                       "--lmp", args.lmp, "--mpirun", args.mpirun, "--snapshots",
                                       os.path.join(flow, "restart.a"), os.path.join(flow, "chute.restart")])
     report = []
@@ -394,17 +356,11 @@ def case_static(args):
     v_flow = max(abs(r["v_v_flow"]) for r in rows) / SQRT_GD
     check(max(u_all, u_flow, v_flow) < 0.01,
           f"mean velocities {u_all:.2e}, {u_flow:.2e}, {v_flow:.2e} sqrt(g d) without tilt")
-    print(f"static: 99th percentile displacement {typical:.2e} d, largest {moved:.2e} d, largest mean velocity {max(u_all, u_flow, v_flow):.2e} sqrt(g d)")
+    print(f"static: 99th percentile displacement {typical:.2e} d, largest {moved:.2e} d, largest mean velocity "
+          f"{max(u_all, u_flow, v_flow):.2e} sqrt(g d)")
 
 
 STATIC_TILT, STATIC_DURATION, SETTLE_TIME = 12, 0.4, 0.1
-
-
-def unwrapped(frame):
-    """{id: (x, y)} of a dump frame with x unwrapped through the periodic image count ix."""
-    _, box, atoms = frame
-    length = box[0][1] - box[0][0]
-    return {i: (a["x"] + a["ix"] * length, a["y"]) for i, a in atoms.items()}
 
 
 def case_static_tilt(args):
@@ -490,7 +446,7 @@ def case_bad_var(args):
     for name, value, expected in BAD_VARS:
         status, output = run_lmp(args.lmp, folder, {name: value, "stage": "flow"} if name != "stage"
                                  else {name: value}, expect_ok=False)
-        errors = [l for l in output.splitlines() if l.startswith("ERROR")]
+        errors = [line for line in output.splitlines() if line.startswith("ERROR")]
         if status == 0 or len(errors) != 1 or expected not in errors[0] or "Setting up" in output:
             problems.append(f"-var {name} {value}: status {status}, errors {errors}")
     check(not problems, "; ".join(problems))

@@ -1,16 +1,15 @@
 #!/usr/bin/env python3
 """Checks of bench/rank_replicas.py's own logic, run by ctest (no simulation).
 
-    test_rank_replicas.py
+    PYTHONPATH=scripts:bench tests/chute/test_rank_replicas.py
 
-Seed lists and their bad forms; the pooled standard deviation on hand-computed groups; the
-paired differences on synthetic replicas whose beds scatter ten times more than their flows:
-pairing must recover the rank-count shift with the flows' scatter only; a truncated cdpost
-table is refused with the file named, and so is a --beds folder without the seed's bed;
---against pairs with another study's runs, or with the mean of several studies' runs; a -var
-given twice (--solver over --cell, or one the study sets) is refused, and so is an analysis
-with no finished run. --timeline bins the flows' time series and pairs them the same way,
-and refuses a cut or malformed flow.time with its name.
+Seed lists and their bad forms; the paired differences on synthetic replicas whose beds
+scatter ten times more than their flows: pairing must recover the rank-count shift with the
+flows' scatter only; a truncated cdpost table is refused with the file named, and so is a
+--beds folder without the seed's bed; --against pairs with another study's runs, or with the
+mean of several studies' runs; a -var given twice (--solver over --cell, or one the study
+sets) is refused, and so is an analysis with no finished run. --timeline bins the flows' time
+series and pairs them the same way, and refuses a cut or malformed flow.time with its name.
 Standard library only.
 """
 
@@ -22,10 +21,10 @@ import subprocess
 import sys
 import tempfile
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SCRIPT = os.path.join(os.path.dirname(os.path.dirname(HERE)), "bench", "rank_replicas.py")
-sys.path.insert(0, os.path.dirname(SCRIPT))
-import rank_replicas as replicas  # noqa: E402
+import rank_replicas as replicas
+from cdtools.stats import mean_sd_se
+
+SCRIPT = replicas.__file__
 
 
 def check(condition, message):
@@ -48,13 +47,6 @@ def check_seeds():
           f"--seeds 3-1: exit {done.returncode}, '{lines[-1:]}'")
 
 
-def check_pooled_sd():
-    # Deviations from each group's mean: 1, 1 and 2, 2 -> (1 + 1 + 4 + 4) / (1 + 1) = 5;
-    # a group of one has no deviation to give and is left out.
-    check(abs(replicas.pooled_sd([[1, 3], [10, 14], [99]]) - math.sqrt(5)) < 1e-12, "pooled sd of [1,3],[10,14]")
-    check(math.isnan(replicas.pooled_sd([[1], [2]])), "pooled sd without two values in a group is not nan")
-
-
 def check_pairing():
     # Bed offsets sd 1, flow noise sd 0.1, a shift of 0.05 on 2 ranks, 400 seeds. Paired: the
     # mean difference within 4 of its standard errors (0.1 sqrt(2) / 20 = 0.007) of 0.05 and
@@ -69,7 +61,7 @@ def check_pairing():
             table[(s, ranks)] = {q: bed + offset + rng.gauss(0, noise) for q in replicas.QUANTITIES}
     differences = replicas.paired_differences(table, seeds, 1, [2])[2]
     for q in replicas.QUANTITIES:
-        mean, sd, error = replicas.mean_sd_error(differences[q])
+        mean, sd, error = mean_sd_se(differences[q])
         check(abs(mean - shift) < 4 * error, f"{q}: paired shift {mean:.4f} ± {error:.4f}, expected {shift}")
         check(abs(sd / (noise * math.sqrt(2)) - 1) < 0.15, f"{q}: sd of the differences {sd:.4f}")
     table[(7, 2)] = None                                     # a run not done: no pair
@@ -123,7 +115,7 @@ def check_against():
             write_run(other, seed, dict(U=u + 0.1 * (2 * seed - 1), phi=0.78, h=12, f=40, sweeps=160))
         done = subprocess.run([sys.executable, SCRIPT, "--out", other, "--against", base, "--seeds", "1-2",
                                "--ranks", "1", "--analyse-only"], capture_output=True, text=True)
-        row = [l for l in done.stdout.splitlines() if l.startswith("| 1 | 2 |")]
+        row = [line for line in done.stdout.splitlines() if line.startswith("| 1 | 2 |")]
         check(done.returncode == 0 and row and row[-1].split("|")[3].strip().startswith("+0.2 "),
               f"--against: {row or done.stdout + done.stderr}")
         # With two studies the bed's baseline is their mean: base2 has U 1.3 and 2.3, so the
@@ -136,7 +128,7 @@ def check_against():
         write_run(other, 3, dict(U=1.0, phi=0.78, h=12, f=40, sweeps=160))
         done = subprocess.run([sys.executable, SCRIPT, "--out", other, "--against", base, base2, "--seeds", "1-3",
                                "--ranks", "1", "--analyse-only"], capture_output=True, text=True)
-        row = [l for l in done.stdout.splitlines() if l.startswith("| 1 | 2 |")]
+        row = [line for line in done.stdout.splitlines() if line.startswith("| 1 | 2 |")]
         check(done.returncode == 0 and row and row[-1].split("|")[3].strip().startswith("+0.3 "),
               f"--against two studies: {row or done.stdout + done.stderr}")
 
@@ -171,11 +163,14 @@ def check_timeline():
         command = [sys.executable, SCRIPT, "--out", work, "--seeds", "1-2", "--ranks", "1", "4", "--analyse-only",
                    "--timeline", "0.5"]
         done = subprocess.run(command, capture_output=True, text=True)
-        rows = [l.split("|") for l in done.stdout.splitlines() if l.startswith(("| 0-", "| 0.5-", "| 1-", "| 1.5-"))]
-        expected = {"0-0.5": "+0 ", "0.5-1": "+0 ", "1-1.5": "+0.015 ± 0.005 (t +3.0)", "1.5-2": "+0.015 ± 0.005 (t +3.0)"}
+        bins = ("| 0-", "| 0.5-", "| 1-", "| 1.5-")
+        rows = [line.split("|") for line in done.stdout.splitlines() if line.startswith(bins)]
+        expected = {"0-0.5": "+0 ", "0.5-1": "+0 ", "1-1.5": "+0.015 ± 0.005 (t +3.0)",
+                    "1.5-2": "+0.015 ± 0.005 (t +3.0)"}
         got = {row[1].strip(): row[3].strip() for row in rows}
         check(done.returncode == 0 and set(got) == set(expected)
-              and all(got[span].startswith(expected[span]) for span in expected), f"--timeline 0.5: {got or done.stderr}")
+              and all(got[span].startswith(expected[span]) for span in expected),
+              f"--timeline 0.5: {got or done.stderr}")
         check(abs(float(rows[0][2]) - 0.0245) < 1e-9, f"baseline of 0-0.5 s: {rows[0][2]} (mean of 0.1 t)")
         # A flow.time cut at 1.2 s leaves the last bin empty; a row of text is refused with its line.
         series = os.path.join(work, "seed2", "np4", "flow.time")
@@ -195,7 +190,6 @@ def check_timeline():
 
 def main():
     check_seeds()
-    check_pooled_sd()
     check_pairing()
     check_truncated_table()
     check_missing_bed()
@@ -203,7 +197,7 @@ def main():
     check_clashing_variables()
     check_nothing_to_analyse()
     check_timeline()
-    print("rank_replicas logic: seeds, pooled sd, pairing, truncated table, missing bed, --against, "
+    print("rank_replicas logic: seeds, pairing, truncated table, missing bed, --against, "
           "clashing -vars, nothing to analyse, timeline")
 
 

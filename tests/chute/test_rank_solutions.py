@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Checks of bench/rank_solutions.py's own measures, run by ctest (no simulation).
 
-    test_rank_solutions.py
+    PYTHONPATH=scripts:bench tests/chute/test_rank_solutions.py
 
 The solve error and the mass-weighted bias on hand-computed velocities; a truncated velocity
 dump and a missing snapshot are refused with the file named, a --cell that sets what the study
@@ -10,16 +10,14 @@ stops at the first that does. (Its runs are exercised by chute.solve_two_ranks.)
 library only.
 """
 
-import math
 import os
 import subprocess
 import sys
 import tempfile
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SCRIPT = os.path.join(os.path.dirname(os.path.dirname(HERE)), "bench", "rank_solutions.py")
-sys.path.insert(0, os.path.dirname(SCRIPT))
-import rank_solutions as solutions  # noqa: E402
+import rank_solutions as solutions
+
+SCRIPT = solutions.__file__
 
 
 def check(condition, message):
@@ -76,7 +74,8 @@ def check_bad_input():
         done = subprocess.run([sys.executable, SCRIPT, "--out", work, "--snapshots", snapshot,
                                "--cell", "L=10 tolerance=1e-4", "--lmp", "false"], capture_output=True, text=True)
         last = done.stderr.strip().splitlines()[-1:]
-        check(done.returncode == 2 and "tolerance" in "".join(last), f"--cell tolerance: exit {done.returncode}, {last}")
+        check(done.returncode == 2 and "tolerance" in "".join(last),
+              f"--cell tolerance: exit {done.returncode}, {last}")
 
 
 def main():

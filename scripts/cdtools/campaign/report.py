@@ -1,10 +1,10 @@
-"""results/ from a chute campaign: per run its cdpost results and commands, per series the
-cdpost fits and figures, the replica scatter, the rigid/soft comparisons, and README.md.
+"""results/ from a chute campaign (--report DIR): per run its cdpost results and commands, per
+series the cdpost fits and figures, the replica scatter, the rigid/soft comparisons, and
+README.md.
 
-Called by `scripts/chute_campaign.py --report DIR` after the series analyses were made
-again from every finished run. Only small files are written (CSV, JSON, Markdown, figures):
-no dumps, no restarts. A hand-written discussion between the DISCUSSION markers of an
-existing README.md is kept; everything else is regenerated. Standard library only.
+The series analyses are made again from every finished run first. Only small files are
+written (CSV, JSON, Markdown, figures): no dumps, no restarts. A hand-written discussion between
+the DISCUSSION markers of an existing README.md is kept; everything else is regenerated.
 """
 
 import csv
@@ -12,7 +12,16 @@ import glob
 import json
 import math
 import os
+import shlex
 import shutil
+import sys
+
+from ..cdpost import read_results
+from ..text import markdown_table, number, with_error
+from .legs import run_cost
+from .plan import ANALYSES, build_jobs
+from .post import postprocess_run, postprocess_series
+from .schedule import campaign_cdpost
 
 DISCUSSION_BEGIN = "<!-- discussion: kept when the report is regenerated -->"
 DISCUSSION_END = "<!-- end of discussion -->"
@@ -32,37 +41,9 @@ PROFILE_COLUMNS = (("bagnold_slip", "slip (√(gd))"), ("bagnold_amplitude", "a 
 REPLICA_QUANTITIES = ("U", "phi", "h", "f", "A", "A_mean", "creep_lambda")
 
 
-def read_results(path):
-    """cdpost results.csv -> {name: (value, error or None, unit)}."""
-    rows = {}
-    with open(path, newline="") as src:
-        for row in csv.DictReader(src):
-            error = float(row["error"]) if row["error"] else None
-            rows[row["name"]] = (float(row["value"]), error, row["unit"])
-    return rows
-
-
-def significant(value, digits=3):
-    if value is None or not math.isfinite(value):
-        return "–"
-    return f"{value:.{digits}g}"
-
-
-def with_error(entry):
-    """'value ± error' with the error to two significant digits."""
-    if entry is None:
-        return "–"
-    value, error, _ = entry
-    if error is None or error <= 0:
-        return significant(value, 4)
-    places = max(0, 1 - int(math.floor(math.log10(error))))
-    return f"{value:.{places}f} ± {error:.{places}f}" if places < 8 else f"{value:.3g} ± {error:.2g}"
-
-
-def table(headings, rows):
-    lines = ["| " + " | ".join(headings) + " |", "|" + "---|" * len(headings)]
-    lines += ["| " + " | ".join(str(cell) for cell in row) + " |" for row in rows]
-    return "\n".join(lines) + "\n"
+def result_text(entry):
+    """'value ± error' of a cdpost result (value, error, unit); '–' for none."""
+    return "–" if entry is None else with_error(entry[0], entry[1])
 
 
 def copy_matching(source, patterns, destination):
@@ -119,7 +100,8 @@ def write_run(record, destination):
     copy_matching(os.path.join(record.folder, "post"), RUN_FILES, folder)
     with open(os.path.join(folder, "cost.json"), "w") as out:
         json.dump(record.cost, out, indent=2, sort_keys=True)
-    commands = [open(path).read().strip() for path in sorted(glob.glob(os.path.join(record.folder, "legs", "*", "command.sh")))]
+    legs = sorted(glob.glob(os.path.join(record.folder, "legs", "*", "command.sh")))
+    commands = [open(path).read().strip() for path in legs]
     log = os.path.join(record.folder, "cdpost.log")
     if os.path.exists(log):
         commands.append(open(log).readline().strip())
@@ -160,20 +142,20 @@ def section_runs(records):
     for r in records:
         cost = r.cost.get("cpu_per_physical_second")
         rows.append([r.name, r.vars["mu"], r.vars["theta"], r.vars["L"], r.vars["seed"], r.vars["duration"],
-                     r.window_seconds(), significant(cost, 3) if cost else "–", r.state])
+                     r.window_seconds(), number(cost, 3) if cost else "–", r.state])
     return ("## The runs\n\nEach run rains its packing (seed), tilts gravity and flows for the chute time "
             "given; cdpost finds the stationary window of each. CPU s per physical s from LAMMPS's own "
             "timers over the chute time the runs covered.\n\n"
-            + table(["run", "mu", "θ (°)", "L (d)", "seed", "chute time (s)", "window (s)", "CPU s / phys s",
-                     "state"], rows))
+            + markdown_table(["run", "mu", "θ (°)", "L (d)", "seed", "chute time (s)", "window (s)",
+                              "CPU s / phys s", "state"], rows))
 
 
 def section_quantities(title, text, records, columns):
     analysed = [r for r in records if r.results]
     if not analysed:
         return ""
-    rows = [[r.name] + [with_error(r.get(name)) for name, _ in columns] for r in analysed]
-    return f"## {title}\n\n{text}\n\n" + table(["run"] + [h for _, h in columns], rows)
+    rows = [[r.name] + [result_text(r.get(name)) for name, _ in columns] for r in analysed]
+    return f"## {title}\n\n{text}\n\n" + markdown_table(["run"] + [h for _, h in columns], rows)
 
 
 def read_fits(folder):
@@ -183,7 +165,7 @@ def read_fits(folder):
 
 def section_fits(title, folder, prefixes, figures, destination):
     fits = read_fits(folder)
-    rows = [[name, with_error(entry), entry[2]] for name, entry in sorted(fits.items())
+    rows = [[name, result_text(entry), entry[2]] for name, entry in sorted(fits.items())
             if name.startswith(prefixes)]
     shown = [f for f in figures if os.path.exists(os.path.join(folder, "figures", f + ".png"))]
     if not rows and not shown:
@@ -191,7 +173,7 @@ def section_fits(title, folder, prefixes, figures, destination):
     relative = os.path.relpath(folder, destination)
     text = f"## {title}\n\n"
     if rows:
-        text += table(["fit parameter", "value", "unit"], rows) + "\n"
+        text += markdown_table(["fit parameter", "value", "unit"], rows) + "\n"
     text += "".join(f"![{f}]({relative}/figures/{f}.png) " for f in shown) + "\n"
     return text
 
@@ -199,13 +181,13 @@ def section_fits(title, folder, prefixes, figures, destination):
 def section_replicas(pairs, scatter):
     if not pairs:
         return ""
-    rows = [[name, significant(s, 3), n] for name, (s, n) in scatter.items()]
+    rows = [[name, number(s, 3), n] for name, (s, n) in scatter.items()]
     listed = ", ".join(f"{a.name} / {b.name}" for a, b in pairs)
     return ("## Scatter between depositions\n\nTwo runs at the same point from different rains "
             f"({listed}); the standard deviation of one run, s = √(Σ d² / 2n) over the n pairs of "
             "differences d, is the honest error bar of a single run (the block errors of one run's "
             "window are smaller: they miss the slow fluctuations of one realisation).\n\n"
-            + table(["quantity", "s (one run)", "pairs"], rows))
+            + markdown_table(["quantity", "s (one run)", "pairs"], rows))
 
 
 def section_comparisons(comparisons, destination):
@@ -213,8 +195,8 @@ def section_comparisons(comparisons, destination):
     for source in comparisons:
         name = os.path.basename(os.path.normpath(source))
         target = os.path.join(destination, "soft", name)
-        copied = copy_matching(os.path.join(source, "comparison") if os.path.isdir(os.path.join(source, "comparison")) else source,
-                               COMPARISON_FILES, target)
+        folder = os.path.join(source, "comparison")
+        copied = copy_matching(folder if os.path.isdir(folder) else source, COMPARISON_FILES, target)
         if "table.csv" not in copied:
             text += f"## Rigid against soft: {name}\n\nno comparison table in {source}\n\n"
             continue
@@ -225,7 +207,7 @@ def section_comparisons(comparisons, destination):
         relative = os.path.relpath(target, destination)
         text += (f"## Rigid against soft: {name}\n\nThe same packing run by each model (reference/run_comparison.sh, "
                  f"its commands in [{relative}/commands.txt]({relative}/commands.txt), the full report in "
-                 f"[{relative}/report.md]({relative}/report.md)).\n\n" + table(headings, rows))
+                 f"[{relative}/report.md]({relative}/report.md)).\n\n" + markdown_table(headings, rows))
         spectra = [f for f in copied if f.startswith("figures/spectra") and f.endswith(".png")]
         text += "\n" + "".join(f"![{os.path.basename(f)}]({relative}/{f}) " for f in spectra[:2]) + "\n\n"
     return text
@@ -242,9 +224,8 @@ def section_snapshots(records, destination):
     for r in analysed:
         if r.name not in chosen:
             continue
-        copied = copy_matching(os.path.join(r.folder, "post"), ("figures/snapshot.png", "figures/snapshot.svg",
-                                                                 "figures/profile.png", "figures/profile.svg"),
-                               os.path.join(destination, "runs", r.name))
+        figures = ("figures/snapshot.png", "figures/snapshot.svg", "figures/profile.png", "figures/profile.svg")
+        copied = copy_matching(os.path.join(r.folder, "post"), figures, os.path.join(destination, "runs", r.name))
         for figure in (f for f in copied if f.endswith(".png")):
             text += f"![{chosen[r.name]} run, {r.name}](runs/{r.name}/{figure}) "
         text += "\n"
@@ -263,20 +244,27 @@ def kept_discussion(path):
     return text[begin:end + len(DISCUSSION_END)]
 
 
-def write_report(records, series_folders, comparisons, destination, command):
-    """Writes results/ (see the module's docstring); returns the README's path."""
-    os.makedirs(destination, exist_ok=True)
-    for r in records:
-        if r.results:
-            write_run(r, destination)
-    copied_series = {}
+def copy_series(series_folders, destination):
+    """results/series/<analysis>/: the manifest and cdpost's series results of each analysis
+    made; returns {analysis: its folder in results/}."""
+    copied = {}
     for analysis, folder in series_folders.items():
         post = os.path.join(folder, "series-post")
         if os.path.isdir(post):
             target = os.path.join(destination, "series", analysis)
             copy_matching(post, SERIES_FILES, target)
             copy_matching(folder, ("manifest.csv",), target)
-            copied_series[analysis] = target
+            copied[analysis] = target
+    return copied
+
+
+def write_report(records, series_folders, comparisons, destination, command):
+    """Writes results/ (see the module's docstring); returns the README's path."""
+    os.makedirs(destination, exist_ok=True)
+    for r in records:
+        if r.results:
+            write_run(r, destination)
+    copied_series = copy_series(series_folders, destination)
     pairs = replica_pairs(records)
     readme = os.path.join(destination, "README.md")
     discussion = kept_discussion(readme) or f"{DISCUSSION_BEGIN}\n(no discussion yet)\n{DISCUSSION_END}"
@@ -308,3 +296,30 @@ def write_report(records, series_folders, comparisons, destination, command):
         out.write("\n".join(p for p in parts if p))
     os.replace(readme + ".tmp", readme)
     return readme
+
+
+def analyse_finished_runs(jobs, cdpost, args):
+    """cdpost on the finished runs it has not analysed yet."""
+    for job in jobs:
+        if job.kind == "run" and job.done and not os.path.exists(os.path.join(job.folder, "post", "results.csv")):
+            ok, message = postprocess_run(job, cdpost, args)
+            print(f"cdpost run {job.name}: " + ("done" if ok else "failed: " + message), flush=True)
+
+
+def write_results(args):
+    """--report: cdpost on the finished runs it has not analysed yet, the series analyses made
+    again from every analysed run, then the results folder."""
+    cdpost = campaign_cdpost(args)
+    if cdpost is None:
+        print("--report needs cdpost (build/postproc/cdpost, --cdpost)", file=sys.stderr)
+        return 2
+    jobs = build_jobs(args)
+    analyse_finished_runs(jobs, cdpost, args)
+    postprocess_series(jobs, cdpost, args)
+    records = [RunRecord(job, run_cost(job, job.legs())) for job in jobs if job.kind == "run"]
+    series = {analysis: os.path.join(args.out, "series", analysis) for analysis in ANALYSES}
+    command = " ".join(shlex.quote(a) for a in ["scripts/chute_campaign.py"] + args.argv)
+    readme = write_report(records, series, args.comparison, args.report, command)
+    analysed = sum(r.results is not None for r in records)
+    print(f"{readme}: {analysed} of {len(records)} runs analysed", flush=True)
+    return 0

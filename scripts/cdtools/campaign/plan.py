@@ -1,0 +1,145 @@
+"""What the campaign runs: the series of the scene, the jobs they make (runs and the depositions
+they start from), and the parameters each job records and must keep."""
+
+import fnmatch
+import os
+import re
+import subprocess
+
+from ..run import DECK, TOP
+from ..text import parameter
+from .jobs import Job, read_json, write_json
+
+# The series of the scene (doc/chute.md). Angles in degrees, L in mean diameters d.
+REPLICA_SEED = 20261123
+SERIES = {
+    "mu0.05": [dict(mu=0.05, theta=t, L=45) for t in range(16, 23)],
+    "mu0.5": [dict(mu=0.5, theta=t, L=45) for t in range(22, 29)],
+    "mu2": [dict(mu=2, theta=t, L=45) for t in range(26, 31)],
+    "L": [dict(mu=0.5, theta=22, L=n) for n in (12, 22, 32, 52, 72, 102, 152)],
+    # Another deposition (rain seed) at one point per friction: the scatter between two
+    # realisations of a run, which the error bars of one run's windows understate.
+    "replicas": [dict(mu=mu, theta=theta, L=45, seed=REPLICA_SEED)
+                 for mu, theta in ((0.05, 20), (0.5, 24), (2, 28))],
+}
+# The cdpost series analyses: the flow rules need every mu together; the L series also takes
+# the 45 d run at the same (mu, theta) from the mu = 0.5 series.
+ANALYSES = {
+    "flow_rules": lambda job: job.series in ("mu0.05", "mu0.5", "mu2"),
+    "L_series": lambda job: float(job.vars["mu"]) == 0.5 and float(job.vars["theta"]) == 22,
+}
+
+# Deck variables that shape the deposition: one packing serves every run with the same
+# values (by default one per L, deposited with mu_deposition = 0.5, for all three mu).
+DEPOSITION_VARS = ("L", "grains", "wall_height", "mu_deposition", "e", "e_wall", "seed", "d",
+                   "dispersity", "density", "g", "dt_deposition", "tolerance_deposition",
+                   "rain_fill", "settle_ke", "settle_max", "max_iterations")
+# Wall laws default to the grains' (mu, e) of each run unless --var sets them.
+WALL_DEFAULTS = {"mu_wall": "mu", "e_wall": "e"}
+
+
+def deck_defaults():
+    """The deck's index variables and their defaults (the deck is the one source)."""
+    defaults = {}
+    with open(DECK) as src:
+        for line in src:
+            match = re.match(r"variable\s+(\w+)\s+index\s+(\S+)", line)
+            if match and "${" not in match.group(2):
+                defaults[match.group(1)] = match.group(2)
+    defaults.pop("stage", None)
+    defaults.pop("start", None)
+    return defaults
+
+
+def run_variables(args, defaults, point):
+    """The deck variables of one series point: the deck's defaults, the point's values, then
+    --var (which wins), the wall laws following the grains' unless set."""
+    variables = dict(defaults, duration=parameter(args.duration))
+    variables.update({key: parameter(value) for key, value in point.items()})
+    variables.update(args.var)
+    for wall, grain in WALL_DEFAULTS.items():
+        if not args.var.get(wall):
+            variables[wall] = variables[grain]
+    return variables
+
+
+def run_name(variables, defaults):
+    name = f"mu{variables['mu']}_theta{variables['theta']}_L{variables['L']}"
+    return name + (f"_seed{variables['seed']}" if variables["seed"] != defaults["seed"] else "")
+
+
+def build_jobs(args):
+    """The depositions, then the runs, of the series and runs selected (--series, --only)."""
+    defaults = deck_defaults()
+    depositions, runs = {}, {}
+    for series in args.series or list(SERIES):
+        for point in SERIES[series]:
+            variables = run_variables(args, defaults, point)
+            name = run_name(variables, defaults)
+            if args.only and not any(fnmatch.fnmatch(name, p) for p in args.only):
+                continue
+            deposition = deposition_of(args, variables, depositions)
+            if name not in runs:
+                runs[name] = new_run(args, name, series, variables, deposition)
+    return list(depositions.values()) + list(runs.values())
+
+
+def deposition_of(args, variables, depositions):
+    """The deposition a run starts from, added to `depositions` if new."""
+    dep_vars = {k: variables[k] for k in DEPOSITION_VARS}
+    name = f"mu{dep_vars['mu_deposition']}_L{dep_vars['L']}_seed{dep_vars['seed']}"
+    if name not in depositions:
+        depositions[name] = Job("deposition", name, os.path.join(args.out, "depositions", name), dep_vars)
+    return depositions[name]
+
+
+def new_run(args, name, series, variables, deposition):
+    folder = os.path.join(args.out, "runs", name)
+    recorded = read_json(os.path.join(folder, "params.json"), {}).get("vars", {})
+    if float(recorded.get("duration", 0)) > float(variables["duration"]):
+        variables["duration"] = recorded["duration"]    # an extended run stays extended
+    return Job("run", name, folder, variables, deposition, series)
+
+
+def check_recorded_params(job):
+    """A run continues only with the parameters it was started with (duration may grow)."""
+    path = os.path.join(job.folder, "params.json")
+    recorded = read_json(path)
+    if recorded is None:
+        return None
+    old = recorded.get("vars", {})
+    changed = [k for k in set(old) | set(job.vars)
+               if k != "duration" and str(old.get(k)) != str(job.vars.get(k))]
+    if changed:
+        return ("parameters differ from those recorded in " + path + ": "
+                + ", ".join(f"{k} {old.get(k)} -> {job.vars.get(k)}" for k in sorted(changed)))
+    return None
+
+
+def recorded_duration(job):
+    """The chute time a run's params.json records (its own if none is recorded)."""
+    recorded = read_json(os.path.join(job.folder, "params.json"), {})
+    return float(recorded.get("vars", {}).get("duration", job.vars["duration"]))
+
+
+def git_commit():
+    try:
+        return subprocess.run(["git", "-C", TOP, "rev-parse", "HEAD"], capture_output=True,
+                              text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
+def record_params(job, args):
+    path = os.path.join(job.folder, "params.json")
+    os.makedirs(job.folder, exist_ok=True)
+    data = read_json(path, {})
+    data.update(name=job.name, kind=job.kind, vars=job.vars, deck=job.deck, deck_source=DECK, lmp=args.lmp,
+                launcher=args.launcher, commit=data.get("commit", git_commit()),
+                units="SI: m, s, kg; L, wall_height in d; theta in degrees",
+                y_top=float(job.vars["wall_height"]) * float(job.vars["d"]),
+                grains=job.grains())
+    if job.kind == "run":
+        data["deposition"] = job.deposition.folder
+        data["series"] = job.series
+    write_json(path, data)

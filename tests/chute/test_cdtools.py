@@ -1,0 +1,185 @@
+#!/usr/bin/env python3
+"""Checks of scripts/cdtools, the tools' package, run by ctest (no simulation, a second).
+
+    PYTHONPATH=scripts tests/chute/test_cdtools.py
+
+The LAMMPS file readers on hand-written files: fix ave/time rows and a malformed row named by
+its line, the head and tail of a file still being written; fix ave/chunk blocks, a block cut
+by a kill dropped from the records and refused by the row reader; dump frames, plain and
+gzip, a gzip stream cut by a kill read up to its last complete frame. The log parsers: summary
+lines, the last one of a log, loop timers. The statistics and the text of numbers on
+hand-computed cases. The -var arguments. Standard library only.
+"""
+
+import gzip
+import math
+import os
+import sys
+import tempfile
+import zlib
+
+from cdtools import lammps_files, logs, run, stats, text
+
+
+def check(condition, message):
+    if not condition:
+        sys.exit(f"FAILED: {message}")
+
+
+def write(folder, name, content):
+    path = os.path.join(folder, name)
+    with open(path, "w") as out:
+        out.write(content)
+    return path
+
+
+TIME_FILE = "# Time-averaged data for fix flowout\n# TimeStep v_time v_u_flow\n0 0 0.5\n50 0.001 0.75\n100 0.002 1\n"
+
+
+def check_time_files(work):
+    path = write(work, "flow.time", TIME_FILE)
+    rows = lammps_files.read_time_file(path)
+    check(rows == [dict(TimeStep=0, v_time=0, v_u_flow=0.5), dict(TimeStep=50, v_time=0.001, v_u_flow=0.75),
+                   dict(TimeStep=100, v_time=0.002, v_u_flow=1)], f"ave/time rows {rows}")
+    header, records = lammps_files.read_time_records(path)
+    check(len(header) == 2 and [s for s, _ in records] == [0, 50, 100], f"ave/time records {records}")
+    check(lammps_files.time_span(path) == (0.0, 0.002), f"time span {lammps_files.time_span(path)}")
+    cut = write(work, "cut.time", TIME_FILE + "150 0.00")    # a row cut by a kill
+    check(lammps_files.time_span(cut) == (0.0, 0.002), "the span counts a cut row")
+    check(lammps_files.time_span(write(work, "empty.time", TIME_FILE[:60])) is None, "a span before the first row")
+    bad = write(work, "bad.time", TIME_FILE + "150 0.003 x\n")
+    try:
+        lammps_files.read_time_file(bad)
+        check(False, "a row with a word was read")
+    except lammps_files.FileFormatError as error:
+        check(f"{bad}:6:" in str(error), f"the error does not name the line: {error}")
+
+
+CHUNK_HEADER = "# Chunk-averaged data\n# Timestep Number-of-chunks Total-count\n# Chunk Coord1 Ncount vx\n"
+CHUNK_BLOCKS = "100 2 30\n  1 0.5 10 0.1\n  2 1.5 20 0.2\n200 2 30\n  1 0.5 10 0.3\n  2 1.5 20 0.4\n"
+
+
+def check_chunk_files(work):
+    path = write(work, "profile.chunk", CHUNK_HEADER + CHUNK_BLOCKS)
+    blocks = lammps_files.read_chunk_file(path)
+    check([s for s, _ in blocks] == [100, 200] and blocks[1][1][1] == dict(Chunk=2, Coord1=1.5, Ncount=20, vx=0.4),
+          f"ave/chunk blocks {blocks}")
+    cut = write(work, "cut.chunk", CHUNK_HEADER + CHUNK_BLOCKS + "300 2 30\n  1 0.5 10 0.5\n")
+    header, records = lammps_files.read_chunk_records(cut)
+    check(len(header) == 3 and [s for s, _ in records] == [100, 200], "the cut block is among the records")
+    check(records[1][1] == CHUNK_BLOCKS[CHUNK_BLOCKS.index("200"):], f"the record of step 200: {records[1][1]!r}")
+    try:
+        lammps_files.read_chunk_file(cut)
+        check(False, "a cut block was read")
+    except lammps_files.FileFormatError as error:
+        check(cut in str(error) and "200" in str(error), f"the error does not say where: {error}")
+
+
+def frame(step, atoms):
+    rows = "".join(f"{i} 1 {0.1 * i} 0.2 0 {i % 2}\n" for i in range(1, atoms + 1))
+    return (f"ITEM: TIMESTEP\n{step}\nITEM: NUMBER OF ATOMS\n{atoms}\nITEM: BOX BOUNDS pp fm pp\n0 1\n0 2\n-0.1 0.1\n"
+            f"ITEM: ATOMS id type x y vx ix\n{rows}")
+
+
+def check_dumps(work):
+    text_of_dump = frame(0, 3) + frame(100, 3)
+    plain = write(work, "dump.plain", text_of_dump)
+    frames = lammps_files.read_dump(plain)
+    check([f[0] for f in frames] == [0, 100] and frames[0][1] == [(0, 1), (0, 2), (-0.1, 0.1)],
+          f"dump frames {[(f[0], f[1]) for f in frames]}")
+    check(frames[1][2][3] == dict(id=3, type=1, x=0.30000000000000004, y=0.2, vx=0, ix=1), f"atom 3: {frames[1][2][3]}")
+    check(lammps_files.unwrapped(frames[0])[3] == (0.30000000000000004 + 1, 0.2), "atom 3 unwrapped by one box")
+    packed = os.path.join(work, "dump.gz")
+    with gzip.open(packed, "wt") as out:
+        out.write(text_of_dump + frame(200, 3))
+    # A kill leaves a gzip stream without its end: two frames and half of the third flushed.
+    last = frame(200, 3)
+    stream = zlib.compressobj(6, zlib.DEFLATED, 16 + zlib.MAX_WBITS)
+    cut = os.path.join(work, "cut.gz")
+    with open(cut, "wb") as out:
+        for part in (text_of_dump, last[:len(last) // 2]):
+            out.write(stream.compress(part.encode()) + stream.flush(zlib.Z_SYNC_FLUSH))
+    _, records = lammps_files.read_dump_records(cut)
+    check([s for s, _ in records] == [0, 100], f"frames of a cut gzip dump: {[s for s, _ in records]}")
+    check(records[1][1] == frame(100, 3), f"the record of step 100: {records[1][1]!r}")
+    check([f[0] for f in lammps_files.read_dump(packed)] == [0, 100, 200], "the whole gzip dump")
+
+
+def check_logs(work):
+    line = "CHUTE y_top_m 0.004 time_s 1.2000 U 1.5 state flowing"
+    check(logs.parse_summary(line) == dict(y_top_m=0.004, time_s=1.2, U=1.5, state="flowing"), "summary line")
+    check(logs.tagged_line(f"x\n{line}\nCHUTE U 2\n", "CHUTE")["U"] == 1.5, "the first CHUTE line of a text")
+    check(logs.tagged_line("CHUTES U 2\n", "CHUTE") is None, "another tag was taken for CHUTE")
+    log = write(work, "log.lammps", "Step Time\n  100 0.1\n  200 0.2\n"
+                "Loop time of 4 on 1 procs for 100 steps with 60 atoms\n\n50.0% CPU use with 1 MPI tasks\n"
+                f"Step Time\n  200 0.2\n  300 0.3\nLoop time of 6 on 1 procs for 100 steps with 60 atoms\n\n"
+                f"100.0% CPU use with 1 MPI tasks\n{line}\nCHUTE U 2\nERROR: one\nERROR: two\n")
+    check(logs.log_summary(work, "CHUTE") == dict(U=2.0), "the last CHUTE line of a log")
+    progress = logs.read_progress(log)
+    check((progress.first_step, progress.last_step, progress.wall, progress.steps, progress.cpu, progress.summary)
+          == (100, 300, 10.0, 200, 8.0, "CHUTE U 2"), f"progress {progress}")
+    check(logs.error_line(open(log).read()) == "ERROR: one", "the first ERROR line")
+    try:
+        logs.log_summary(work, "SOLVER")
+        check(False, "a missing SOLVER line was found")
+    except RuntimeError as error:
+        check(log in str(error) and "SOLVER" in str(error), f"the error does not name the log and tag: {error}")
+
+
+def check_statistics():
+    mean, sd, error = stats.mean_sd_se([1.0, 2.0, 3.0, 6.0])
+    check((mean, sd) == (3.0, math.sqrt(14 / 3)) and abs(error - sd / 2) < 1e-15, f"mean, sd, se {mean, sd, error}")
+    check(stats.mean_sd_se([4.0])[0] == 4.0 and all(math.isnan(v) for v in stats.mean_sd_se([4.0])[1:]),
+          "one value: its mean, no scatter")
+    # Deviations from each group's mean: 1, 1 and 2, 2 -> (1 + 1 + 4 + 4) / (1 + 1) = 5;
+    # a group of one has no deviation to give and is left out.
+    check(abs(stats.pooled_sd([[1, 3], [10, 14], [99]]) - math.sqrt(5)) < 1e-12, "pooled sd of [1,3],[10,14]")
+    check(math.isnan(stats.pooled_sd([[1], [2]])), "pooled sd without two values in a group is not nan")
+    # Errors 0.3 and 0.4 combine to 0.5: 3.999 against 3 is 1.998 of it, 4.001 is 2.002.
+    check(abs(stats.difference_in_errors(2.0, 0.4, 1.0, 0.3) - 2.0) < 1e-12, "a difference of two combined errors")
+    check(stats.difference_in_errors(3.999, 0.4, 3.0, 0.3) <= 2 < stats.difference_in_errors(4.001, 0.4, 3.0, 0.3),
+          "the boundary at twice the combined error")
+    check(math.isnan(stats.difference_in_errors(1.0, 0.0, 1.1, 0.0)), "a difference without errors is not nan")
+    slope, r2 = stats.least_squares_slope([0, 1, 2, 3], [1, 3, 5, 7])
+    check(abs(slope - 2) < 1e-12 and abs(r2 - 1) < 1e-12, f"slope {slope}, R^2 {r2}")
+
+
+def check_text():
+    check(text.with_error(1.23456, 0.0123) == "1.235 ± 0.012", text.with_error(1.23456, 0.0123))
+    check(text.with_error(1234.5, 56) == "1234 ± 56", text.with_error(1234.5, 56))
+    check(text.with_error(1.23456, None) == "1.235", "a value without error: four digits")
+    check([text.number(None), text.number(math.nan), text.number(0.012345, 2)] == ["–", "–", "0.012"], "numbers")
+    check([text.parameter(2.0), text.parameter(0.5), text.parameter("1e-3")] == ["2", "0.5", "1e-3"], "parameters")
+    check([text.duration(59), text.duration(3725), text.duration(90000), text.duration(None)]
+          == ["0m59s", "1h02m", "1d01h", "?"], "durations")
+    check(text.markdown_table(["a", "b"], [[1, 2]]) == "| a | b |\n|---|---|\n| 1 | 2 |\n", "Markdown table")
+
+
+def check_arguments():
+    check(run.name_value_pairs("L=10 order=shuffle") == dict(L="10", order="shuffle"), "name=value pairs")
+    for bad, named in (("L=10 theta", "'theta'"), ("L=10 L=12", "'L' is given twice")):
+        try:
+            run.name_value_pairs(bad)
+            check(False, f"'{bad}' accepted")
+        except ValueError as error:
+            check(named in str(error), f"'{bad}': {error}")
+    check(run.lmp_command("lmp_cd", "in.chute", dict(stage="flow", dt=1e-4), screen="none", launcher=["mpirun"])
+          == ["mpirun", "lmp_cd", "-in", "in.chute", "-log", "log.lammps", "-screen", "none", "-var", "stage", "flow",
+              "-var", "dt", "0.0001"], "lmp_cd command line")
+
+
+def main():
+    with tempfile.TemporaryDirectory() as work:
+        check_time_files(work)
+        check_chunk_files(work)
+        check_dumps(work)
+        check_logs(work)
+    check_statistics()
+    check_text()
+    check_arguments()
+    print("cdtools: ave/time, ave/chunk and dump readers (cut files included), logs, statistics, text, "
+          "-var arguments")
+
+
+if __name__ == "__main__":
+    main()
