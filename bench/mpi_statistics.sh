@@ -10,7 +10,7 @@
 # window, s; 1), SEGMENT (spectral segment, s; 0.5), CELL_VARS (-var pairs for in.chute;
 # the default scene's cell), WORK (runs/mpi_statistics), LMP_CD, CDPOST.
 # More ranks than cores are run oversubscribed, which is impractical: every sweep synchronises
-# the ranks (4 ranks on 2 busy cores: 0.1 s of the 20 d chute in 13 min).
+# the ranks (a measured case: doc/benchmarks.md).
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 lmp=${LMP_CD:-$top/build/lmp_cd}

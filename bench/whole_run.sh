@@ -4,7 +4,7 @@
 # collapse phase and the bed phase, and the deck prints the mean sweeps and contact updates
 # per step of each phase. Medians over the runs are printed as a Markdown table.
 #
-#   bench/whole_run.sh                          # 3 runs of the default 592-disk deck, < 1 min
+#   bench/whole_run.sh                          # 3 runs of the default 592-disk deck
 #   RUNS=5 VARS="-var rows 54 -var collapse_steps 500 -var bed_steps 200" bench/whole_run.sh
 #
 # Environment: LMP executable (default build/lmp_cd), RUNS (3), CPU core to pin (1),

@@ -125,7 +125,7 @@ void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies,
   c.impulse = {};
 
   // A touching pair is an impact whatever its pre-step velocity, and at e = 0 its bias is 0:
-  // nothing to read (doc/benchmarks.md, "Model only what a scene requires").
+  // nothing to read, so a scene without restitution does not pay for it.
   if (c.gap <= 0.0 && law.restitution == 0.0) {
     c.velocity_bias = 0.0;
     return;

@@ -84,8 +84,8 @@ void prepare_mechanics(Contact& contact, const ContactLaw& law, const BodySet& b
                        const StepParameters& step);
 
 // A permutation of the contacts in their order, except that contacts sharing a body are kept
-// at least `spacing` places apart where a nearby contact can fill the gap: a sweep then never
-// waits for the previous update of the same body, and runs ~25% faster (doc/benchmarks.md).
+// at least `spacing` places apart where a nearby contact can fill the gap: an update then never
+// waits for the store of the previous update of the same body (the gain: doc/benchmarks.md).
 std::vector<int> interleaved_order(const std::vector<Contact>& contacts, int body_count, int spacing = 4);
 
 // Starts a contact from the impulse it carried at the end of the previous step. A frictionless
