@@ -418,6 +418,25 @@ def case_runaway(args):
           f"largest interpenetration {overlap:.2e} d")
 
 
+def case_start_mismatch(args):
+    """A continuation whose cell differs from its start file's stops with one ERROR line naming
+    the variable before the run: another L, or walls higher than those the bed was rained
+    between (grains lie where the walls would be)."""
+    start = os.path.join(args.work, "deposition", "deposition.restart")
+    folder = os.path.join(args.work, "start_mismatch")
+    problems = []
+    for name, value in (("L", "12"), ("wall_height", "16")):
+        variables = dict(CELL, stage="flow", start=start, duration="0.01")
+        variables[name] = value
+        status, output = run_lmp(args.lmp, folder, variables, expect_ok=False)
+        errors = [l for l in output.splitlines() if l.startswith("ERROR")]
+        if status == 0 or len(errors) != 1 or f"-var {name} {value}" not in errors[0] or "Setting up" in output:
+            problems.append(f"-var {name} {value}: status {status}, errors {errors}")
+    check(not problems, "; ".join(problems))
+    run_lmp(args.lmp, folder, dict(CELL, stage="flow", start=start, duration="0.01"))
+    print("start file: another L and higher walls refused, the matching cell runs")
+
+
 BAD_VARS = [
     ("mu", "-0.1", "-var mu -0.1"),
     ("mu", "abc", "mu_is_not_a_number"),
@@ -514,6 +533,7 @@ CASES = {
     "static_tilt": case_static_tilt,
     "runaway": case_runaway,
     "bad_var": case_bad_var,
+    "start_mismatch": case_start_mismatch,
     "runner_resume": case_runner_resume,
 }
 
