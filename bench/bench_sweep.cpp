@@ -68,10 +68,10 @@ LocalProblem local_problem(const cd::Contact& c, const std::vector<cd::BodyVeloc
 struct Scene {
   const bench::GranularBed& bed;
   bench::FrozenStep frozen;
-  std::vector<cd::Contact> contacts[3];       // prepared and warm-started, in each Order
-  std::vector<cd::BodyVelocity> velocity;     // free velocity plus the warm-start impulses
-  std::vector<LocalProblem> bed_problems;     // what the first sweep's local solves see
-  std::vector<LocalProblem> mixed_problems;   // spread over every branch of the local solver
+  std::vector<cd::Contact> contacts[3];      // prepared and warm-started, in each Order
+  std::vector<cd::BodyVelocity> velocity;    // free velocity plus the warm-start impulses
+  std::vector<LocalProblem> bed_problems;    // what the first sweep's local solves see
+  std::vector<LocalProblem> mixed_problems;  // spread over every branch of the local solver
 
   Scene(const bench::GranularBed& settled, bench::FrozenStep step) : bed(settled), frozen(std::move(step))
   {
@@ -244,7 +244,10 @@ void time_prepare(benchmark::State& state, const Scene& s)
   set_contact_counters(state, contacts.size());
 }
 
-void BM_Prepare(benchmark::State& state) { time_prepare(state, scene()); }
+void BM_Prepare(benchmark::State& state)
+{
+  time_prepare(state, scene());
+}
 BENCHMARK(BM_Prepare)->Unit(benchmark::kMicrosecond);
 
 // (b) A whole step of the core: prepare, order, warm start, Gauss–Seidel to 1e-4.
@@ -318,9 +321,8 @@ void register_lean_benchmarks()
   add("prepare/restitution", [](benchmark::State& st) { time_prepare(st, scene()); });
   add("prepare/inelastic", [](benchmark::State& st) { time_prepare(st, lean_scene(Lean::inelastic)); });
   add("step/restitution", [](benchmark::State& st) { time_whole_steps(st, scene(), true, interleaved_order, true); });
-  add("step/inelastic", [](benchmark::State& st) {
-    time_whole_steps(st, lean_scene(Lean::inelastic), true, interleaved_order, true);
-  });
+  add("step/inelastic",
+      [](benchmark::State& st) { time_whole_steps(st, lean_scene(Lean::inelastic), true, interleaved_order, true); });
   add("sweep/all_mobile", [](benchmark::State& st) { time_restored_sweeps(st, scene(), interleaved_order, true); });
   add("step/all_mobile", [](benchmark::State& st) { time_whole_steps(st, scene(), true, interleaved_order, true); });
   add("sweep/immobile_layer", [](benchmark::State& st) {
@@ -370,27 +372,25 @@ void describe_scene()
 
   auto text = [](double v) { return std::to_string(v); };
   benchmark::AddCustomContext("bed_disks", std::to_string(disks));
-  benchmark::AddCustomContext("bed_cell", text(spec.cell_length) + " d periodic in x, d = " +
-                                              text(spec.mean_diameter) + " m, (dmax-dmin)/d = " +
-                                              text(spec.polydispersity));
+  benchmark::AddCustomContext("bed_cell", text(spec.cell_length) + " d periodic in x, d = " + text(spec.mean_diameter) +
+                                              " m, (dmax-dmin)/d = " + text(spec.polydispersity));
   benchmark::AddCustomContext("bed_height_d", text(top / spec.mean_diameter));
   benchmark::AddCustomContext("bed_solid_fraction", text(area / (top * bed.length_x())));
-  benchmark::AddCustomContext("bed_settle_steps", std::to_string(spec.settle_steps) + " of dt = " +
-                                                      text(spec.dt) + " s, max speed after " +
-                                                      text(bed.max_speed()) + " m/s");
+  benchmark::AddCustomContext("bed_settle_steps", std::to_string(spec.settle_steps) + " of dt = " + text(spec.dt) +
+                                                      " s, max speed after " + text(bed.max_speed()) + " m/s");
   if (!sweeps.empty())
     benchmark::AddCustomContext("bed_settle_sweeps", "last " + std::to_string(sweeps.size()) + " steps: median " +
                                                          std::to_string(sweeps[sweeps.size() / 2]) + ", mean " +
                                                          text(mean_sweeps) + ", max " + std::to_string(sweeps.back()));
   benchmark::AddCustomContext("step_neighbour_pairs", std::to_string(s.frozen.pairs.size()));
-  benchmark::AddCustomContext("step_active_contacts",
-                              std::to_string(contacts.size()) + " (" + std::to_string(pair_contacts) +
-                                  " disk-disk, " + std::to_string(wall_contacts) + " floor)");
+  benchmark::AddCustomContext("step_active_contacts", std::to_string(contacts.size()) + " (" +
+                                                          std::to_string(pair_contacts) + " disk-disk, " +
+                                                          std::to_string(wall_contacts) + " floor)");
   benchmark::AddCustomContext("step_coordination", text(2.0 * pair_contacts / disks) + " disk-disk contacts per disk");
   benchmark::AddCustomContext("step_loaded_contacts", std::to_string(loaded));
   benchmark::AddCustomContext("step_solve", std::to_string(report.iterations) + " sweeps to " +
-                                                text(spec.solver.tolerance) + ", floor load / weight = " +
-                                                text(floor_impulse / weight_impulse));
+                                                text(spec.solver.tolerance) +
+                                                ", floor load / weight = " + text(floor_impulse / weight_impulse));
 }
 
 }  // namespace

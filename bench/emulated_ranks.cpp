@@ -11,7 +11,8 @@ cd::SweepChange sweep_in_blocks(std::vector<cd::Contact>& contacts, const std::v
   std::size_t block_start = 0;
   for (const std::size_t block_end : block_ends) {
     block_velocity = start;
-    change.merge(cd::sweep(contacts.data() + block_start, contacts.data() + block_end, block_velocity.data(), settings));
+    change.merge(
+        cd::sweep(contacts.data() + block_start, contacts.data() + block_end, block_velocity.data(), settings));
     for (std::size_t b = 0; b < velocity.size(); b++) {
       velocity[b].vx += block_velocity[b].vx - start[b].vx;
       velocity[b].vy += block_velocity[b].vy - start[b].vy;

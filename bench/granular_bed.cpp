@@ -39,7 +39,9 @@ class CellGrid {
  public:
   CellGrid(double length_x, double min_cell)
       : columns_(std::max(3, static_cast<int>(length_x / min_cell))),
-        width_(length_x / columns_), height_(min_cell), top_(columns_, -1)
+        width_(length_x / columns_),
+        height_(min_cell),
+        top_(columns_, -1)
   {
   }
 
@@ -190,8 +192,7 @@ void GranularBed::rain()
       const int columns = grid.columns();
       for (int c = first; c < first + span; c++) {
         const int top = grid.top_row(c % columns);
-        const int lowest = std::min({grid.top_row((c + columns - 1) % columns), top,
-                                     grid.top_row((c + 1) % columns)});
+        const int lowest = std::min({grid.top_row((c + columns - 1) % columns), top, grid.top_row((c + 1) % columns)});
         for (int row = lowest - 2; row <= top; row++)
           for (int k : grid.cell(c, row)) surface.push_back(k);
       }
@@ -339,8 +340,8 @@ double GranularBed::kinetic_energy() const
   double energy = 0.0;
   for (std::size_t k = 0; k < disks_.size(); k++) {
     const cd::BodyVelocity& v = velocity_[k];
-    energy += 0.5 * (v.vx * v.vx + v.vy * v.vy) / inertia_[k].inv_mass +
-              0.5 * v.spin * v.spin / inertia_[k].inv_inertia;
+    energy +=
+        0.5 * (v.vx * v.vx + v.vy * v.vy) / inertia_[k].inv_mass + 0.5 * v.spin * v.spin / inertia_[k].inv_inertia;
   }
   return energy;
 }

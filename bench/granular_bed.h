@@ -18,18 +18,18 @@ namespace bench {
 
 struct BedSpec {
   int disk_count = 4000;
-  double mean_diameter = 5.0e-4;   // d (m)
-  double polydispersity = 0.4;     // (dmax - dmin) / d, diameters uniform
-  double cell_length = 45.0;       // periodic length in x, in d (the scene's default cell)
-  double density = 2500.0;         // kg/m^2: disk mass pi r^2 rho
-  double gravity = 9.81;           // m/s^2, along -y
-  double dt = 1.0e-5;              // s
+  double mean_diameter = 5.0e-4;  // d (m)
+  double polydispersity = 0.4;    // (dmax - dmin) / d, diameters uniform
+  double cell_length = 45.0;      // periodic length in x, in d (the scene's default cell)
+  double density = 2500.0;        // kg/m^2: disk mass pi r^2 rho
+  double gravity = 9.81;          // m/s^2, along -y
+  double dt = 1.0e-5;             // s
   double theta = 0.5;
-  double skin = 0.2;               // neighbour pairs: gap below skin d (a LAMMPS size list)
-  double alert = 0.01;             // solved pairs: cd::is_candidate alert, in d (the fix's default)
-  double rain_window = 1.0;        // a disk lands within this many d of its drop abscissa
-  int settle_steps = 200;          // Moreau–Jean steps under gravity after the rain
-  double immobile_layer = 0.0;     // d: disks centred below this height are immobile obstacles
+  double skin = 0.2;            // neighbour pairs: gap below skin d (a LAMMPS size list)
+  double alert = 0.01;          // solved pairs: cd::is_candidate alert, in d (the fix's default)
+  double rain_window = 1.0;     // a disk lands within this many d of its drop abscissa
+  int settle_steps = 200;       // Moreau–Jean steps under gravity after the rain
+  double immobile_layer = 0.0;  // d: disks centred below this height are immobile obstacles
   std::uint64_t seed = 20240601;
   cd::ContactLaw grain_law{0.5, 0.5};
   cd::ContactLaw wall_law{0.5, 0.5};  // the floor y = 0

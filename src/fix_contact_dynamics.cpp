@@ -48,11 +48,11 @@ double wall_key(int wall_index, cd::WallPart part)
   return -(3.0 * wall_index + static_cast<int>(part) + 1.0);
 }
 
-}    // namespace
+}  // namespace
 
 /* ---------------------------------------------------------------------- */
 
-FixContactDynamics::FixContactDynamics(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
+FixContactDynamics::FixContactDynamics(LAMMPS* lmp, int narg, char** arg) : Fix(lmp, narg, arg)
 {
   if (domain->dimension != 2) error->all(FLERR, "Fix contact/dynamics requires dimension 2");
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
@@ -66,13 +66,13 @@ FixContactDynamics::FixContactDynamics(LAMMPS *lmp, int narg, char **arg) : Fix(
   extvector = 0;
   local_flag = 1;
   size_local_cols = output_columns;
-  size_local_rows = 0;    // no contact until the first step is solved
+  size_local_rows = 0;  // no contact until the first step is solved
   local_freq = 1;
   restart_global = 1;
   restart_peratom = 1;
   create_attribute = 1;
-  comm_forward = 3;    // vx, vy, spin of a body
-  comm_reverse = 3;    // the change of a ghost's vx, vy, spin over one sweep
+  comm_forward = 3;  // vx, vy, spin of a body
+  comm_reverse = 3;  // the change of a ghost's vx, vy, spin over one sweep
 
   // With a varying step the clock is LAMMPS's time, not step x dt; step 0 is time 0 (this
   // version's reset_timestep keeps the time already run, e.g. a deposition before the chute).
@@ -108,52 +108,49 @@ int FixContactDynamics::setmask()
 
 namespace {
 
-double number_for(const char *keyword, const char *text, Error *error)
+double number_for(const char* keyword, const char* text, Error* error)
 {
-  if (!utils::is_double(text))
-    error->all(FLERR, "Fix contact/dynamics: {} expects a number, got '{}'", keyword, text);
+  if (!utils::is_double(text)) error->all(FLERR, "Fix contact/dynamics: {} expects a number, got '{}'", keyword, text);
   const double value = std::stod(text);
-  if (!std::isfinite(value))
-    error->all(FLERR, "Fix contact/dynamics: {} must be finite, got '{}'", keyword, text);
+  if (!std::isfinite(value)) error->all(FLERR, "Fix contact/dynamics: {} must be finite, got '{}'", keyword, text);
   return value;
 }
 
-int integer_for(const char *keyword, const char *text, Error *error)
+int integer_for(const char* keyword, const char* text, Error* error)
 {
   if (!utils::is_integer(text))
     error->all(FLERR, "Fix contact/dynamics: {} expects an integer, got '{}'", keyword, text);
   return std::stoi(text);
 }
 
-void require_values(const char *keyword, int iarg, int count, int narg, Error *error)
+void require_values(const char* keyword, int iarg, int count, int narg, Error* error)
 {
-  if (iarg + count >= narg)
-    error->all(FLERR, "Fix contact/dynamics: {} needs {} value(s)", keyword, count);
+  if (iarg + count >= narg) error->all(FLERR, "Fix contact/dynamics: {} needs {} value(s)", keyword, count);
 }
 
-bool yes_or_no(const char *keyword, const std::string &value, Error *error)
+bool yes_or_no(const char* keyword, const std::string& value, Error* error)
 {
   if (value != "yes" && value != "no")
     error->all(FLERR, "Fix contact/dynamics: {} must be yes or no, got '{}'", keyword, value);
   return value == "yes";
 }
 
-void check_friction(const char *keyword, double mu, Error *error)
+void check_friction(const char* keyword, double mu, Error* error)
 {
   if (mu < 0.0) error->all(FLERR, "Fix contact/dynamics: {} must be >= 0, got {}", keyword, mu);
 }
 
-void check_restitution(const char *keyword, double e, Error *error)
+void check_restitution(const char* keyword, double e, Error* error)
 {
-  if (e < 0.0 || e > 1.0)
-    error->all(FLERR, "Fix contact/dynamics: {} must be in [0,1], got {}", keyword, e);
+  if (e < 0.0 || e > 1.0) error->all(FLERR, "Fix contact/dynamics: {} must be in [0,1], got {}", keyword, e);
 }
 
-}    // namespace
+}  // namespace
 
-void FixContactDynamics::parse_arguments(int narg, char **arg)
+void FixContactDynamics::parse_arguments(int narg, char** arg)
 {
-  if (narg < 5) error->all(FLERR, "Fix contact/dynamics needs mu and e: fix ID group contact/dynamics mu e [keyword value ...]");
+  if (narg < 5)
+    error->all(FLERR, "Fix contact/dynamics needs mu and e: fix ID group contact/dynamics mu e [keyword value ...]");
   const double mu = number_for("mu", arg[3], error);
   const double e = number_for("e", arg[4], error);
   check_friction("mu", mu, error);
@@ -193,7 +190,7 @@ void FixContactDynamics::parse_arguments(int narg, char **arg)
     }
 
     require_values(arg[iarg], iarg, 1, narg, error);
-    const char *value = arg[iarg + 1];
+    const char* value = arg[iarg + 1];
     if (keyword == "theta") {
       theta = number_for("theta", value, error);
       if (theta < 0.5 || theta > 1.0)
@@ -221,13 +218,11 @@ void FixContactDynamics::parse_arguments(int narg, char **arg)
       pair_forces = yes_or_no("pair_forces", value, error);
     } else if (keyword == "max_contacts") {
       max_contacts = integer_for("max_contacts", value, error);
-      if (max_contacts < 1)
-        error->all(FLERR, "Fix contact/dynamics: max_contacts must be >= 1, got {}", max_contacts);
+      if (max_contacts < 1) error->all(FLERR, "Fix contact/dynamics: max_contacts must be >= 1, got {}", max_contacts);
     } else if (keyword == "alert") {
       alert_distance = number_for("alert", value, error);
       alert_given = true;
-      if (alert_distance < 0.0)
-        error->all(FLERR, "Fix contact/dynamics: alert must be >= 0, got {}", alert_distance);
+      if (alert_distance < 0.0) error->all(FLERR, "Fix contact/dynamics: alert must be >= 0, got {}", alert_distance);
     } else if (keyword == "dt_max") {
       step_grid.dt_max = number_for("dt_max", value, error);
       if (step_grid.dt_max <= 0.0)
@@ -243,8 +238,7 @@ void FixContactDynamics::parse_arguments(int narg, char **arg)
                    travel_fraction);
     } else if (keyword == "density") {
       disc_density = number_for("density", value, error);
-      if (disc_density <= 0.0)
-        error->all(FLERR, "Fix contact/dynamics: density must be > 0, got {}", disc_density);
+      if (disc_density <= 0.0) error->all(FLERR, "Fix contact/dynamics: density must be > 0, got {}", disc_density);
     } else {
       error->all(FLERR, "Fix contact/dynamics: unknown keyword '{}'", keyword);
     }
@@ -261,7 +255,7 @@ void FixContactDynamics::parse_arguments(int narg, char **arg)
   }
 }
 
-void FixContactDynamics::parse_type_law(const char *keyword, int iarg, int narg, char **arg, bool friction)
+void FixContactDynamics::parse_type_law(const char* keyword, int iarg, int narg, char** arg, bool friction)
 {
   require_values(keyword, iarg, 3, narg, error);
   int ilo, ihi, jlo, jhi;
@@ -272,29 +266,29 @@ void FixContactDynamics::parse_type_law(const char *keyword, int iarg, int narg,
   else check_restitution(keyword, value, error);
   for (int i = ilo; i <= ihi; i++)
     for (int j = jlo; j <= jhi; j++) {
-      cd::ContactLaw &ij = type_laws[i * (law_types + 1) + j];
-      cd::ContactLaw &ji = type_laws[j * (law_types + 1) + i];
+      cd::ContactLaw& ij = type_laws[i * (law_types + 1) + j];
+      cd::ContactLaw& ji = type_laws[j * (law_types + 1) + i];
       (friction ? ij.mu : ij.restitution) = value;
       (friction ? ji.mu : ji.restitution) = value;
     }
 }
 
 // wall xplane X mu e | wall yplane Y mu e | wall segment x1 y1 x2 y2 mu e
-int FixContactDynamics::parse_wall(int iarg, int narg, char **arg)
+int FixContactDynamics::parse_wall(int iarg, int narg, char** arg)
 {
   require_values("wall", iarg, 1, narg, error);
   const std::string shape = arg[iarg + 1];
   cd::Wall wall;
-  const double *lo = domain->boxlo;
-  const double *hi = domain->boxhi;
+  const double* lo = domain->boxlo;
+  const double* hi = domain->boxhi;
   int next;
   if (shape == "xplane" || shape == "yplane") {
     require_values(("wall " + shape).c_str(), iarg + 1, 3, narg, error);
     const int axis = shape == "xplane" ? 0 : 1;
     const double position = number_for(("wall " + shape).c_str(), arg[iarg + 2], error);
     if (position < lo[axis] || position > hi[axis])
-      error->all(FLERR, "Fix contact/dynamics: wall {} at {} is outside the box [{}, {}]", shape,
-                 position, lo[axis], hi[axis]);
+      error->all(FLERR, "Fix contact/dynamics: wall {} at {} is outside the box [{}, {}]", shape, position, lo[axis],
+                 hi[axis]);
     wall.shape = cd::Wall::Shape::line;
     if (axis == 0) wall.ax = wall.bx = position, wall.ay = lo[1], wall.by = hi[1];
     else wall.ay = wall.by = position, wall.ax = lo[0], wall.bx = hi[0];
@@ -336,7 +330,8 @@ void FixContactDynamics::init()
   // The per-step displacement limit (half the skin) keeps every contact in the list only if
   // the list is rebuilt as soon as a grain has moved that far.
   if (neighbor->every != 1 || neighbor->delay != 0 || !neighbor->dist_check)
-    error->all(FLERR, "Fix contact/dynamics requires neighbour lists checked every step: use "
+    error->all(FLERR,
+               "Fix contact/dynamics requires neighbour lists checked every step: use "
                "neigh_modify delay 0 every 1 check yes");
   if (utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "Fix contact/dynamics does not support run_style respa");
@@ -353,7 +348,7 @@ void FixContactDynamics::init()
   for (int f = 0; f < modify->nfix; f++)
     for (int itype = 1; itype <= atom->ntypes; itype++) {
       int query_type = itype;
-      auto *radius = static_cast<double *>(modify->fix[f]->extract("radius", query_type));
+      auto* radius = static_cast<double*>(modify->fix[f]->extract("radius", query_type));
       if (radius && query_type == 0) rmax = std::max(rmax, *radius);
     }
   if (rmax <= 0.0)
@@ -371,7 +366,7 @@ void FixContactDynamics::init()
 void FixContactDynamics::request_neighbor_list()
 {
   const int irequest = neighbor->request(this, instance_me);
-  NeighRequest *request = neighbor->requests[irequest];
+  NeighRequest* request = neighbor->requests[irequest];
   request->pair = 0;
   request->fix = 1;
   request->half = 1;
@@ -383,16 +378,16 @@ void FixContactDynamics::request_neighbor_list()
   request->cutoff = 2.0 * covered_radius + neighbor->skin;
 }
 
-void FixContactDynamics::init_list(int, NeighList *ptr)
+void FixContactDynamics::init_list(int, NeighList* ptr)
 {
   list = ptr;
 }
 
 void FixContactDynamics::check_integrators()
 {
-  const int *mask = atom->mask;
+  const int* mask = atom->mask;
   for (int f = 0; f < modify->nfix; f++) {
-    Fix *other = modify->fix[f];
+    Fix* other = modify->fix[f];
     if (other == this || !other->time_integrate) continue;
     int shared_local = (other->igroup == igroup || other->igroup == 0 || igroup == 0) ? 1 : 0;
     for (int i = 0; i < atom->nlocal && !shared_local; i++)
@@ -400,8 +395,8 @@ void FixContactDynamics::check_integrators()
     int shared = 0;
     MPI_Allreduce(&shared_local, &shared, 1, MPI_INT, MPI_MAX, world);
     if (shared)
-      error->all(FLERR, "Fix contact/dynamics: fix {} ({}) also integrates atoms of group {}",
-                 other->id, other->style, group->names[igroup]);
+      error->all(FLERR, "Fix contact/dynamics: fix {} ({}) also integrates atoms of group {}", other->id, other->style,
+                 group->names[igroup]);
   }
 }
 
@@ -412,7 +407,7 @@ void FixContactDynamics::check_integrators()
 // exerts no force.
 void FixContactDynamics::check_pair_style()
 {
-  Pair *pair = force->pair;
+  Pair* pair = force->pair;
   if (pair_forces || !pair || !pair->cutsq || utils::strmatch(force->pair_style, "^zero")) return;
   const int ntypes = atom->ntypes;
   std::vector<int> present_local(ntypes + 1, igroup == 0 ? 1 : 0), present(ntypes + 1, 0);
@@ -422,9 +417,10 @@ void FixContactDynamics::check_pair_style()
   for (int itype = 1; itype <= ntypes; itype++)
     for (int jtype = itype; jtype <= ntypes; jtype++)
       if (present[itype] && present[jtype] && pair->cutsq[itype][jtype] > 0.0)
-        error->all(FLERR, "Fix contact/dynamics: pair style {} also acts on atoms of group {} (types {} and {}); "
-                   "remove it, or add pair_forces yes to keep its forces", force->pair_style,
-                   group->names[igroup], itype, jtype);
+        error->all(FLERR,
+                   "Fix contact/dynamics: pair style {} also acts on atoms of group {} (types {} and {}); "
+                   "remove it, or add pair_forces yes to keep its forces",
+                   force->pair_style, group->names[igroup], itype, jtype);
 }
 
 // At setup and whenever the atom count changed (insertions): the masses checked, the mean
@@ -442,14 +438,14 @@ void FixContactDynamics::survey_group()
 // show in a polydisperse group as a uniform mass/r^3 with a non-uniform mass/r^2.
 void FixContactDynamics::check_disk_masses()
 {
-  double local[4];    // max m/r^2, max -m/r^2, max m/r^3, max -m/r^3
-  for (double &value : local) value = -HUGE_VAL;
+  double local[4];  // max m/r^2, max -m/r^2, max m/r^3, max -m/r^3
+  for (double& value : local) value = -HUGE_VAL;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(atom->mask[i] & groupbit)) continue;
     const double r = atom->radius[i];
     if (r <= 0.0 || atom->rmass[i] <= 0.0)
-      error->one(FLERR, "Fix contact/dynamics: atom {} has radius {} and mass {}; both must be > 0",
-                 atom->tag[i], r, atom->rmass[i]);
+      error->one(FLERR, "Fix contact/dynamics: atom {} has radius {} and mass {}; both must be > 0", atom->tag[i], r,
+                 atom->rmass[i]);
     const double per_area = atom->rmass[i] / (r * r);
     const double per_volume = per_area / r;
     local[0] = std::max(local[0], per_area);
@@ -459,19 +455,21 @@ void FixContactDynamics::check_disk_masses()
   }
   double global[4];
   MPI_Allreduce(local, global, 4, MPI_DOUBLE, MPI_MAX, world);
-  if (disc_density > 0.0 || global[0] == -HUGE_VAL) return;    // masses set here, or no grain
+  if (disc_density > 0.0 || global[0] == -HUGE_VAL) return;  // masses set here, or no grain
   const bool area_uniform = global[0] <= -global[1] * (1.0 + uniform_ratio_tolerance);
   const bool volume_uniform = global[2] <= -global[3] * (1.0 + uniform_ratio_tolerance);
   if (!area_uniform && volume_uniform)
-    error->all(FLERR, "Fix contact/dynamics: group {} has sphere masses (4/3 pi r^3 rho); use set "
-               "density/disc or the density keyword", group->names[igroup]);
+    error->all(FLERR,
+               "Fix contact/dynamics: group {} has sphere masses (4/3 pi r^3 rho); use set "
+               "density/disc or the density keyword",
+               group->names[igroup]);
 }
 
 // Of the group's grains; before any exists (an insertion fix fills the box later), the largest
 // announced one.
 double FixContactDynamics::group_mean_diameter()
 {
-  double local[2] = {0.0, 0.0};    // sum of diameters, count
+  double local[2] = {0.0, 0.0};  // sum of diameters, count
   for (int i = 0; i < atom->nlocal; i++)
     if (atom->mask[i] & groupbit) {
       local[0] += 2.0 * atom->radius[i];
@@ -485,8 +483,7 @@ double FixContactDynamics::group_mean_diameter()
 void FixContactDynamics::assign_disc_masses()
 {
   for (int i = 0; i < atom->nlocal; i++)
-    if (atom->mask[i] & groupbit)
-      atom->rmass[i] = MY_PI * atom->radius[i] * atom->radius[i] * disc_density;
+    if (atom->mask[i] & groupbit) atom->rmass[i] = MY_PI * atom->radius[i] * atom->radius[i] * disc_density;
 }
 
 void FixContactDynamics::setup(int)
@@ -529,7 +526,7 @@ void FixContactDynamics::choose_step_level()
     double speed;
     int tag;
   } local{0.0, 0}, fastest{0.0, 0};
-  double **v = atom->v;
+  double** v = atom->v;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(atom->mask[i] & groupbit)) continue;
     const double speed = std::sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1]);
@@ -542,7 +539,8 @@ void FixContactDynamics::choose_step_level()
     return;
   }
   output->write_restart(update->ntimestep);
-  error->all(FLERR, "Fix contact/dynamics: atom {} moves at {:.4g} m/s; the smallest step {:.4g} (dt_max/2^{}) "
+  error->all(FLERR,
+             "Fix contact/dynamics: atom {} moves at {:.4g} m/s; the smallest step {:.4g} (dt_max/2^{}) "
              "moves it {:.4g}, more than travel x skin = {:.4g} (restart files written if a restart command is set)",
              fastest.tag, fastest.speed, step_grid.step(step_grid.max_level), step_grid.max_level,
              fastest.speed * step_grid.step(step_grid.max_level), step_grid.travel);
@@ -564,10 +562,10 @@ void FixContactDynamics::set_timestep(double dt)
 void FixContactDynamics::warn_initial_overlaps()
 {
   const double threshold = initial_overlap_warning * mean_diameter;
-  double **x = atom->x;
-  const double *radius = atom->radius;
-  const tagint *tag = atom->tag;
-  double local[2] = {0.0, 0.0};    // count, deepest
+  double** x = atom->x;
+  const double* radius = atom->radius;
+  const tagint* tag = atom->tag;
+  double local[2] = {0.0, 0.0};  // count, deepest
   auto note = [&](double gap) {
     if (-gap <= threshold) return;
     local[0] += 1.0;
@@ -583,16 +581,18 @@ void FixContactDynamics::warn_initial_overlaps()
   }
   const cd::PeriodicBox box = periodic_box();
   for (int i = 0; i < atom->nlocal; i++)
-    for (const cd::Wall &wall : walls)
+    for (const cd::Wall& wall : walls)
       if (const auto touch = cd::wall_contact(wall, 0, {x[i][0], x[i][1], radius[i]}, 0.0, box))
         note(touch->geometry.gap);
   double global[2];
   MPI_Allreduce(&local[0], &global[0], 1, MPI_DOUBLE, MPI_SUM, world);
   MPI_Allreduce(&local[1], &global[1], 1, MPI_DOUBLE, MPI_MAX, world);
   if (global[0] > 0.0 && comm->me == 0)
-    error->warning(FLERR, "Fix contact/dynamics: {} contacts overlap by up to {:.3g} mean diameters "
+    error->warning(FLERR,
+                   "Fix contact/dynamics: {} contacts overlap by up to {:.3g} mean diameters "
                    "at the start of the run; rigid contacts keep such overlaps, create the grains "
-                   "apart", static_cast<bigint>(global[0]), global[1] / mean_diameter);
+                   "apart",
+                   static_cast<bigint>(global[0]), global[1] / mean_diameter);
 }
 
 // A ghost must be one hop from its owner: the exchange sends each ghost's velocity change
@@ -603,13 +603,17 @@ void FixContactDynamics::check_subdomains()
   if (!distributed) return;
   const double width = narrowest_split_subdomain();
   if (width < cutoff)
-    error->all(FLERR, "Fix contact/dynamics: an MPI subdomain is thinner than the contact cutoff "
-               "{} (2 max radius + skin); use fewer ranks or another processors grid", cutoff);
+    error->all(FLERR,
+               "Fix contact/dynamics: an MPI subdomain is thinner than the contact cutoff "
+               "{} (2 max radius + skin); use fewer ranks or another processors grid",
+               cutoff);
   if (width < narrow_subdomain_cutoffs * cutoff && !narrow_subdomains_reported) {
     if (comm->me == 0)
-      error->warning(FLERR, "Fix contact/dynamics: MPI subdomains down to {:.3g} wide, less than {:g} "
+      error->warning(FLERR,
+                     "Fix contact/dynamics: MPI subdomains down to {:.3g} wide, less than {:g} "
                      "contact cutoffs ({:.3g}); the decomposed sweep slowed a chute on subdomains "
-                     "this narrow, use fewer ranks along that axis", width, narrow_subdomain_cutoffs, cutoff);
+                     "this narrow, use fewer ranks along that axis",
+                     width, narrow_subdomain_cutoffs, cutoff);
     narrow_subdomains_reported = true;
   }
 }
@@ -641,9 +645,9 @@ void FixContactDynamics::pre_force(int)
 void FixContactDynamics::initial_integrate(int)
 {
   const double shift = (1.0 - theta) * update->dt;
-  double **x = atom->x;
-  double **v = atom->v;
-  const int *mask = atom->mask;
+  double** x = atom->x;
+  double** v = atom->v;
+  const int* mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++)
     if (mask[i] & groupbit) {
       x[i][0] += shift * v[i][0];
@@ -684,9 +688,10 @@ void FixContactDynamics::final_integrate()
     const double count = total_unconverged_steps;
     // Warn on the 1st, 10th, 100th ... unconverged step.
     if (comm->me == 0 && std::fabs(std::log10(count) - std::round(std::log10(count))) < 1e-12)
-      error->warning(FLERR, "Fix contact/dynamics: iteration cap {} reached at step {} (residual {:.3g}); "
-                     "{} step(s) unconverged so far", solver_settings.max_iterations,
-                     update->ntimestep, last_report.residual, count);
+      error->warning(FLERR,
+                     "Fix contact/dynamics: iteration cap {} reached at step {} (residual {:.3g}); "
+                     "{} step(s) unconverged so far",
+                     solver_settings.max_iterations, update->ntimestep, last_report.residual, count);
   }
 }
 
@@ -705,7 +710,7 @@ void FixContactDynamics::solve_contacts()
 
 /* ---------------------------------------------------------------------- */
 
-const cd::ContactLaw &FixContactDynamics::law(int itype, int jtype) const
+const cd::ContactLaw& FixContactDynamics::law(int itype, int jtype) const
 {
   return type_laws[itype * (law_types + 1) + jtype];
 }
@@ -730,32 +735,34 @@ void FixContactDynamics::gather_bodies()
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   const double dt = update->dt;
-  double **v = atom->v;
-  double **f = atom->f;
-  double **omega = atom->omega;
-  double **torque = atom->torque_flag ? atom->torque : nullptr;
-  const double *radius = atom->radius;
-  const double *rmass = atom->rmass;
-  const int *mask = atom->mask;
+  double** v = atom->v;
+  double** f = atom->f;
+  double** omega = atom->omega;
+  double** torque = atom->torque_flag ? atom->torque : nullptr;
+  const double* radius = atom->radius;
+  const double* rmass = atom->rmass;
+  const int* mask = atom->mask;
 
   map_bodies();
   bodies.reset(1 + nall);
   for (int i = 0; i < nall; i++) {
-    if (body_of_atom[i] != 1 + i) continue;    // a periodic image of another body
+    if (body_of_atom[i] != 1 + i) continue;  // a periodic image of another body
     if (i < nlocal && radius[i] > covered_radius)
-      error->one(FLERR, "Fix contact/dynamics: atom {} has radius {}, larger than the {} the "
-                 "neighbour cutoff was set for; start a new run", atom->tag[i], radius[i], covered_radius);
+      error->one(FLERR,
+                 "Fix contact/dynamics: atom {} has radius {}, larger than the {} the "
+                 "neighbour cutoff was set for; start a new run",
+                 atom->tag[i], radius[i], covered_radius);
     const cd::BodyVelocity start{v[i][0], v[i][1], omega[i][2]};
     bodies.start_velocity[1 + i] = start;
     bodies.velocity[1 + i] = start;
-    if (!(mask[i] & groupbit)) continue;    // obstacle: infinite mass, keeps its velocity
+    if (!(mask[i] & groupbit)) continue;  // obstacle: infinite mass, keeps its velocity
     // Ghost masses are refreshed only at reneighbouring: take them from the density if set.
     const double mass = disc_density > 0.0 ? MY_PI * radius[i] * radius[i] * disc_density : rmass[i];
-    cd::BodyInertia &inertia = bodies.inertia[1 + i];
+    cd::BodyInertia& inertia = bodies.inertia[1 + i];
     inertia.inv_mass = 1.0 / mass;
     inertia.inv_inertia = 1.0 / (disk_inertia_factor * mass * radius[i] * radius[i]);
-    if (i >= nlocal) continue;    // ghosts receive their owner's free velocity below
-    cd::BodyVelocity &free = bodies.velocity[1 + i];
+    if (i >= nlocal) continue;  // ghosts receive their owner's free velocity below
+    cd::BodyVelocity& free = bodies.velocity[1 + i];
     free.vx += dt * f[i][0] * inertia.inv_mass;
     free.vy += dt * f[i][1] * inertia.inv_mass;
     if (torque) free.spin += dt * torque[i][2] * inertia.inv_inertia;
@@ -768,8 +775,8 @@ void FixContactDynamics::gather_bodies()
 
 // Before the solve a pair is solved or watched (cd::StepContacts::add); found during the solve
 // (a wider look) it is watched, and joins only if promoted, its record with it.
-void FixContactDynamics::add_pair(const cd::ContactGeometry &geometry, const cd::ContactLaw &contact_law,
-                                  const ContactRecord &record, bool during_solve)
+void FixContactDynamics::add_pair(const cd::ContactGeometry& geometry, const cd::ContactLaw& contact_law,
+                                  const ContactRecord& record, bool during_solve)
 {
   const cd::StepParameters step{update->dt, theta};
   const int watched_index = static_cast<int>(watched_records.size());
@@ -791,17 +798,17 @@ void FixContactDynamics::collect_pairs(double from_margin, double to_margin)
 
 void FixContactDynamics::collect_grain_pairs(double from_margin, double to_margin)
 {
-  double **x = atom->x;
-  const double *radius = atom->radius;
-  const tagint *tag = atom->tag;
-  const int *type = atom->type;
-  const int *mask = atom->mask;
+  double** x = atom->x;
+  const double* radius = atom->radius;
+  const tagint* tag = atom->tag;
+  const int* type = atom->type;
+  const int* mask = atom->mask;
   const int nlocal = atom->nlocal;
   const bool widening = std::isfinite(from_margin);
 
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
-    const int *neighbours = list->firstneigh[i];
+    const int* neighbours = list->firstneigh[i];
     const cd::Disk disk_i{x[i][0], x[i][1], radius[i]};
     for (int jj = 0; jj < list->numneigh[i]; jj++) {
       const int j = neighbours[jj] & NEIGHMASK;
@@ -814,8 +821,10 @@ void FixContactDynamics::collect_grain_pairs(double from_margin, double to_margi
       if (!reach.within(1 + i, disk_i, body_j, disk_j, to_margin)) continue;
       if (widening && reach.within(1 + i, disk_i, body_j, disk_j, from_margin)) continue;
       if (body_j == 1 + i)
-        error->one(FLERR, "Fix contact/dynamics: atom {} touches its own periodic image; the cell "
-                   "is too short", tag[i]);
+        error->one(FLERR,
+                   "Fix contact/dynamics: atom {} touches its own periodic image; the cell "
+                   "is too short",
+                   tag[i]);
       const cd::ContactGeometry geometry = cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j);
       add_pair(geometry, law(type[i], type[j]), ContactRecord::between_atoms(tag, i, j, geometry), widening);
     }
@@ -823,8 +832,8 @@ void FixContactDynamics::collect_grain_pairs(double from_margin, double to_margi
 }
 
 // By the rule of collect_grain_pairs the smaller ID is an owned atom.
-FixContactDynamics::ContactRecord FixContactDynamics::ContactRecord::between_atoms(
-    const tagint *tag, int i, int j, const cd::ContactGeometry &geometry)
+FixContactDynamics::ContactRecord FixContactDynamics::ContactRecord::between_atoms(const tagint* tag, int i, int j,
+                                                                                   const cd::ContactGeometry& geometry)
 {
   const int keeper = tag[i] < tag[j] ? i : j;
   ContactRecord record;
@@ -837,8 +846,9 @@ FixContactDynamics::ContactRecord FixContactDynamics::ContactRecord::between_ato
   return record;
 }
 
-FixContactDynamics::ContactRecord FixContactDynamics::ContactRecord::against_wall(
-    const tagint *tag, int i, int slot, cd::WallPart part, const cd::ContactGeometry &geometry)
+FixContactDynamics::ContactRecord FixContactDynamics::ContactRecord::against_wall(const tagint* tag, int i, int slot,
+                                                                                  cd::WallPart part,
+                                                                                  const cd::ContactGeometry& geometry)
 {
   ContactRecord record;
   record.atom_a = tag[i];
@@ -859,7 +869,7 @@ void FixContactDynamics::collect_wall_pairs(double from_margin, double to_margin
 {
   if (walls.empty()) return;
   const cd::PeriodicBox box = periodic_box();
-  double **x = atom->x;
+  double** x = atom->x;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(atom->mask[i] & groupbit)) continue;
     const cd::Disk disk{x[i][0], x[i][1], atom->radius[i]};
@@ -868,8 +878,7 @@ void FixContactDynamics::collect_wall_pairs(double from_margin, double to_margin
       const auto touch = cd::wall_contact(walls[w], 1 + i, disk, reach_i + to_margin, box);
       if (!touch || touch->geometry.gap <= reach_i + from_margin) continue;
       add_pair(touch->geometry, walls[w].law,
-               ContactRecord::against_wall(atom->tag, i, w, touch->part, touch->geometry),
-               std::isfinite(from_margin));
+               ContactRecord::against_wall(atom->tag, i, w, touch->part, touch->geometry), std::isfinite(from_margin));
     }
   }
 }
@@ -881,7 +890,7 @@ void FixContactDynamics::interleave_contacts()
 
 // Contacts (and their records) in the order of permutation: its k-th entry is the old index of
 // the new k-th contact.
-void FixContactDynamics::reorder_contacts(const std::vector<int> &permutation)
+void FixContactDynamics::reorder_contacts(const std::vector<int>& permutation)
 {
   reordered_contacts.clear();
   reordered_records.clear();
@@ -912,10 +921,10 @@ void FixContactDynamics::shuffle_contacts()
 void FixContactDynamics::load_warm_start()
 {
   for (std::size_t k = 0; k < pairs.solved.size(); k++) {
-    const double *row = history[records[k].history_atom];
+    const double* row = history[records[k].history_atom];
     const int count = static_cast<int>(row[0]);
     for (int slot = 0; slot < count; slot++) {
-      const double *entry = row + 1 + 3 * slot;
+      const double* entry = row + 1 + 3 * slot;
       if (entry[0] != records[k].history_key) continue;
       cd::warm_start(pairs.solved[k], {entry[1], entry[2]});
       break;
@@ -925,12 +934,14 @@ void FixContactDynamics::load_warm_start()
 
 void FixContactDynamics::append_history(int atom_index, double key, cd::Local2 impulse)
 {
-  double *row = history[atom_index];
+  double* row = history[atom_index];
   const int count = static_cast<int>(row[0]);
   if (count == max_contacts)
-    error->one(FLERR, "Fix contact/dynamics: atom {} has more than {} loaded contacts; raise "
-               "max_contacts", atom->tag[atom_index], max_contacts);
-  double *entry = row + 1 + 3 * count;
+    error->one(FLERR,
+               "Fix contact/dynamics: atom {} has more than {} loaded contacts; raise "
+               "max_contacts",
+               atom->tag[atom_index], max_contacts);
+  double* entry = row + 1 + 3 * count;
   entry[0] = key;
   entry[1] = impulse.n;
   entry[2] = impulse.t;
@@ -943,11 +954,10 @@ void FixContactDynamics::store_warm_start()
   loaded_contacts = 0;
   for (std::size_t k = 0; k < pairs.solved.size(); k++) {
     const cd::Local2 p = pairs.solved[k].impulse;
-    const ContactRecord &record = records[k];
+    const ContactRecord& record = records[k];
     if (!std::isfinite(p.n) || !std::isfinite(p.t))
-      error->one(FLERR, "Fix contact/dynamics: non-finite impulse between atom {} and {} {} at step {}",
-                 record.atom_a, record.wall ? "wall" : "atom", record.wall ? record.wall : record.atom_b,
-                 update->ntimestep);
+      error->one(FLERR, "Fix contact/dynamics: non-finite impulse between atom {} and {} {} at step {}", record.atom_a,
+                 record.wall ? "wall" : "atom", record.wall ? record.wall : record.atom_b, update->ntimestep);
     if (p.n <= 0.0) continue;
     ++loaded_contacts;
     append_history(record.history_atom, record.history_key, p);
@@ -961,23 +971,24 @@ void FixContactDynamics::write_back_motion()
   // Neighbour lists are rebuilt once a grain has moved half the skin; a grain moving more than
   // that in one step could pass through a pair the list does not hold.
   const double step_limit_sq = 0.25 * neighbor->skin * neighbor->skin;
-  double **x = atom->x;
-  double **v = atom->v;
-  double **omega = atom->omega;
-  const int *mask = atom->mask;
+  double** x = atom->x;
+  double** v = atom->v;
+  double** omega = atom->omega;
+  const int* mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    const cd::BodyVelocity &velocity = bodies.velocity[1 + i];
+    const cd::BodyVelocity& velocity = bodies.velocity[1 + i];
     if (!std::isfinite(velocity.vx) || !std::isfinite(velocity.vy) || !std::isfinite(velocity.spin))
       error->one(FLERR, "Fix contact/dynamics: non-finite velocity of atom {} at step {}", atom->tag[i],
                  update->ntimestep);
-    const cd::BodyVelocity &start = bodies.start_velocity[1 + i];
+    const cd::BodyVelocity& start = bodies.start_velocity[1 + i];
     const double dx = dt * ((1.0 - theta) * start.vx + theta * velocity.vx);
     const double dy = dt * ((1.0 - theta) * start.vy + theta * velocity.vy);
     if (dx * dx + dy * dy > step_limit_sq)
-      error->one(FLERR, "Fix contact/dynamics: atom {} moved {} in step {}, more than half the "
-                 "neighbour skin {}; reduce the time step or raise the skin", atom->tag[i],
-                 std::sqrt(dx * dx + dy * dy), update->ntimestep, neighbor->skin);
+      error->one(FLERR,
+                 "Fix contact/dynamics: atom {} moved {} in step {}, more than half the "
+                 "neighbour skin {}; reduce the time step or raise the skin",
+                 atom->tag[i], std::sqrt(dx * dx + dy * dy), update->ntimestep, neighbor->skin);
     v[i][0] = velocity.vx;
     v[i][1] = velocity.vy;
     omega[i][2] = velocity.spin;
@@ -987,7 +998,7 @@ void FixContactDynamics::write_back_motion()
 }
 
 // The step's output vector: sums and maxima over ranks.
-void FixContactDynamics::reduce_step_outputs(const cd::OverlapSums &overlaps)
+void FixContactDynamics::reduce_step_outputs(const cd::OverlapSums& overlaps)
 {
   const double local_sums[3] = {static_cast<double>(pairs.solved.size()), static_cast<double>(loaded_contacts),
                                 overlaps.total};
@@ -1012,7 +1023,7 @@ void FixContactDynamics::RankExchange::synchronise_velocities()
   fix.comm->forward_comm_fix(&fix);
 }
 
-void FixContactDynamics::RankExchange::after_sweep(cd::SweepChange &change)
+void FixContactDynamics::RankExchange::after_sweep(cd::SweepChange& change)
 {
   synchronise_velocities();
   double sums[4] = {change.sum_change_sq, change.sum_scale_sq, change.sum_scale, change.contacts};
@@ -1033,11 +1044,11 @@ bool FixContactDynamics::RankExchange::on_any_rank(bool here)
   return any != 0;
 }
 
-int FixContactDynamics::pack_forward_comm(int n, int *list, double *buf, int, int *)
+int FixContactDynamics::pack_forward_comm(int n, int* list, double* buf, int, int*)
 {
   int m = 0;
   for (int k = 0; k < n; k++) {
-    const cd::BodyVelocity &velocity = bodies.velocity[body_of_atom[list[k]]];
+    const cd::BodyVelocity& velocity = bodies.velocity[body_of_atom[list[k]]];
     buf[m++] = velocity.vx;
     buf[m++] = velocity.vy;
     buf[m++] = velocity.spin;
@@ -1045,11 +1056,11 @@ int FixContactDynamics::pack_forward_comm(int n, int *list, double *buf, int, in
   return m;
 }
 
-void FixContactDynamics::unpack_forward_comm(int n, int first, double *buf)
+void FixContactDynamics::unpack_forward_comm(int n, int first, double* buf)
 {
   int m = 0;
   for (int g = first; g < first + n; g++, m += 3) {
-    if (body_of_atom[g] != 1 + g) continue;    // an image: its body is updated elsewhere
+    if (body_of_atom[g] != 1 + g) continue;  // an image: its body is updated elsewhere
     const cd::BodyVelocity velocity{buf[m], buf[m + 1], buf[m + 2]};
     bodies.velocity[1 + g] = velocity;
     ghost_reference[1 + g] = velocity;
@@ -1058,13 +1069,13 @@ void FixContactDynamics::unpack_forward_comm(int n, int first, double *buf)
 
 cd::BodyVelocity FixContactDynamics::velocity_change_of_ghost(int g) const
 {
-  if (body_of_atom[g] != 1 + g) return {};    // images of owned atoms change their owner directly
-  const cd::BodyVelocity &now = bodies.velocity[1 + g];
-  const cd::BodyVelocity &before = ghost_reference[1 + g];
+  if (body_of_atom[g] != 1 + g) return {};  // images of owned atoms change their owner directly
+  const cd::BodyVelocity& now = bodies.velocity[1 + g];
+  const cd::BodyVelocity& before = ghost_reference[1 + g];
   return {now.vx - before.vx, now.vy - before.vy, now.spin - before.spin};
 }
 
-int FixContactDynamics::pack_reverse_comm(int n, int first, double *buf)
+int FixContactDynamics::pack_reverse_comm(int n, int first, double* buf)
 {
   int m = 0;
   for (int g = first; g < first + n; g++) {
@@ -1076,11 +1087,11 @@ int FixContactDynamics::pack_reverse_comm(int n, int first, double *buf)
   return m;
 }
 
-void FixContactDynamics::unpack_reverse_comm(int n, int *list, double *buf)
+void FixContactDynamics::unpack_reverse_comm(int n, int* list, double* buf)
 {
   int m = 0;
   for (int k = 0; k < n; k++, m += 3) {
-    cd::BodyVelocity &velocity = bodies.velocity[body_of_atom[list[k]]];
+    cd::BodyVelocity& velocity = bodies.velocity[body_of_atom[list[k]]];
     velocity.vx += buf[m];
     velocity.vy += buf[m + 1];
     velocity.spin += buf[m + 2];
@@ -1097,8 +1108,8 @@ void FixContactDynamics::fill_local_output()
   int row = 0;
   for (std::size_t k = 0; k < pairs.solved.size(); k++) {
     if (pairs.solved[k].impulse.n <= 0.0) continue;
-    const ContactRecord &record = records[k];
-    double *out = array_local[row++];
+    const ContactRecord& record = records[k];
+    double* out = array_local[row++];
     out[0] = record.atom_a;
     out[1] = record.atom_b;
     out[2] = record.wall;
@@ -1137,33 +1148,29 @@ namespace {
 // and the grid the level refers to (dt_max, steps per alignment period).
 constexpr double restart_version = -3.0;
 constexpr double restart_version_without_grid = -2.0;
-}    // namespace
+}  // namespace
 
-void FixContactDynamics::write_restart(FILE *fp)
+void FixContactDynamics::write_restart(FILE* fp)
 {
   if (comm->me != 0) return;
   const bool known = adaptive_step && step_state_known;
-  const double elapsed =
-      update->ntimestep == 0 ? 0.0 : update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
-  const double record[9] = {restart_version,
-                            total_iterations,
-                            total_unconverged_steps,
-                            total_steps,
-                            known ? step_level : -1.0,
-                            known ? static_cast<double>(steps_into_period) : -1.0,
-                            elapsed,
-                            step_grid.dt_max,
-                            static_cast<double>(step_grid.steps_per_align)};
+  const double elapsed = update->ntimestep == 0
+                             ? 0.0
+                             : update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
+  const double record[9] = {
+      restart_version, total_iterations,          total_unconverged_steps,
+      total_steps,     known ? step_level : -1.0, known ? static_cast<double>(steps_into_period) : -1.0,
+      elapsed,         step_grid.dt_max,          static_cast<double>(step_grid.steps_per_align)};
   const int size = sizeof(record);
   fwrite(&size, sizeof(int), 1, fp);
   fwrite(record, sizeof(double), 9, fp);
 }
 
-void FixContactDynamics::restart(char *buf)
+void FixContactDynamics::restart(char* buf)
 {
-  const auto *record = reinterpret_cast<const double *>(buf);
+  const auto* record = reinterpret_cast<const double*>(buf);
   const bool versioned = record[0] == restart_version || record[0] == restart_version_without_grid;
-  const double *totals = versioned ? record + 1 : record;
+  const double* totals = versioned ? record + 1 : record;
   total_iterations = totals[0];
   total_unconverged_steps = totals[1];
   total_steps = totals[2];
@@ -1201,38 +1208,40 @@ void FixContactDynamics::set_arrays(int i)
   history[i][0] = 0.0;
 }
 
-int FixContactDynamics::pack_exchange(int i, double *buf)
+int FixContactDynamics::pack_exchange(int i, double* buf)
 {
   const int n = 1 + 3 * static_cast<int>(history[i][0]);
   std::memcpy(buf, history[i], sizeof(double) * n);
   return n;
 }
 
-int FixContactDynamics::unpack_exchange(int nlocal, double *buf)
+int FixContactDynamics::unpack_exchange(int nlocal, double* buf)
 {
   const int n = 1 + 3 * static_cast<int>(buf[0]);
   std::memcpy(history[nlocal], buf, sizeof(double) * n);
   return n;
 }
 
-int FixContactDynamics::pack_restart(int i, double *buf)
+int FixContactDynamics::pack_restart(int i, double* buf)
 {
   const int n = 1 + 3 * static_cast<int>(history[i][0]);
-  buf[0] = n + 1;    // LAMMPS convention: the first value counts the values of this fix
+  buf[0] = n + 1;  // LAMMPS convention: the first value counts the values of this fix
   std::memcpy(buf + 1, history[i], sizeof(double) * n);
   return n + 1;
 }
 
 void FixContactDynamics::unpack_restart(int nlocal, int nth)
 {
-  double **extra = atom->extra;
+  double** extra = atom->extra;
   int m = 0;
   for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
   m++;
   const int count = static_cast<int>(extra[nlocal][m]);
   if (count > max_contacts)
-    error->one(FLERR, "Fix contact/dynamics: restart holds {} contacts for atom {}, more than "
-               "max_contacts {}", count, atom->tag[nlocal], max_contacts);
+    error->one(FLERR,
+               "Fix contact/dynamics: restart holds {} contacts for atom {}, more than "
+               "max_contacts {}",
+               count, atom->tag[nlocal], max_contacts);
   std::memcpy(history[nlocal], &extra[nlocal][m], sizeof(double) * (1 + 3 * count));
 }
 

@@ -5,7 +5,7 @@
 #include "lammps.h"
 #include "style_registry.h"
 
-int main(int argc, char **argv)
+int main(int argc, char** argv)
 {
   MPI_Init(&argc, &argv);
   {

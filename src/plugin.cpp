@@ -3,11 +3,11 @@
 #include "style_registry.h"
 #include "version.h"
 
-extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
+extern "C" void lammpsplugin_init(void* lmp, void* handle, void* regfunc)
 {
   auto register_style = reinterpret_cast<lammpsplugin_regfunc>(regfunc);
   int count = 0;
-  const LAMMPS_NS::FixStyleEntry *styles = LAMMPS_NS::project_fix_styles(count);
+  const LAMMPS_NS::FixStyleEntry* styles = LAMMPS_NS::project_fix_styles(count);
   for (int k = 0; k < count; k++) {
     lammpsplugin_t plugin;
     plugin.version = LAMMPS_VERSION;
@@ -15,7 +15,7 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
     plugin.name = styles[k].name;
     plugin.info = styles[k].info;
     plugin.author = "lammps-contact-dynamics project";
-    plugin.creator.v2 = reinterpret_cast<lammpsplugin_factory2 *>(styles[k].create);
+    plugin.creator.v2 = reinterpret_cast<lammpsplugin_factory2*>(styles[k].create);
     plugin.handle = handle;
     register_style(&plugin, lmp);
   }

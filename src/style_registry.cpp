@@ -7,7 +7,8 @@
 namespace LAMMPS_NS {
 namespace {
 
-template <typename T> Fix *create_fix(LAMMPS *lmp, int narg, char **arg)
+template <typename T>
+Fix* create_fix(LAMMPS* lmp, int narg, char** arg)
 {
   return new T(lmp, narg, arg);
 }
@@ -17,17 +18,17 @@ const FixStyleEntry fix_styles[] = {
      &create_fix<FixContactDynamics>},
 };
 
-}    // namespace
+}  // namespace
 
-const FixStyleEntry *project_fix_styles(int &count)
+const FixStyleEntry* project_fix_styles(int& count)
 {
   count = sizeof(fix_styles) / sizeof(fix_styles[0]);
   return fix_styles;
 }
 
-void register_project_styles(LAMMPS *lmp)
+void register_project_styles(LAMMPS* lmp)
 {
-  for (const FixStyleEntry &style : fix_styles) (*lmp->modify->fix_map)[style.name] = style.create;
+  for (const FixStyleEntry& style : fix_styles) (*lmp->modify->fix_map)[style.name] = style.create;
 }
 
-}    // namespace LAMMPS_NS
+}  // namespace LAMMPS_NS

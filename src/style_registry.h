@@ -6,14 +6,14 @@ class LAMMPS;
 class Fix;
 
 struct FixStyleEntry {
-  const char *name;
-  const char *info;
-  Fix *(*create)(LAMMPS *, int, char **);
+  const char* name;
+  const char* info;
+  Fix* (*create)(LAMMPS*, int, char**);
 };
 
 // Every fix style of this project.
-const FixStyleEntry *project_fix_styles(int &count);
+const FixStyleEntry* project_fix_styles(int& count);
 
 // Adds the project's styles to a LAMMPS instance (its Modify style maps).
-void register_project_styles(LAMMPS *lmp);
-}    // namespace LAMMPS_NS
+void register_project_styles(LAMMPS* lmp);
+}  // namespace LAMMPS_NS

@@ -24,8 +24,8 @@ ContactGeometry disk_disk_geometry(int body_a, const Disk& a, int body_b, const 
   return g;
 }
 
-ContactGeometry disk_world_geometry(int body_a, const Disk& a, double dx, double dy,
-                                    double fallback_nx, double fallback_ny)
+ContactGeometry disk_world_geometry(int body_a, const Disk& a, double dx, double dy, double fallback_nx,
+                                    double fallback_ny)
 {
   const double distance = std::sqrt(dx * dx + dy * dy);
   ContactGeometry g;

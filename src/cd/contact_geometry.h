@@ -29,13 +29,13 @@ struct Disk {
 // Where and how two bodies meet, before any mechanics.
 struct ContactGeometry {
   int body_a = 0;
-  int body_b = 0;          // world_body for walls
-  double normal_x = 0.0;   // unit normal pointing from b to a
+  int body_b = 0;         // world_body for walls
+  double normal_x = 0.0;  // unit normal pointing from b to a
   double normal_y = 0.0;
-  double gap = 0.0;        // signed distance between surfaces, negative when overlapping (m)
-  double lever_a = 0.0;    // distance from the centre of a to the contact point (m)
-  double lever_b = 0.0;    // same for b; 0 for a wall point
-  double point_x = 0.0;    // contact point, midway across the gap (m)
+  double gap = 0.0;      // signed distance between surfaces, negative when overlapping (m)
+  double lever_a = 0.0;  // distance from the centre of a to the contact point (m)
+  double lever_b = 0.0;  // same for b; 0 for a wall point
+  double point_x = 0.0;  // contact point, midway across the gap (m)
   double point_y = 0.0;
 };
 
@@ -46,7 +46,7 @@ ContactGeometry disk_disk_geometry(int body_a, const Disk& a, int body_b, const 
 // Geometry between a disk and a fixed point of the world (the nearest point of a wall),
 // given the vector (dx, dy) from that point to the disk centre, already reduced to the nearest
 // periodic image, and the unit normal to use if the centre lies on the wall (dx = dy = 0).
-ContactGeometry disk_world_geometry(int body_a, const Disk& a, double dx, double dy,
-                                    double fallback_nx, double fallback_ny);
+ContactGeometry disk_world_geometry(int body_a, const Disk& a, double dx, double dy, double fallback_nx,
+                                    double fallback_ny);
 
 }  // namespace cd

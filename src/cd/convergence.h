@@ -38,8 +38,8 @@ struct SweepChange {
   void add(Local2 velocity_change, Local2 velocity_scale)
   {
     add_squares(velocity_change, velocity_scale);
-    max_change = std::max(max_change, std::sqrt(velocity_change.n * velocity_change.n +
-                                                velocity_change.t * velocity_change.t));
+    max_change =
+        std::max(max_change, std::sqrt(velocity_change.n * velocity_change.n + velocity_change.t * velocity_change.t));
     sum_scale += std::sqrt(velocity_scale.n * velocity_scale.n + velocity_scale.t * velocity_scale.t);
   }
 

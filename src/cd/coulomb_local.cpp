@@ -15,8 +15,7 @@ Local2 project_on_friction_cone(Local2 p, double mu)
 double natural_map_residual_squared(Local2 impulse, Local2 velocity, double mu)
 {
   const Local2 modified{velocity.n + mu * std::abs(velocity.t), velocity.t};
-  const Local2 projected =
-      project_on_friction_cone({impulse.n - modified.n, impulse.t - modified.t}, mu);
+  const Local2 projected = project_on_friction_cone({impulse.n - modified.n, impulse.t - modified.t}, mu);
   const double dn = impulse.n - projected.n;
   const double dt = impulse.t - projected.t;
   return dn * dn + dt * dt;

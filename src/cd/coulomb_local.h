@@ -28,7 +28,7 @@ struct Delassus2 {
 // impulse, then the tangential impulse clamped to the cone. The inverses are kept so that
 // the sweep divides nothing.
 struct DiskDelassus {
-  double nn = 0.0;          // m/s per N s
+  double nn = 0.0;  // m/s per N s
   double tt = 0.0;
   double inverse_nn = 0.0;  // N s per m/s
   double inverse_tt = 0.0;
@@ -73,8 +73,7 @@ inline LocalSolution solve_coulomb_local(const Delassus2& w, Local2 u_free, doub
   if (u_free.n >= 0.0) return {{0.0, 0.0}, ContactStatus::no_contact};
 
   const double inv_det = 1.0 / (w.nn * w.tt - w.nt * w.nt);
-  const Local2 stick{(-u_free.n * w.tt + u_free.t * w.nt) * inv_det,
-                     (-u_free.t * w.nn + u_free.n * w.nt) * inv_det};
+  const Local2 stick{(-u_free.n * w.tt + u_free.t * w.nt) * inv_det, (-u_free.t * w.nn + u_free.n * w.nt) * inv_det};
   if (stick.n >= 0.0 && std::abs(stick.t) <= mu * stick.n) return {stick, ContactStatus::stick};
 
   // The sticking impulse leaves the cone on the side of its tangential sign: friction then

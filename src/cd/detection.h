@@ -81,8 +81,8 @@ struct StepContacts {
   }
   // The pair is solved if it is a candidate (is_candidate), watched otherwise. Returns true if
   // solved. Before the solve only: bodies.velocity must be the free velocity.
-  bool add(const Contact& frame, const ContactLaw& law, int record, const BodySet& bodies,
-           const StepParameters& step, double alert);
+  bool add(const Contact& frame, const ContactLaw& law, int record, const BodySet& bodies, const StepParameters& step,
+           double alert);
   // Watched whatever its velocity: pairs found during the solve join only by promotion.
   void watch(const Contact& frame, const ContactLaw& law, int record) { watched.push_back({frame, law, record}); }
 };

@@ -105,8 +105,7 @@ Contact contact_frame(const ContactGeometry& g)
 
 bool is_candidate(const Contact& frame, const BodySet& bodies, const StepParameters& step, double alert)
 {
-  const Local2 u_free =
-      relative_velocity(frame, bodies.velocity[frame.body_a], bodies.velocity[frame.body_b]);
+  const Local2 u_free = relative_velocity(frame, bodies.velocity[frame.body_a], bodies.velocity[frame.body_b]);
   return frame.gap + step.theta * step.dt * std::min(u_free.n, 0.0) <= alert;
 }
 
@@ -130,8 +129,7 @@ void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies,
     c.velocity_bias = 0.0;
     return;
   }
-  const double u_start =
-      relative_velocity(c, bodies.start_velocity[c.body_a], bodies.start_velocity[c.body_b]).n;
+  const double u_start = relative_velocity(c, bodies.start_velocity[c.body_a], bodies.start_velocity[c.body_b]).n;
   const double advance = step.theta * step.dt;
   const bool impact = c.gap <= 0.0 || c.gap + advance * u_start <= 0.0;
   c.velocity_bias = impact ? law.restitution * std::min(u_start, 0.0) : c.gap / advance;
@@ -228,8 +226,7 @@ double end_of_step_gap(double gap, double normal_velocity, const StepParameters&
   return gap + step.theta * step.dt * normal_velocity;
 }
 
-bool closes_after_solve(const Contact& frame, const std::vector<BodyVelocity>& velocity,
-                        const StepParameters& step)
+bool closes_after_solve(const Contact& frame, const std::vector<BodyVelocity>& velocity, const StepParameters& step)
 {
   const double u_n = relative_velocity(frame, velocity[frame.body_a], velocity[frame.body_b]).n;
   return end_of_step_gap(frame.gap, u_n, step) < 0.0;

@@ -38,19 +38,19 @@ struct BodySet {
 struct Contact {
   int body_a = 0;
   int body_b = 0;
-  double normal_x = 0.0;          // unit normal from b to a; tangent t = (-n_y, n_x)
+  double normal_x = 0.0;  // unit normal from b to a; tangent t = (-n_y, n_x)
   double normal_y = 0.0;
-  double lever_a = 0.0;           // centre-to-contact distances (m)
+  double lever_a = 0.0;  // centre-to-contact distances (m)
   double lever_b = 0.0;
-  double inv_mass_a = 0.0;        // 1/kg
+  double inv_mass_a = 0.0;  // 1/kg
   double inv_mass_b = 0.0;
-  double spin_gain_a = 0.0;       // lever * inverse inertia: spin change per tangential impulse
+  double spin_gain_a = 0.0;  // lever * inverse inertia: spin change per tangential impulse
   double spin_gain_b = 0.0;
-  DiskDelassus delassus;          // local W, diagonal for disks
+  DiskDelassus delassus;  // local W, diagonal for disks
   double mu = 0.0;
-  double velocity_bias = 0.0;     // b (m/s): the normal law acts on u_n + b (prepare_mechanics)
-  double gap = 0.0;               // at the predicted configuration (m)
-  Local2 impulse;                 // accumulated over the step (N s)
+  double velocity_bias = 0.0;  // b (m/s): the normal law acts on u_n + b (prepare_mechanics)
+  double gap = 0.0;            // at the predicted configuration (m)
+  Local2 impulse;              // accumulated over the step (N s)
 };
 
 // Relative velocity of a with respect to b at the contact point, in the local frame.
@@ -80,8 +80,7 @@ bool is_candidate(const Contact& frame, const BodySet& bodies, const StepParamet
 //       b = gap / (theta dt), the gap may close but not overlap by the end of the step.
 // The second law holds resting contacts whose gap is a rounding error above zero, and
 // keeps contacts that close gently from overlapping; it adds no restitution.
-void prepare_mechanics(Contact& contact, const ContactLaw& law, const BodySet& bodies,
-                       const StepParameters& step);
+void prepare_mechanics(Contact& contact, const ContactLaw& law, const BodySet& bodies, const StepParameters& step);
 
 // A permutation of the contacts in their order, except that contacts sharing a body are kept
 // at least `spacing` places apart where a nearby contact can fill the gap: an update then never
@@ -127,8 +126,7 @@ class SweepExchange {
 // `settings.norm` needs. Frictionless contacts (mu = 0) take the shortcut of
 // SolverSettings::frictionless_shortcut unless it is false.
 SweepChange sweep(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings);
-SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                  const SolverSettings& settings);
+SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const SolverSettings& settings);
 
 // Sweeps until the norm falls to the tolerance or the iteration cap is reached. The contacts'
 // impulses must already be applied to `velocity` (apply_impulses).
@@ -141,7 +139,6 @@ double end_of_step_gap(double gap, double normal_velocity, const StepParameters&
 // True if a pair left out of the solve would overlap at the end of the step with the solved
 // velocities: other impulses (a grain stopped by the floor, say) drove it shut faster than
 // the candidate selection foresaw. Such pairs join the contacts and the solve continues.
-bool closes_after_solve(const Contact& frame, const std::vector<BodyVelocity>& velocity,
-                        const StepParameters& step);
+bool closes_after_solve(const Contact& frame, const std::vector<BodyVelocity>& velocity, const StepParameters& step);
 
 }  // namespace cd

@@ -14,8 +14,8 @@ struct StepGrid {
   double travel = 0.0;      // m: largest displacement of a grain in one step
   int max_level = 12;       // smallest step dt_max / 2^max_level
 
-  double step(int level) const;                   // s
-  long long steps_per_period(int level) const;    // steps in one alignment period at that step
+  double step(int level) const;                 // s
+  long long steps_per_period(int level) const;  // steps in one alignment period at that step
   // Smallest level whose step keeps max_speed (m/s) * step <= travel; -1 if none up to max_level.
   int level_for(double max_speed) const;
 };

@@ -35,8 +35,8 @@ Pile make_pile(double grain_mu, double floor_mu)
   std::vector<cd::Disk>& disks = pile.disks;
   for (int row = 0; row < rows; row++)
     for (int column = 0; column < columns - row % 2; column++)
-      disks.push_back({(2 * column + row % 2 + 1) * radius, (1.0 + row * std::sqrt(3.0)) * radius,
-                       radius * (1.0 - shrink(rng))});
+      disks.push_back(
+          {(2 * column + row % 2 + 1) * radius, (1.0 + row * std::sqrt(3.0)) * radius, radius * (1.0 - shrink(rng))});
   const int count = static_cast<int>(disks.size());
   pile.bodies.reset(count + 1);
   for (int k = 0; k < count; k++) {

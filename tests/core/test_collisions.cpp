@@ -63,7 +63,7 @@ TEST_P(BinaryImpact, HeadOnFollowsNewtonRestitution)
 TEST_P(BinaryImpact, ObliqueImpactMatchesCoulombImpactLaw)
 {
   const auto [e, mu] = GetParam();
-  const double v = 2.0, angle = 0.6;    // incidence measured from the line of centres
+  const double v = 2.0, angle = 0.6;  // incidence measured from the line of centres
   const double vn = v * std::cos(angle), vt = v * std::sin(angle);
   Impact impact = make_impact(vn, vt, 0.0, mu, e);
   EXPECT_TRUE(solve(impact).converged);
@@ -74,7 +74,7 @@ TEST_P(BinaryImpact, ObliqueImpactMatchesCoulombImpactLaw)
   // Tangential: sticking needs the impulse that stops the contact-point slip, vt / W_tt with
   // W_tt = 2/m + 2 r^2/I = 6/m; otherwise the impulse saturates at mu p_n.
   const double p_stick = vt * mass / 6.0;
-  const double p_t = std::min(p_stick, mu * p_n);    // magnitude, opposing the slip of a
+  const double p_t = std::min(p_stick, mu * p_n);  // magnitude, opposing the slip of a
   EXPECT_NEAR(after[1].vx, vn - p_n / mass, 1e-10);
   EXPECT_NEAR(after[2].vx, p_n / mass, 1e-10);
   EXPECT_NEAR(after[1].vy, vt - p_t / mass, 1e-10);
@@ -96,8 +96,7 @@ TEST_P(BinaryImpact, ObliqueImpactMatchesCoulombImpactLaw)
 }
 
 INSTANTIATE_TEST_SUITE_P(RestitutionAndFriction, BinaryImpact,
-                         ::testing::Combine(::testing::Values(0.0, 0.5, 1.0),
-                                            ::testing::Values(0.0, 0.5, 1e6)));
+                         ::testing::Combine(::testing::Values(0.0, 0.5, 1.0), ::testing::Values(0.0, 0.5, 1e6)));
 
 TEST(BinaryImpact, ElasticFrictionlessImpactConservesEnergy)
 {
@@ -124,17 +123,17 @@ PairNearContact pair_near_contact(double gap, double vx, double vx_free)
   pair.bodies.inertia[1] = pair.bodies.inertia[2] = {1.0, 2.0};
   pair.bodies.start_velocity[1] = {vx, 0.0, 0.0};
   pair.bodies.velocity[1] = {vx_free, 0.0, 0.0};
-  pair.contact = cd::contact_frame(
-      cd::disk_disk_geometry(1, cd::Disk{0.0, 0.0, 0.5}, 2, cd::Disk{1.0 + gap, 0.0, 0.5}));
+  pair.contact =
+      cd::contact_frame(cd::disk_disk_geometry(1, cd::Disk{0.0, 0.0, 0.5}, 2, cd::Disk{1.0 + gap, 0.0, 0.5}));
   return pair;
 }
 
 TEST(Candidates, OnlyPairsThatCanMeetWithinTheStepAreSolved)
 {
   const cd::StepParameters step{1e-3, 0.5};
-  EXPECT_FALSE(cd::is_candidate(pair_near_contact(1e-3, -1.0, -1.0).contact,
-                                pair_near_contact(1e-3, -1.0, -1.0).bodies, step, 1e-4));
-  const PairNearContact closing = pair_near_contact(1e-3, 2.0, 2.0);    // closes 1e-3 in the step
+  EXPECT_FALSE(cd::is_candidate(pair_near_contact(1e-3, -1.0, -1.0).contact, pair_near_contact(1e-3, -1.0, -1.0).bodies,
+                                step, 1e-4));
+  const PairNearContact closing = pair_near_contact(1e-3, 2.0, 2.0);  // closes 1e-3 in the step
   EXPECT_TRUE(cd::is_candidate(closing.contact, closing.bodies, step, 0.0));
   const PairNearContact near = pair_near_contact(5e-5, 0.0, 0.0);
   EXPECT_TRUE(cd::is_candidate(near.contact, near.bodies, step, 1e-4));

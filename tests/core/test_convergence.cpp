@@ -11,8 +11,8 @@ namespace {
 TEST(ConvergenceNorm, QuadraticAndMaximumOnKnownSums)
 {
   cd::SweepChange change;
-  change.add({3.0, 4.0}, {6.0, 8.0});    // |dv| = 5, |v| = 10
-  change.add({0.0, 0.0}, {0.0, 10.0});   // |dv| = 0, |v| = 10
+  change.add({3.0, 4.0}, {6.0, 8.0});   // |dv| = 5, |v| = 10
+  change.add({0.0, 0.0}, {0.0, 10.0});  // |dv| = 0, |v| = 10
   EXPECT_DOUBLE_EQ(change.residual(cd::ConvergenceNorm::quadratic), std::sqrt(25.0 / 200.0));
   EXPECT_DOUBLE_EQ(change.residual(cd::ConvergenceNorm::maximum), 5.0 / 10.0);
 }
@@ -40,8 +40,7 @@ TEST(ConvergenceNorm, ScaleFreeAcrossUnits)
       bodies.velocity[k] = {0.0, -g * dt, 0.0};
       const cd::ContactGeometry g_k =
           k == 1 ? cd::disk_world_geometry(1, cd::Disk{0, r, r}, 0.0, r, 0.0, 1.0)
-                 : cd::disk_disk_geometry(k, cd::Disk{0, (2 * k - 1) * r, r}, k - 1,
-                                          cd::Disk{0, (2 * k - 3) * r, r});
+                 : cd::disk_disk_geometry(k, cd::Disk{0, (2 * k - 1) * r, r}, k - 1, cd::Disk{0, (2 * k - 3) * r, r});
       cd::Contact c = cd::contact_frame(g_k);
       cd::prepare_mechanics(c, {0.5, 0.0}, bodies, {dt, 0.5});
       contacts.push_back(c);

@@ -13,8 +13,8 @@
 
 namespace {
 
-constexpr double radius = 0.5;    // m
-constexpr double density = 1.0;   // kg/m^2
+constexpr double radius = 0.5;   // m
+constexpr double density = 1.0;  // kg/m^2
 const cd::StepParameters step{1e-3, 0.5};
 const cd::ContactLaw law{0.5, 0.5};
 constexpr double alert = 1e-3 * radius;
@@ -111,7 +111,7 @@ TEST(PairReach, WithinIsTheGapAgainstBothReachesPlusTheMargin)
     const double margin = 0.01;
     const double gap = cd::disk_disk_geometry(1, scene.disks[0], 2, scene.disks[1]).gap;
     const double limit = reach.reach(1) + reach.reach(2) + margin;
-    if (std::abs(gap - limit) < 1e-12) continue;    // rounding decides
+    if (std::abs(gap - limit) < 1e-12) continue;  // rounding decides
     EXPECT_EQ(reach.within(1, scene.disks[0], 2, scene.disks[1], margin), gap <= limit) << "trial " << trial;
     const cd::BodyVelocity& v = scene.bodies.velocity[1];
     EXPECT_DOUBLE_EQ(reach.reach(1), step.theta * step.dt * std::hypot(v.vx, v.vy));
@@ -121,13 +121,13 @@ TEST(PairReach, WithinIsTheGapAgainstBothReachesPlusTheMargin)
 TEST(PairReach, NeededMarginIsTwiceTheLargestSpeedGainOverTheStep)
 {
   Scene scene;
-  scene.add({0.0, 0.0, radius}, {3.0, 4.0, 0.0});    // free speed 5
-  scene.add({2.0, 0.0, radius}, {1.0, 0.0, 0.0});    // free speed 1
+  scene.add({0.0, 0.0, radius}, {3.0, 4.0, 0.0});  // free speed 5
+  scene.add({2.0, 0.0, radius}, {1.0, 0.0, 0.0});  // free speed 1
   cd::PairReach reach;
   reach.begin_step(scene.bodies, step);
   std::vector<cd::BodyVelocity> solved = scene.bodies.velocity;
-  solved[1] = {0.0, 4.0, 0.0};    // slower: no gain
-  solved[2] = {0.0, -3.0, 0.0};   // speed 3: gained 2
+  solved[1] = {0.0, 4.0, 0.0};   // slower: no gain
+  solved[2] = {0.0, -3.0, 0.0};  // speed 3: gained 2
   EXPECT_NEAR(reach.needed_margin(solved, step), 2.0 * step.theta * step.dt * 2.0, 1e-15);
   solved[2] = {0.5, 0.0, 0.0};
   EXPECT_EQ(reach.needed_margin(solved, step), 0.0);
@@ -137,8 +137,8 @@ TEST(PairReach, NeededMarginIsTwiceTheLargestSpeedGainOverTheStep)
 // before the solve: the solve must look wider, watch the new pair and promote it.
 TEST(SolveStep, BodiesFasterThanTheMarginMakeTheSolveLookWider)
 {
-  const double v = 10.0;                       // m/s: moves theta dt v = 5e-3 m in the step
-  const double gap_to_third = 2e-3;            // beyond the margin (alert), within the reach after the hit
+  const double v = 10.0;             // m/s: moves theta dt v = 5e-3 m in the step
+  const double gap_to_third = 2e-3;  // beyond the margin (alert), within the reach after the hit
   Scene scene;
   scene.add({0.0, radius, radius}, {v, 0.0, 0.0});
   scene.add({2.0 * radius, radius, radius}, {0.0, 0.0, 0.0});
@@ -184,20 +184,20 @@ TEST(SolveStep, TheReachGivesTheSameStepAsLookingAtEveryPair)
 TEST(MeasureOverlaps, DeepestOverAllPairsAndTotalOverTheSolvedOnes)
 {
   Scene scene;
-  scene.add({0.0, radius, radius}, {0.0, 0.0, 0.0});                  // 1, 2: resting, 1 mm deep
+  scene.add({0.0, radius, radius}, {0.0, 0.0, 0.0});  // 1, 2: resting, 1 mm deep
   scene.add({2.0 * radius - 1e-3, radius, radius}, {0.0, 0.0, 0.0});
-  scene.add({10.0, radius, radius}, {3.0, 0.0, 0.0});                 // 3, 4: 1 mm apart, closing at 6 m/s
+  scene.add({10.0, radius, radius}, {3.0, 0.0, 0.0});  // 3, 4: 1 mm apart, closing at 6 m/s
   scene.add({10.0 + 2.0 * radius + 1e-3, radius, radius}, {-3.0, 0.0, 0.0});
-  scene.add({20.0, radius, radius}, {-1.0, 0.0, 0.0});                // 5, 6: touching, separating
+  scene.add({20.0, radius, radius}, {-1.0, 0.0, 0.0});  // 5, 6: touching, separating
   scene.add({20.0 + 2.0 * radius, radius, radius}, {1.0, 0.0, 0.0});
-  scene.add({30.0, radius, radius}, {0.0, 0.0, 0.0});                 // 7, 8: watched, 3 mm deep
+  scene.add({30.0, radius, radius}, {0.0, 0.0, 0.0});  // 7, 8: watched, 3 mm deep
   scene.add({30.0 + 2.0 * radius - 3e-3, radius, radius}, {0.0, 0.0, 0.0});
   auto frame = [&](int a, int b) {
     return cd::contact_frame(cd::disk_disk_geometry(a, scene.disks[a - 1], b, scene.disks[b - 1]));
   };
   cd::StepContacts contacts;
   for (int a : {1, 3, 5}) contacts.solved.push_back(frame(a, a + 1));
-  const double closing = 1e-3 - step.theta * step.dt * 6.0;    // -2e-3 m
+  const double closing = 1e-3 - step.theta * step.dt * 6.0;  // -2e-3 m
   cd::OverlapSums sums = cd::measure_overlaps(contacts, scene.bodies.velocity, step);
   EXPECT_NEAR(sums.deepest, -closing, 1e-12);
   EXPECT_NEAR(sums.total, 1e-3 - closing, 1e-12);

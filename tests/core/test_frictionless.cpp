@@ -20,7 +20,7 @@ TEST(FrictionlessLocalSolver, MatchesCoulombSolverAtZeroFriction)
   std::uniform_real_distribution<double> velocity(-1.0, 1.0), stiffness(0.5, 2.0), coupling(-0.4, 0.4);
   for (int k = 0; k < 10000; k++) {
     const double nn = stiffness(rng), tt = stiffness(rng);
-    const cd::Delassus2 w{nn, coupling(rng) * std::sqrt(nn * tt), tt};    // SPD, coupled
+    const cd::Delassus2 w{nn, coupling(rng) * std::sqrt(nn * tt), tt};  // SPD, coupled
     const cd::Local2 u_free{velocity(rng), velocity(rng)};
     const cd::LocalSolution coulomb = cd::solve_coulomb_local(w, u_free, 0.0);
     const double p_n = cd::solve_frictionless_local(w, u_free.n);

@@ -21,8 +21,8 @@ TEST(LocalSolver, StickCancelsTheRelativeVelocity)
 {
   const auto s = cd::solve_coulomb_local(diagonal, {-1.0, 0.6}, 0.5);
   EXPECT_EQ(s.status, cd::ContactStatus::stick);
-  EXPECT_DOUBLE_EQ(s.impulse.n, 0.5);     // 1.0 / 2
-  EXPECT_DOUBLE_EQ(s.impulse.t, -0.1);    // -0.6 / 6
+  EXPECT_DOUBLE_EQ(s.impulse.n, 0.5);   // 1.0 / 2
+  EXPECT_DOUBLE_EQ(s.impulse.t, -0.1);  // -0.6 / 6
 }
 
 TEST(LocalSolver, SlipSaturatesFrictionAgainstTheSlidingDirection)
@@ -69,7 +69,7 @@ TEST(LocalSolver, CoupledDelassusSolutionsSatisfyCoulombLaw)
   for (double mu : {0.0, 0.05, 0.5, 2.0, 1e6}) {
     for (int trial = 0; trial < 2000; trial++) {
       const double a = 0.5 + std::abs(unit(rng)), c = 0.5 + std::abs(unit(rng));
-      const cd::Delassus2 w{a, 0.3 * std::sqrt(a * c) * unit(rng), c};    // SPD, weakly coupled
+      const cd::Delassus2 w{a, 0.3 * std::sqrt(a * c) * unit(rng), c};  // SPD, weakly coupled
       const cd::Local2 u_free{unit(rng), unit(rng)};
       const cd::Local2 p = cd::solve_coulomb_local(w, u_free, mu).impulse;
       const cd::Local2 wp = w.times(p);
@@ -77,8 +77,7 @@ TEST(LocalSolver, CoupledDelassusSolutionsSatisfyCoulombLaw)
       // Exact up to rounding: u is O(1) with error ~1e-16, which De Saxce's term mu |u_t|
       // amplifies by mu.
       const double rounding = 1e-13 * (1.0 + mu);
-      EXPECT_LT(cd::natural_map_residual_squared(p, u, mu), rounding * rounding)
-          << "mu " << mu << " trial " << trial;
+      EXPECT_LT(cd::natural_map_residual_squared(p, u, mu), rounding * rounding) << "mu " << mu << " trial " << trial;
     }
   }
 }

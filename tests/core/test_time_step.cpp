@@ -10,7 +10,7 @@ const cd::StepGrid grid{1e-4, 10, 3e-4, 12};  // dt_max 1e-4 s, align 1 ms, trav
 TEST(StepGrid, LevelIsTheLargestStepWithinTheTravelBound)
 {
   EXPECT_EQ(grid.level_for(0.0), 0);
-  EXPECT_EQ(grid.level_for(2.99), 0);         // 2.99 m/s x 1e-4 s < 0.3 mm
+  EXPECT_EQ(grid.level_for(2.99), 0);  // 2.99 m/s x 1e-4 s < 0.3 mm
   EXPECT_EQ(grid.level_for(3.01), 1);
   EXPECT_EQ(grid.level_for(5.99), 1);
   EXPECT_EQ(grid.level_for(6.01), 2);

@@ -17,7 +17,7 @@ cd::Wall segment(double ax, double ay, double bx, double by)
 
 TEST(Walls, LineGivesPerpendicularNormalAndGap)
 {
-  cd::Wall floor;    // y = 0
+  cd::Wall floor;  // y = 0
   floor.ax = 0, floor.ay = 0, floor.bx = 1, floor.by = 0;
   const auto touch = cd::wall_contact(floor, 1, {0.3, 0.45, 0.5}, 0.1, {});
   ASSERT_TRUE(touch);
@@ -30,7 +30,7 @@ TEST(Walls, LineGivesPerpendicularNormalAndGap)
 
 TEST(Walls, SegmentEndIsAPointContact)
 {
-  const cd::Wall side = segment(0.0, 0.0, 0.0, 2.0);    // vertical, top end at (0, 2)
+  const cd::Wall side = segment(0.0, 0.0, 0.0, 2.0);  // vertical, top end at (0, 2)
   const auto touch = cd::wall_contact(side, 1, {0.3, 2.4, 0.5}, 0.0, {});
   ASSERT_TRUE(touch);
   EXPECT_EQ(touch->part, cd::WallPart::end_b);

@@ -7,7 +7,6 @@
 #include <fstream>
 #include <string>
 
-
 #ifndef LMP_CD_EXECUTABLE
 #error "LMP_CD_EXECUTABLE must name the lmp_cd executable"
 #endif
@@ -61,7 +60,7 @@ timestep 1e-5
 struct BadCase {
   const char* name;
   std::string deck;
-  const char* message;    // must appear in the ERROR line
+  const char* message;  // must appear in the ERROR line
 };
 
 class BadInput : public ::testing::TestWithParam<BadCase> {};
@@ -88,7 +87,8 @@ const BadCase bad_cases[] = {
     {"unknown_keyword", with_fix("0.5 0.5 tolerence 1e-4"), "unknown keyword 'tolerence'"},
     {"zero_tolerance", with_fix("0.5 0.5 tolerance 0"), "tolerance must be > 0, got 0"},
     {"zero_iteration_cap", with_fix("0.5 0.5 max_iterations 0"), "max_iterations must be >= 1, got 0"},
-    {"fractional_iteration_cap", with_fix("0.5 0.5 max_iterations 2.5"), "max_iterations expects an integer, got '2.5'"},
+    {"fractional_iteration_cap", with_fix("0.5 0.5 max_iterations 2.5"),
+     "max_iterations expects an integer, got '2.5'"},
     {"theta_out_of_range", with_fix("0.5 0.5 theta 0.3"), "theta must be in [0.5,1], got 0.3"},
     {"relaxation_out_of_range", with_fix("0.5 0.5 relaxation 1.5"), "relaxation must be in (0,1], got 1.5"},
     {"unknown_norm", with_fix("0.5 0.5 norm l2"), "norm must be quadratic or maximum, got 'l2'"},
@@ -101,11 +101,13 @@ const BadCase bad_cases[] = {
     {"travel_beyond_half_skin", with_fix("0.5 0.5 dt_max 1e-4 travel 0.6"),
      "travel must be in (0,0.5] (a fraction of the neighbour skin), got 0.6"},
     // The preamble's skin is 1e-4 m: at 2000 m/s even dt_max/2^12 moves a grain 4.9e-5 m > 0.4 skin.
-    {"grain_faster_than_any_step", preamble + "set atom 1 vx 2000\nfix cd all contact/dynamics 0.5 0.5 dt_max 1e-4\nrun 10\n",
+    {"grain_faster_than_any_step",
+     preamble + "set atom 1 vx 2000\nfix cd all contact/dynamics 0.5 0.5 dt_max 1e-4\nrun 10\n",
      "atom 1 moves at 2000 m/s; the smallest step"},
     {"negative_type_mu", with_fix("0.5 0.5 mu/types 1 2 -1"), "mu/types must be >= 0, got -1"},
     {"wall_outside_box", with_fix("0.5 0.5 wall yplane -0.001 0.5 0.5"), "wall yplane at -0.001 is outside the box"},
-    {"segment_outside_box", with_fix("0.5 0.5 wall segment 0 0 0 0.02 0.5 0.5"), "wall segment end (0, 0.02) is outside the box"},
+    {"segment_outside_box", with_fix("0.5 0.5 wall segment 0 0 0 0.02 0.5 0.5"),
+     "wall segment end (0, 0.02) is outside the box"},
     {"unknown_wall", with_fix("0.5 0.5 wall zplane 0 0.5 0.5"), "wall must be xplane, yplane or segment, got 'zplane'"},
     {"wall_restitution", with_fix("0.5 0.5 wall yplane 0 0.5 2"), "wall e must be in [0,1], got 2"},
     {"dimension_3",
@@ -137,13 +139,13 @@ const BadCase bad_cases[] = {
        return deck;
      }(),
      "use neigh_modify delay 0 every 1 check yes"},
-    {"step_longer_than_half_skin",
-     preamble + "set atom 1 vx 20.0\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
+    {"step_longer_than_half_skin", preamble + "set atom 1 vx 20.0\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
      "atom 1 moved 0.0002 in step 1, more than half the neighbour skin 0.0001"},
     {"second_integrator", preamble + "fix nve all nve/sphere\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
      "fix nve (nve/sphere) also integrates atoms of group all"},
     {"pair_style_on_the_group",
-     preamble + "pair_style gran/hooke 2000 NULL 0 NULL 0.5 0\npair_coeff * *\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
+     preamble +
+         "pair_style gran/hooke 2000 NULL 0 NULL 0.5 0\npair_coeff * *\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
      "pair style gran/hooke also acts on atoms of group all (types 1 and 1); remove it, or add pair_forces yes"},
     {"pair_forces_not_yes_or_no", with_fix("0.5 0.5 pair_forces maybe"), "pair_forces must be yes or no, got 'maybe'"},
     {"sphere_masses",
@@ -177,11 +179,12 @@ INSTANTIATE_TEST_SUITE_P(Decks, BadInput, ::testing::ValuesIn(bad_cases),
 TEST(Warnings, OverlapsAtTheStartOfARunAreReported)
 {
   // Two grains 0.4 d apart, centre to centre: rigid contacts would keep that overlap.
-  const RunResult overlapping = run_deck("initial_overlap", preamble + "set atom 2 x 0.0052\n"
-                                         "fix cd all contact/dynamics 0.5 0.5\nrun 0\n");
+  const RunResult overlapping = run_deck("initial_overlap", preamble +
+                                                                "set atom 2 x 0.0052\n"
+                                                                "fix cd all contact/dynamics 0.5 0.5\nrun 0\n");
   EXPECT_EQ(overlapping.exit_status, 0) << overlapping.output;
-  EXPECT_NE(overlapping.output.find("1 contacts overlap by up to 0.6 mean diameters at the start"),
-            std::string::npos) << overlapping.output;
+  EXPECT_NE(overlapping.output.find("1 contacts overlap by up to 0.6 mean diameters at the start"), std::string::npos)
+      << overlapping.output;
   const RunResult apart = run_deck("no_initial_overlap", with_fix("0.5 0.5"));
   EXPECT_EQ(apart.output.find("overlap by up to"), std::string::npos) << apart.output;
 }
@@ -190,7 +193,8 @@ TEST(PairForces, KeptWhenAskedFor)
 {
   // Two grains 0.4 d apart, centre to centre: the rigid contacts keep the overlap, a Hooke
   // spring pushes them apart; with pair_forces yes both act and the pair separates.
-  const std::string deck = preamble + "set atom 2 x 0.0052\npair_style gran/hooke 2000 NULL 0 NULL 0.5 0\n"
+  const std::string deck = preamble +
+                           "set atom 2 x 0.0052\npair_style gran/hooke 2000 NULL 0 NULL 0.5 0\n"
                            "pair_coeff * *\nfix cd all contact/dynamics 0.5 0.5 pair_forces yes\nrun 20\n"
                            "print \"SEPARATION $(x[2]-x[1])\"\n";
   const RunResult result = run_deck("pair_forces_yes", deck);
@@ -205,14 +209,16 @@ TEST(PairForces, PairStyleZeroAndTypesOutsideTheGroupAreAccepted)
 {
   // pair_style zero exerts no force; a pair style acting only on type 2 (not in the group,
   // hybrid none for the group's type pairs) leaves the group's contacts alone.
-  const RunResult zero = run_deck("pair_zero", preamble + "pair_style zero 1e-3\npair_coeff * *\n"
-                                  "fix cd all contact/dynamics 0.5 0.5\nrun 5\n");
+  const RunResult zero = run_deck("pair_zero", preamble +
+                                                   "pair_style zero 1e-3\npair_coeff * *\n"
+                                                   "fix cd all contact/dynamics 0.5 0.5\nrun 5\n");
   EXPECT_EQ(zero.exit_status, 0) << zero.output;
   EXPECT_EQ(error_line(zero.output), "") << zero.output;
   const RunResult other_types =
-      run_deck("pair_other_types", preamble + "set atom 2 type 2\ngroup grains type 1\n"
-               "pair_style hybrid gran/hooke 2000 NULL 0 NULL 0.5 0\npair_coeff 1 * none\n"
-               "pair_coeff 2 2 gran/hooke\nfix cd grains contact/dynamics 0.5 0.5\nrun 5\n");
+      run_deck("pair_other_types", preamble +
+                                       "set atom 2 type 2\ngroup grains type 1\n"
+                                       "pair_style hybrid gran/hooke 2000 NULL 0 NULL 0.5 0\npair_coeff 1 * none\n"
+                                       "pair_coeff 2 2 gran/hooke\nfix cd grains contact/dynamics 0.5 0.5\nrun 5\n");
   EXPECT_EQ(other_types.exit_status, 0) << other_types.output;
   EXPECT_EQ(error_line(other_types.output), "") << other_types.output;
 }
@@ -220,13 +226,14 @@ TEST(PairForces, PairStyleZeroAndTypesOutsideTheGroupAreAccepted)
 TEST(MultipleRanks, SubdomainsThinnerThanTheContactCutoffAreRefused)
 {
   // Two ranks along x on a box 2 d wide: each subdomain (1 d) is thinner than 2 d_max + skin.
-  const std::string deck = "units si\ndimension 2\natom_style sphere\natom_modify map array\n"
-                           "comm_modify vel yes\nneigh_modify delay 0\nprocessors 2 1 1\nboundary p f p\n"
-                           "region box block 0 0.001 0 0.01 -0.0003 0.0003\ncreate_box 1 box\n"
-                           "create_atoms 1 single 0.0005 0.00025 0\n"
-                           "set group all diameter 5e-4 density/disc 2500\nneighbor 1e-4 bin\n"
-                           "timestep 1e-5\nfix cd all contact/dynamics 0.5 0.5 wall yplane 0 0.5 0.5\n"
-                           "run 1\n";
+  const std::string deck =
+      "units si\ndimension 2\natom_style sphere\natom_modify map array\n"
+      "comm_modify vel yes\nneigh_modify delay 0\nprocessors 2 1 1\nboundary p f p\n"
+      "region box block 0 0.001 0 0.01 -0.0003 0.0003\ncreate_box 1 box\n"
+      "create_atoms 1 single 0.0005 0.00025 0\n"
+      "set group all diameter 5e-4 density/disc 2500\nneighbor 1e-4 bin\n"
+      "timestep 1e-5\nfix cd all contact/dynamics 0.5 0.5 wall yplane 0 0.5 0.5\n"
+      "run 1\n";
   const RunResult result = run_deck("thin_subdomains", deck, "mpirun --allow-run-as-root --oversubscribe -np 2 ");
   EXPECT_NE(result.exit_status, 0);
   EXPECT_NE(error_line(result.output).find("an MPI subdomain is thinner than the contact cutoff"), std::string::npos)
@@ -238,7 +245,9 @@ std::string two_rank_deck(const std::string& box_width)
 {
   return "units si\ndimension 2\natom_style sphere\natom_modify map array\ncomm_modify vel yes\n"
          "neigh_modify delay 0\nprocessors 2 1 1\nboundary p f p\n"
-         "region box block 0 " + box_width + " 0 0.01 -0.0003 0.0003\ncreate_box 1 box\n"
+         "region box block 0 " +
+         box_width +
+         " 0 0.01 -0.0003 0.0003\ncreate_box 1 box\n"
          "create_atoms 1 single 0.0004 0.00025 0\ncreate_atoms 1 single 0.0012 0.00025 0\n"
          "set group all diameter 5e-4 density/disc 2500\nneighbor 1e-4 bin\ntimestep 1e-5\n"
          "fix cd all contact/dynamics 0.5 0.5 wall yplane 0 0.5 0.5\nrun 5\nrun 5\n";

@@ -29,8 +29,7 @@ class LammpsSession {
   explicit LammpsSession(MPI_Comm communicator = MPI_COMM_WORLD)
   {
     std::vector<const char*> args{"lmp", "-log", "none", "-screen", "none", "-nocite"};
-    lmp = new LAMMPS_NS::LAMMPS(static_cast<int>(args.size()), const_cast<char**>(args.data()),
-                                communicator);
+    lmp = new LAMMPS_NS::LAMMPS(static_cast<int>(args.size()), const_cast<char**>(args.data()), communicator);
     LAMMPS_NS::register_project_styles(lmp);
   }
   ~LammpsSession() { delete lmp; }
@@ -55,10 +54,7 @@ class LammpsSession {
   double v(int atom_id, int axis) const { return lmp->atom->v[index_of(atom_id)][axis]; }
   double spin(int atom_id) const { return lmp->atom->omega[index_of(atom_id)][2]; }
 
-  LAMMPS_NS::Fix* fix(const std::string& id) const
-  {
-    return lmp->modify->fix[lmp->modify->find_fix(id)];
-  }
+  LAMMPS_NS::Fix* fix(const std::string& id) const { return lmp->modify->fix[lmp->modify->find_fix(id)]; }
 
   LAMMPS_NS::LAMMPS* lmp;
 };

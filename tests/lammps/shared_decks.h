@@ -30,8 +30,9 @@ timestep 1e-5
 fix cd all contact/dynamics 0.3 {e} tolerance 1e-12
 fix 2d all enforce2d
 run 1
-)", fmt::arg("L", L), fmt::arg("r", r), fmt::arg("xa", L - r), fmt::arg("xb", r), fmt::arg("y", 0.5 * L),
-                                  fmt::arg("d", d), fmt::arg("v", v), fmt::arg("skin", 0.2 * d),
+)",
+                                  fmt::arg("L", L), fmt::arg("r", r), fmt::arg("xa", L - r), fmt::arg("xb", r),
+                                  fmt::arg("y", 0.5 * L), fmt::arg("d", d), fmt::arg("v", v), fmt::arg("skin", 0.2 * d),
                                   fmt::arg("e", e));
 }
 

@@ -7,13 +7,12 @@
 
 namespace cdtest {
 
-constexpr double deposition_d = 5e-4;    // mean diameter (m)
+constexpr double deposition_d = 5e-4;  // mean diameter (m)
 
 // 20 d wide x-periodic cell, 12 x 12 disks dropped from a loose lattice with random sideways
 // velocities; diameters uniform in [0.8, 1.2] d. `fix_options` is appended to the fix line;
 // mu and e apply to grains and floor alike.
-inline std::string small_deposition(int seed, const std::string& fix_options, double mu = 0.5,
-                                    double e = 0.5)
+inline std::string small_deposition(int seed, const std::string& fix_options, double mu = 0.5, double e = 0.5)
 {
   const double d = deposition_d;
   return fmt::format(R"(
@@ -33,11 +32,12 @@ timestep 1e-5
 fix grav all gravity 9.81 vector 0 -1 0
 fix cd all contact/dynamics {mu} {e} wall yplane 0.0 {mu} {e} {options}
 fix 2d all enforce2d
-)", fmt::arg("L", 20 * d), fmt::arg("H", 40 * d), fmt::arg("r", 0.6 * d),
-    fmt::arg("spacing", 1.5 * d), fmt::arg("lo", 0.7 * d), fmt::arg("hi", 18.8 * d),
-    fmt::arg("bottom", 2 * d), fmt::arg("top", 19.9 * d), fmt::arg("dmin", 0.8 * d),
-    fmt::arg("spread", 0.4 * d), fmt::arg("seed", seed), fmt::arg("seed2", seed + 1),
-    fmt::arg("skin", 0.2 * d), fmt::arg("options", fix_options), fmt::arg("mu", mu), fmt::arg("e", e));
+)",
+                     fmt::arg("L", 20 * d), fmt::arg("H", 40 * d), fmt::arg("r", 0.6 * d), fmt::arg("spacing", 1.5 * d),
+                     fmt::arg("lo", 0.7 * d), fmt::arg("hi", 18.8 * d), fmt::arg("bottom", 2 * d),
+                     fmt::arg("top", 19.9 * d), fmt::arg("dmin", 0.8 * d), fmt::arg("spread", 0.4 * d),
+                     fmt::arg("seed", seed), fmt::arg("seed2", seed + 1), fmt::arg("skin", 0.2 * d),
+                     fmt::arg("options", fix_options), fmt::arg("mu", mu), fmt::arg("e", e));
 }
 
 }  // namespace cdtest

@@ -16,10 +16,10 @@ namespace {
 
 using cdtest::LammpsSession;
 
-constexpr double dt_max = 1e-4;    // s
-constexpr double align = 1e-3;     // s
-constexpr double skin = 1e-4;      // m
-constexpr double travel = 0.4;     // of the skin
+constexpr double dt_max = 1e-4;  // s
+constexpr double align = 1e-3;   // s
+constexpr double skin = 1e-4;    // m
+constexpr double travel = 0.4;   // of the skin
 constexpr double gravity = 9.81;
 
 // Gravity and the fix with its step grid; thermo without temperature, whose degrees of freedom
@@ -109,7 +109,7 @@ TEST(AdaptiveStep, RestartContinuesTheLevelPositionAndTime)
   const std::string file = "test_adaptive_step.restart";
   LammpsSession first;
   falling_grain(first);
-  run_steps(first, 1237);    // a little over 0.05 s, in the middle of a period at level > 0
+  run_steps(first, 1237);  // a little over 0.05 s, in the middle of a period at level > 0
   first.commands("write_restart " + file);
   const std::vector<StepRecord> straight_on = run_steps(first, 400);
 

@@ -12,7 +12,7 @@ namespace {
 
 using cdtest::LammpsSession;
 
-constexpr double d = 5e-4;    // m
+constexpr double d = 5e-4;  // m
 constexpr double r = 0.5 * d;
 constexpr double g = 9.81;
 constexpr double deg = M_PI / 180.0;
@@ -32,9 +32,10 @@ timestep 1e-5
 fix grav all gravity {g} vector {sx} {sy} 0
 fix cd all contact/dynamics {mu} 0.5 wall yplane 0.0 {mu} 0.5 tolerance 1e-12
 fix 2d all enforce2d
-)", fmt::arg("L", 20 * d), fmt::arg("L2", 10 * d), fmt::arg("r", r), fmt::arg("d", d),
-   fmt::arg("skin", 0.2 * d), fmt::arg("g", g), fmt::arg("sx", std::sin(angle)),
-   fmt::arg("sy", -std::cos(angle)), fmt::arg("mu", mu)));
+)",
+                         fmt::arg("L", 20 * d), fmt::arg("L2", 10 * d), fmt::arg("r", r), fmt::arg("d", d),
+                         fmt::arg("skin", 0.2 * d), fmt::arg("g", g), fmt::arg("sx", std::sin(angle)),
+                         fmt::arg("sy", -std::cos(angle)), fmt::arg("mu", mu)));
 }
 
 struct InclineCase {
@@ -82,9 +83,9 @@ TEST(PeriodicBoundary, ImpactAcrossTheBoundaryFollowsNewtonRestitution)
 }
 
 struct SegmentEndCase {
-  double disk_x;      // disk centre x (box length 20 d, segment at x = wall_x)
+  double disk_x;  // disk centre x (box length 20 d, segment at x = wall_x)
   double wall_x;
-  double offset_x;    // disk centre minus wall, through the periodic boundary if needed
+  double offset_x;  // disk centre minus wall, through the periodic boundary if needed
 };
 
 class SegmentEnd : public ::testing::TestWithParam<SegmentEndCase> {};
@@ -109,9 +110,10 @@ timestep 1e-6
 fix cd all contact/dynamics 0.5 0.5 wall segment {wx} 0 {wx} {top} 0.0 {e} tolerance 1e-12
 fix 2d all enforce2d
 run 1
-)", fmt::arg("L", L), fmt::arg("r", r), fmt::arg("x", disk_x), fmt::arg("y", top + height),
-   fmt::arg("d", d), fmt::arg("v", v), fmt::arg("skin", 0.2 * d), fmt::arg("wx", wall_x),
-   fmt::arg("top", top), fmt::arg("e", e)));
+)",
+                         fmt::arg("L", L), fmt::arg("r", r), fmt::arg("x", disk_x), fmt::arg("y", top + height),
+                         fmt::arg("d", d), fmt::arg("v", v), fmt::arg("skin", 0.2 * d), fmt::arg("wx", wall_x),
+                         fmt::arg("top", top), fmt::arg("e", e)));
   // Moreau–Jean detects the contact at the predicted configuration y_m = y_n - (1 - theta) dt v.
   const double height_m = height - 0.5 * 1e-6 * v;
   const double distance_m = std::sqrt(offset * offset + height_m * height_m);

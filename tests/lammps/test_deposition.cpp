@@ -48,7 +48,7 @@ TEST(Deposition, SettlesWithoutInterpenetration)
   LammpsSession s;
   s.commands(cdtest::disk_preamble);
   s.commands(cdtest::small_deposition(4711, "tolerance 1e-4"));
-  s.commands("run 30000");    // 0.3 s: the last grains land after ~0.1 s
+  s.commands("run 30000");  // 0.3 s: the last grains land after ~0.1 s
   // Settled: kinetic energy per grain below that of a fall of 1e-4 d.
   const double grain_mass = M_PI * 0.25 * d * d * 2500.0;
   EXPECT_LT(kinetic_energy_per_grain(s), grain_mass * 9.81 * 1e-4 * d);
@@ -82,7 +82,7 @@ class Restart : public ::testing::Test {
     LammpsSession unbroken;
     unbroken.commands(cdtest::disk_preamble);
     unbroken.commands(cdtest::small_deposition(99, "tolerance 1e-10 max_iterations 100000"));
-    unbroken.commands(fmt::format("run {}", restart_step));    // grains piling up: many contacts
+    unbroken.commands(fmt::format("run {}", restart_step));  // grains piling up: many contacts
     unbroken.commands("write_restart " + restart_file);
     unbroken.commands("fix iters all ave/time 1 1 1 f_cd[1] file " + unbroken_iterations);
     unbroken.commands("run 100");
@@ -107,15 +107,16 @@ fix grav all gravity 9.81 vector 0 -1 0
 fix cd all contact/dynamics 0.5 0.5 wall yplane 0.0 0.5 0.5 tolerance 1e-10 max_iterations 100000 )" +
                fix_options + R"(
 fix 2d all enforce2d
-fix iters all ave/time 1 1 1 f_cd[1] file )" + restarted_iterations + R"(
+fix iters all ave/time 1 1 1 f_cd[1] file )" +
+               restarted_iterations + R"(
 run 100
 )");
     return positions_by_id(s);
   }
 
   // Per-test file names: ctest may run the tests of this fixture in parallel.
-  const std::string prefix = std::string("test_restart_") +
-                             ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const std::string prefix =
+      std::string("test_restart_") + ::testing::UnitTest::GetInstance()->current_test_info()->name();
   const std::string restart_file = prefix + ".restart";
   const std::string unbroken_iterations = prefix + ".unbroken.txt";
   const std::string restarted_iterations = prefix + ".restarted.txt";
@@ -167,7 +168,8 @@ ColumnSweeps first_step_sweeps_after_column_restart(const std::string& fix_optio
   LammpsSession s;
   s.commands("read_restart " + restart);
   s.commands(fmt::format("neighbor {} bin\ncomm_modify vel yes\nneigh_modify delay 0 every 1 check yes\n"
-                         "fix grav all gravity 9.81 vector 0 -1 0\n", 0.2 * d) +
+                         "fix grav all gravity 9.81 vector 0 -1 0\n",
+                         0.2 * d) +
              fix_line + fix_options + "\nfix 2d all enforce2d\nrun 1");
   std::remove(restart.c_str());
   sweeps.restarted = s.fix("cd")->compute_vector(0);

@@ -56,8 +56,7 @@ TEST(Extremes, LargeTimeStepKeepsCollisionsAnticipated)
   LammpsSession s;
   s.commands(cdtest::disk_preamble);
   s.commands(cdtest::small_deposition(78, "tolerance 1e-4"));
-  s.commands(fmt::format("neighbor {} bin\ntimestep 1e-4\nvelocity all set NULL -1.0 0 units box\nrun 300",
-                         0.5 * d));
+  s.commands(fmt::format("neighbor {} bin\ntimestep 1e-4\nvelocity all set NULL -1.0 0 units box\nrun 300", 0.5 * d));
   EXPECT_TRUE(all_velocities_finite(s));
   // Collisions are caught a step ahead; a pair closed within a step by its neighbours' impulses
   // stops at contact but starts the next step overlapped by up to (1 - theta) dt |u_n|, here
@@ -92,10 +91,11 @@ fix grav all gravity 9.81 vector 0 -1 0
 fix cd all contact/dynamics 0.5 0.5 tolerance 1e-4 max_contacts 40 wall yplane 0.0 0.5 0.5
 fix 2d all enforce2d
 run 10000
-)", fmt::arg("L", 20 * d), fmt::arg("H", 40 * d), fmt::arg("r", 3 * d), fmt::arg("xc", 10 * d),
-   fmt::arg("yc", 5 * d), fmt::arg("big", 10 * d), fmt::arg("spacing", 1.3 * d), fmt::arg("lo", 11 * d),
-   fmt::arg("hi", 25 * d), fmt::arg("d", d), fmt::arg("skin", 0.3 * d), fmt::arg("zr", 0.1 * d), fmt::arg("xlo", 0.5 * d),
-   fmt::arg("xhi", 19.2 * d)));
+)",
+                         fmt::arg("L", 20 * d), fmt::arg("H", 40 * d), fmt::arg("r", 3 * d), fmt::arg("xc", 10 * d),
+                         fmt::arg("yc", 5 * d), fmt::arg("big", 10 * d), fmt::arg("spacing", 1.3 * d),
+                         fmt::arg("lo", 11 * d), fmt::arg("hi", 25 * d), fmt::arg("d", d), fmt::arg("skin", 0.3 * d),
+                         fmt::arg("zr", 0.1 * d), fmt::arg("xlo", 0.5 * d), fmt::arg("xhi", 19.2 * d)));
   EXPECT_TRUE(all_velocities_finite(s));
   EXPECT_LT(max_overlap(s), 1e-3);
   EXPECT_NEAR(s.x(1, 1), 5 * d, 1e-4 * d) << "the large disk rests on the floor";
@@ -146,11 +146,12 @@ timestep 1e-5
 fix cd all contact/dynamics {mu} 1.0 tolerance 1e-6
 fix 2d all enforce2d
 run 0
-)", fmt::arg("L", 15 * d), fmt::arg("r", 0.6 * d), fmt::arg("spacing", 1.25 * d), fmt::arg("d", d),
-   fmt::arg("skin", 0.3 * d), fmt::arg("mu", mu)));
+)",
+                         fmt::arg("L", 15 * d), fmt::arg("r", 0.6 * d), fmt::arg("spacing", 1.25 * d), fmt::arg("d", d),
+                         fmt::arg("skin", 0.3 * d), fmt::arg("mu", mu)));
   auto* variables = s.lmp->input->variable;
   const double px0 = variables->compute_equal("v_px"), py0 = variables->compute_equal("v_py");
-  double scale = 0.0;    // sum of |m v|: the rounding scale of the momentum
+  double scale = 0.0;  // sum of |m v|: the rounding scale of the momentum
   for (int i = 0; i < s.lmp->atom->nlocal; i++)
     scale += s.lmp->atom->rmass[i] * std::hypot(s.lmp->atom->v[i][0], s.lmp->atom->v[i][1]);
   const double energy0 = kinetic_energy(s);

@@ -34,11 +34,12 @@ fix pour all pour 60 1 4242 region pour diam range {dmin} {dmax} dens 2500 2500
 fix cd all contact/dynamics 0.5 0.5 density 2500 wall yplane 0.0 0.5 0.5
 fix 2d all enforce2d
 run 3000
-)", fmt::arg("L", 20 * d), fmt::arg("H", 40 * d), fmt::arg("r", 0.6 * d), fmt::arg("lo", 20 * d),
-   fmt::arg("hi", 38 * d), fmt::arg("skin", 0.2 * d), fmt::arg("dmin", 0.8 * d),
-   fmt::arg("dmax", 1.2 * d)));
+)",
+                         fmt::arg("L", 20 * d), fmt::arg("H", 40 * d), fmt::arg("r", 0.6 * d), fmt::arg("lo", 20 * d),
+                         fmt::arg("hi", 38 * d), fmt::arg("skin", 0.2 * d), fmt::arg("dmin", 0.8 * d),
+                         fmt::arg("dmax", 1.2 * d)));
   const auto* atom = s.lmp->atom;
-  ASSERT_GT(atom->natoms, 40);    // fix pour may place fewer than asked in a crowded region
+  ASSERT_GT(atom->natoms, 40);  // fix pour may place fewer than asked in a crowded region
   for (int i = 0; i < atom->nlocal; i++)
     EXPECT_NEAR(atom->rmass[i], M_PI * atom->radius[i] * atom->radius[i] * 2500.0, 1e-12 * atom->rmass[i]);
 }
@@ -56,10 +57,10 @@ fix solver all ave/time 10 10 100 f_cd[1] f_cd[4] f_cd[5] file test_machinery.so
 run 100
 undump contacts
 unfix solver
-)");    // undump and unfix close (flush) the files
+)");  // undump and unfix close (flush) the files
   LAMMPS_NS::Fix* fix = s.fix("cd");
   const int loaded = static_cast<int>(fix->compute_vector(3));
-  EXPECT_GT(loaded, 100);    // 144 grains piling up on the floor
+  EXPECT_GT(loaded, 100);  // 144 grains piling up on the floor
   EXPECT_EQ(fix->size_local_rows, loaded);
 
   // The last dump block lists one row per loaded contact: atom IDs, wall index, impulses.
@@ -67,7 +68,7 @@ unfix solver
   std::string line;
   int entries = -1, rows = 0;
   bool in_entries = false;
-  double floor_impulse = 0.0;    // in the last block
+  double floor_impulse = 0.0;  // in the last block
   while (std::getline(dump, line)) {
     if (line.rfind("ITEM:", 0) == 0) {
       in_entries = line.rfind("ITEM: ENTRIES", 0) == 0;
@@ -94,7 +95,7 @@ unfix solver
   int samples = 0;
   while (std::getline(solver, line))
     if (!line.empty() && line[0] != '#') ++samples;
-  EXPECT_EQ(samples, 1);    // step 5100: 10 samples every 10 steps
+  EXPECT_EQ(samples, 1);  // step 5100: 10 samples every 10 steps
   std::remove("test_machinery.contacts");
   std::remove("test_machinery.solver");
 }

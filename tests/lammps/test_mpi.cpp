@@ -105,7 +105,8 @@ timestep 1e-5
 fix grav all gravity 9.81 vector 0 -1 0
 fix cd all contact/dynamics 0.5 0.5 wall yplane 0.0 0.5 0.5 {options}
 fix 2d all enforce2d
-)", fmt::arg("skin", 0.2 * d), fmt::arg("options", fix_options)));
+)",
+                           fmt::arg("skin", 0.2 * d), fmt::arg("options", fix_options)));
   }
 
   // Runs the same commands on all ranks of MPI_COMM_WORLD and on 1 rank (rank 0 only).
@@ -135,7 +136,7 @@ TEST_F(SeveralRanks, SameConfigurationGivesSameContactsAndVelocities)
   if (world_rank() != 0) return;
   EXPECT_EQ(on_many.candidates, on_one.candidates);
   EXPECT_EQ(on_many.loaded, on_one.loaded);
-  EXPECT_GE(on_one.loaded, 15);    // a problem with contacts (the packing's count follows the solver's rounding)
+  EXPECT_GE(on_one.loaded, 15);  // a problem with contacts (the packing's count follows the solver's rounding)
   // Both solve the same problem to 1e-12; grains move at ~0.3 m/s.
   EXPECT_LT(largest_difference(on_many.vx, on_one.vx), 1e-9);
   EXPECT_LT(largest_difference(on_many.vy, on_one.vy), 1e-9);
@@ -147,7 +148,7 @@ TEST_F(SeveralRanks, SameConfigurationGivesSameContactsAndVelocities)
 // case) sits 2e-8 d from it on 1 rank, 4 ranks put its impact one step earlier, and the
 // trajectories part by (1 + e) |u_n| dt = 1e-4 d with no defect in the decomposition (1 rank
 // at 1e-10 against 1 rank at 1e-12 shows the same 1e-4 d).
-constexpr double trajectory_tolerance = 1e-6;    // in d
+constexpr double trajectory_tolerance = 1e-6;  // in d
 
 TEST_F(SeveralRanks, ShortTrajectoriesAgreeToSolverTolerance)
 {
@@ -161,8 +162,7 @@ TEST_F(SeveralRanks, LoadBalancingKeepsTheTrajectory)
 {
   // fix balance moves the cut between the ranks every 20 steps; atoms migrate with their
   // warm-start rows.
-  run_both(tight_solve,
-           "fix lb all balance 20 1.0 shift x 5 1.05\nrun 100");
+  run_both(tight_solve, "fix lb all balance 20 1.0 shift x 5 1.05\nrun 100");
   if (world_rank() != 0) return;
   EXPECT_LT(largest_difference(on_many.x, on_one.x, 20 * d) / d, trajectory_tolerance);
   EXPECT_LT(largest_difference(on_many.y, on_one.y) / d, trajectory_tolerance);
@@ -206,7 +206,8 @@ fix 2d all enforce2d
 fix iters all ave/time 1 1 1 f_cd[1] file {file}
 run 20
 unfix iters
-)", fmt::arg("skin", 0.2 * d), fmt::arg("options", options), fmt::arg("file", restarted)));
+)",
+                           fmt::arg("skin", 0.2 * d), fmt::arg("options", options), fmt::arg("file", restarted)));
   on_one = state_of(one);
   const std::vector<double> before = cdtest::ave_time_values_after(unbroken, 100);
   const std::vector<double> after = cdtest::ave_time_values_after(restarted, 100);

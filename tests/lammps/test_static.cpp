@@ -24,7 +24,8 @@ void build_packing(LammpsSession& s, const std::vector<Position>& disks, double 
 boundary p f p
 region box block 0 {L} 0 {L} -{r} {r}
 create_box 1 box
-)", fmt::arg("L", 20 * d), fmt::arg("r", r)));
+)",
+                         fmt::arg("L", 20 * d), fmt::arg("r", r)));
   for (const Position& p : disks) s.commands(fmt::format("create_atoms 1 single {} {} 0", p.x, p.y));
   s.commands(fmt::format(R"(
 set group all diameter {d} density/disc {rho}
@@ -33,8 +34,9 @@ timestep {dt}
 fix grav all gravity {g} vector 0 -1 0
 fix cd all contact/dynamics {mu} 0.5 wall yplane 0.0 {mu} 0.5 tolerance 1e-12 max_iterations 100000
 fix 2d all enforce2d
-)", fmt::arg("d", d), fmt::arg("rho", density), fmt::arg("skin", 0.2 * d), fmt::arg("dt", dt),
-   fmt::arg("g", g), fmt::arg("mu", mu)));
+)",
+                         fmt::arg("d", d), fmt::arg("rho", density), fmt::arg("skin", 0.2 * d), fmt::arg("dt", dt),
+                         fmt::arg("g", g), fmt::arg("mu", mu)));
 }
 
 // Largest displacement of any disk from where it was built, in diameters.
@@ -55,9 +57,9 @@ Position wall_impulse(const LammpsSession& s)
   Position sum{0.0, 0.0};
   for (int row = 0; row < fix->size_local_rows; row++) {
     const double* contact = fix->array_local[row];
-    if (contact[2] != 1.0) continue;    // wall index column
-    sum.x += contact[4];    // tangential
-    sum.y += contact[3];    // normal
+    if (contact[2] != 1.0) continue;  // wall index column
+    sum.x += contact[4];              // tangential
+    sum.y += contact[3];              // normal
   }
   return sum;
 }

@@ -16,14 +16,16 @@ namespace cdref::testing {
 
 struct ScratchRegistry {
   std::vector<std::filesystem::path> made;
-  ~ScratchRegistry() {
+  ~ScratchRegistry()
+  {
     if (std::getenv("CDREF_KEEP_TEST_FILES")) return;
     std::error_code ignored;
     for (const auto& dir : made) std::filesystem::remove_all(dir, ignored);
   }
 };
 
-inline std::filesystem::path scratch_dir(const std::string& name = "") {
+inline std::filesystem::path scratch_dir(const std::string& name = "")
+{
   static ScratchRegistry registry;
   std::string stem = name;
   if (stem.empty()) {
@@ -37,12 +39,14 @@ inline std::filesystem::path scratch_dir(const std::string& name = "") {
   return dir;
 }
 
-inline std::string write_file(const std::filesystem::path& path, const std::string& text) {
+inline std::string write_file(const std::filesystem::path& path, const std::string& text)
+{
   std::ofstream(path) << text;
   return path.string();
 }
 
-inline std::string read_file(const std::filesystem::path& path) {
+inline std::string read_file(const std::filesystem::path& path)
+{
   std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
@@ -53,11 +57,16 @@ inline std::string read_file(const std::filesystem::path& path) {
 struct DumpDisk {
   double x, y, r;
 };
-inline std::string dump_frame(long step, double xlo, double xhi, double ylo, double yhi, const std::vector<DumpDisk>& disks) {
+inline std::string dump_frame(long step, double xlo, double xhi, double ylo, double yhi,
+                              const std::vector<DumpDisk>& disks)
+{
   std::ostringstream out;
   out.precision(17);
-  out << "ITEM: TIMESTEP\n" << step << "\nITEM: NUMBER OF ATOMS\n" << disks.size() << "\nITEM: BOX BOUNDS pp ff pp\n"
-      << xlo << ' ' << xhi << '\n' << ylo << ' ' << yhi << "\n-0.0003 0.0003\nITEM: ATOMS id type x y vx vy radius\n";
+  out << "ITEM: TIMESTEP\n"
+      << step << "\nITEM: NUMBER OF ATOMS\n"
+      << disks.size() << "\nITEM: BOX BOUNDS pp ff pp\n"
+      << xlo << ' ' << xhi << '\n'
+      << ylo << ' ' << yhi << "\n-0.0003 0.0003\nITEM: ATOMS id type x y vx vy radius\n";
   for (size_t i = 0; i < disks.size(); ++i)
     out << i + 1 << " 1 " << disks[i].x << ' ' << disks[i].y << " 0 0 " << disks[i].r << '\n';
   return out.str();

@@ -15,8 +15,8 @@
 #include "spatial_to_chunk.h"
 
 namespace fs = std::filesystem;
-using cdref::testing::DumpDisk;
 using cdref::testing::dump_frame;
+using cdref::testing::DumpDisk;
 using cdref::testing::read_file;
 using cdref::testing::scratch_dir;
 using cdref::testing::write_file;
@@ -25,7 +25,8 @@ namespace {
 
 // Expects `call` to throw an InputError whose message starts with "PATH:LINE:".
 template <class Call>
-void expect_input_error(Call call, const std::string& path, long line, const std::string& fragment) {
+void expect_input_error(Call call, const std::string& path, long line, const std::string& fragment)
+{
   try {
     call();
     FAIL() << "no error for " << path;
@@ -51,7 +52,8 @@ const char* const spatial_text =
 
 }  // namespace
 
-TEST(SpatialToChunk, ConvertsIntoAFileCdpostReads) {
+TEST(SpatialToChunk, ConvertsIntoAFileCdpostReads)
+{
   auto dir = scratch_dir();
   auto in = write_file(dir / "layers.spatial", spatial_text);
   auto out = (dir / "layers.chunk").string();
@@ -68,7 +70,8 @@ TEST(SpatialToChunk, ConvertsIntoAFileCdpostReads) {
   EXPECT_NE(read_file(out).find("100 3 28.5\n"), std::string::npos) << "total count of the first block";
 }
 
-TEST(SpatialToChunk, RefusesBrokenFilesNamingFileAndLine) {
+TEST(SpatialToChunk, RefusesBrokenFilesNamingFileAndLine)
+{
   auto dir = scratch_dir();
   const std::string text = spatial_text;
   struct Case {
@@ -85,16 +88,19 @@ TEST(SpatialToChunk, RefusesBrokenFilesNamingFileAndLine) {
       {"wrong-bin", wrong_bin, 6, "expected bin 2"},
       {"changed", changed, 8, "number of bins changed"},
       {"nan", std::string(text).replace(text.find("-0.25"), 5, "nan"), 6, "vy"},
-      {"chunk-file", "# Chunk-averaged\n# Timestep Number-of-chunks Total-count\n# Chunk Coord1 Ncount vy\n100 1 3\n  1 0 3 0\n", 4,
+      {"chunk-file",
+       "# Chunk-averaged\n# Timestep Number-of-chunks Total-count\n# Chunk Coord1 Ncount vy\n100 1 3\n  1 0 3 0\n", 4,
        "no '# Bin"},
   };
   for (const auto& c : cases) {
     auto in = write_file(dir / (c.name + ".spatial"), c.text);
-    expect_input_error([&] { cdref::spatial_to_chunk(in, (dir / (c.name + ".chunk")).string()); }, in, c.line, c.fragment);
+    expect_input_error([&] { cdref::spatial_to_chunk(in, (dir / (c.name + ".chunk")).string()); }, in, c.line,
+                       c.fragment);
   }
 }
 
-TEST(Overlaps, PairsAcrossThePeriodicBoundaryAndTheFloor) {
+TEST(Overlaps, PairsAcrossThePeriodicBoundaryAndTheFloor)
+{
   auto dir = scratch_dir();
   const double d = 1.0;
   // Two disks overlapping by 0.02 across x = 0 = 10, one touching exactly, one 0.01 into the floor.
@@ -113,7 +119,8 @@ TEST(Overlaps, PairsAcrossThePeriodicBoundaryAndTheFloor) {
   expect_input_error([&] { cdref::dump_overlaps(path, options); }, path, 0, "no frame");
 }
 
-TEST(Overlaps, CellListAgreesWithAllPairs) {
+TEST(Overlaps, CellListAgreesWithAllPairs)
+{
   auto dir = scratch_dir();
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> x(0, 30), y(0, 12), r(0.4, 0.6);
@@ -140,7 +147,8 @@ TEST(Overlaps, CellListAgreesWithAllPairs) {
   EXPECT_NEAR(s.mean, sum / contacts, 1e-12);
 }
 
-TEST(RunInfo, ReadsKeysAndRefusesMalformedLines) {
+TEST(RunInfo, ReadsKeysAndRefusesMalformedLines)
+{
   auto dir = scratch_dir();
   auto path = write_file(dir / "run.info", "code lammps-granular\nk_eff 1.5e5\n\nmodel hooke\n");
   auto info = cdref::read_run_info(path);
@@ -155,28 +163,35 @@ TEST(RunInfo, ReadsKeysAndRefusesMalformedLines) {
   expect_input_error([&] { cdref::read_run_info(twice); }, twice, 2, "given twice");
 }
 
-TEST(RunInfo, LoopTimesOfLammpsAndLiggghtsLogs) {
+TEST(RunInfo, LoopTimesOfLammpsAndLiggghtsLogs)
+{
   auto dir = scratch_dir();
-  auto lammps = write_file(dir / "log.lammps",
-                           "Loop time of 3.25764 on 1 procs for 53617 steps with 420 atoms\n\n48.9% CPU use with 1 MPI tasks x 1 OpenMP threads\n"
-                           "Loop time of 9.5 on 1 procs for 1000 steps with 420 atoms\n\n99.1% CPU use with 1 MPI tasks\n");
+  auto lammps =
+      write_file(dir / "log.lammps",
+                 "Loop time of 3.25764 on 1 procs for 53617 steps with 420 atoms\n\n48.9% CPU use with 1 MPI tasks x 1 "
+                 "OpenMP threads\n"
+                 "Loop time of 9.5 on 1 procs for 1000 steps with 420 atoms\n\n99.1% CPU use with 1 MPI tasks\n");
   auto times = cdref::read_loop_times(lammps);
   ASSERT_EQ(times.size(), 2u);
   EXPECT_DOUBLE_EQ(times[0].seconds, 3.25764);
   EXPECT_EQ(times[0].steps, 53617);
   EXPECT_DOUBLE_EQ(times[0].cpu_percent.value(), 48.9);
   EXPECT_DOUBLE_EQ(times[1].cpu_percent.value(), 99.1);
-  auto liggghts = write_file(dir / "log.liggghts",
-                             "Loop time of 2.46508 on 1 procs for 26808 steps with 420 atoms, finish time Sun Nov 22 04:36:33 2026\n");
+  auto liggghts = write_file(
+      dir / "log.liggghts",
+      "Loop time of 2.46508 on 1 procs for 26808 steps with 420 atoms, finish time Sun Nov 22 04:36:33 2026\n");
   times = cdref::read_loop_times(liggghts);
   ASSERT_EQ(times.size(), 1u);
   EXPECT_EQ(times[0].steps, 26808);
   EXPECT_FALSE(times[0].cpu_percent);
 }
 
-TEST(Collision, RestitutionAndContactSteps) {
+TEST(Collision, RestitutionAndContactSteps)
+{
   auto dir = scratch_dir();
-  auto path = write_file(dir / "collision.txt", "# step gap normal_velocity\n0 1e-6 -1\n1 -1e-7 -0.9\n2 -2e-7 0.1\n3 -1e-7 0.4\n4 2e-8 0.5\n5 1e-7 0.5\n");
+  auto path = write_file(
+      dir / "collision.txt",
+      "# step gap normal_velocity\n0 1e-6 -1\n1 -1e-7 -0.9\n2 -2e-7 0.1\n3 -1e-7 0.4\n4 2e-8 0.5\n5 1e-7 0.5\n");
   auto c = cdref::analyse_collision(path);
   EXPECT_EQ(c.contact_steps, 3);
   EXPECT_DOUBLE_EQ(c.restitution, 0.5);
@@ -195,23 +210,25 @@ namespace {
 // profile, dump and a log with the flow stage's loop time.
 struct FakeRun {
   std::string code = "lammps-granular", model = "hooke";
-  double dt = 2e-5;         // s
-  long sample_every = 5;    // steps: 10 kHz
-  double duration = 1.0;    // s
+  double dt = 2e-5;       // s
+  long sample_every = 5;  // steps: 10 kHz
+  double duration = 1.0;  // s
   double u = 3.0, tone_hz = 1200, tone_amplitude = 0.02, noise = 0.01;
   std::optional<double> f_contact = 1000.0, k_reduced = 2e4;
-  double overlap = 0.003;   // of the dump's overlapping pair, in d
+  double overlap = 0.003;  // of the dump's overlapping pair, in d
   double loop_seconds = 20;
   unsigned seed = 1;
 };
 
-void write_fake_run(const fs::path& dir, const FakeRun& run) {
+void write_fake_run(const fs::path& dir, const FakeRun& run)
+{
   fs::create_directories(dir);
   const double d = 5e-4, v0 = std::sqrt(9.81 * d), ytop = 10 * d;
   std::ostringstream info;
   info << "code " << run.code << "\nmodel " << run.model << "\nd " << d << "\nbed_walls_d 10\ndt " << run.dt << "\n";
-  if (run.f_contact) info << "f_contact " << *run.f_contact << "\nk_reduced " << *run.k_reduced << "\nk_eff " << *run.k_reduced * 9.63
-                          << "\noverlap_target 1e-3\n";
+  if (run.f_contact)
+    info << "f_contact " << *run.f_contact << "\nk_reduced " << *run.k_reduced << "\nk_eff " << *run.k_reduced * 9.63
+         << "\noverlap_target 1e-3\n";
   write_file(dir / "run.info", info.str());
   std::mt19937 rng(run.seed);
   std::normal_distribution<double> gauss(0, 1);
@@ -231,9 +248,10 @@ void write_fake_run(const fs::path& dir, const FakeRun& run) {
     r2 = r1;
     r1 = resonance;
     const double v = resonance + run.noise * gauss(rng);
-    flow << step << ' ' << 0.6 * u * v0 << ' ' << (u + 0.02 * gauss(rng)) * v0 << ' ' << v * v0 << ' ' << 0.7 + 0.003 * gauss(rng)
-         << ' ' << (10 + 0.1 * gauss(rng)) * d << '\n';
-    layers << step << " 2 300\n  1 " << ytop - 2.5 * d << " 150 " << 0.1 * v * v0 << "\n  2 " << ytop + 2.5 * d << " 150 " << v * v0 << '\n';
+    flow << step << ' ' << 0.6 * u * v0 << ' ' << (u + 0.02 * gauss(rng)) * v0 << ' ' << v * v0 << ' '
+         << 0.7 + 0.003 * gauss(rng) << ' ' << (10 + 0.1 * gauss(rng)) * d << '\n';
+    layers << step << " 2 300\n  1 " << ytop - 2.5 * d << " 150 " << 0.1 * v * v0 << "\n  2 " << ytop + 2.5 * d
+           << " 150 " << v * v0 << '\n';
     if (step % 2000 == 0) {
       profile << step << " 20 300\n";
       for (int bin = 0; bin < 20; ++bin) {
@@ -248,14 +266,17 @@ void write_fake_run(const fs::path& dir, const FakeRun& run) {
   write_file(dir / "profile.chunk", profile.str());
   std::string dump;
   for (long step = 0; step <= steps; step += steps / 4)
-    dump += dump_frame(step, 0, 16 * d, 0, 60 * d, {{2 * d, 3 * d, d / 2}, {3 * d - run.overlap * d, 3 * d, d / 2}, {8 * d, 3 * d, d / 2}});
+    dump += dump_frame(step, 0, 16 * d, 0, 60 * d,
+                       {{2 * d, 3 * d, d / 2}, {3 * d - run.overlap * d, 3 * d, d / 2}, {8 * d, 3 * d, d / 2}});
   write_file(dir / "dump.chute", dump);
-  write_file(dir / "log.lammps", "Loop time of 1 on 1 procs for 10 steps with 3 atoms\n\n100.0% CPU use\nLoop time of " +
-                                     std::to_string(run.loop_seconds) + " on 1 procs for " + std::to_string(steps) +
-                                     " steps with 3 atoms\n\n97.5% CPU use with 1 MPI tasks\n");
+  write_file(dir / "log.lammps",
+             "Loop time of 1 on 1 procs for 10 steps with 3 atoms\n\n100.0% CPU use\nLoop time of " +
+                 std::to_string(run.loop_seconds) + " on 1 procs for " + std::to_string(steps) +
+                 " steps with 3 atoms\n\n97.5% CPU use with 1 MPI tasks\n");
 }
 
-cdref::CompareSettings settings_for(const std::vector<fs::path>& dirs) {
+cdref::CompareSettings settings_for(const std::vector<fs::path>& dirs)
+{
   cdref::CompareSettings s;
   for (const auto& d : dirs) s.run_dirs.push_back(d.string());
   s.run.spectrum.segment_duration_s = 0.25;
@@ -264,7 +285,8 @@ cdref::CompareSettings settings_for(const std::vector<fs::path>& dirs) {
 
 }  // namespace
 
-TEST(Compare, FindsTheContactPeakTheOverlapsAndTheCost) {
+TEST(Compare, FindsTheContactPeakTheOverlapsAndTheCost)
+{
   auto dir = scratch_dir();
   FakeRun soft;
   FakeRun rigid;
@@ -312,7 +334,8 @@ TEST(Compare, FindsTheContactPeakTheOverlapsAndTheCost) {
   EXPECT_TRUE(fs::exists(out / "figures" / "peaks_vs_k.gp"));
 }
 
-TEST(Compare, PeakShiftWithStiffnessAndNonStationaryRuns) {
+TEST(Compare, PeakShiftWithStiffnessAndNonStationaryRuns)
+{
   auto dir = scratch_dir();
   std::vector<fs::path> dirs;
   for (double k : {1e3, 1e4, 1e5}) {
@@ -355,7 +378,8 @@ TEST(Compare, PeakShiftWithStiffnessAndNonStationaryRuns) {
   EXPECT_NE(comparison.runs.back().label.find("(growing)"), std::string::npos) << "duplicate labels are made unique";
 }
 
-TEST(Compare, RefusesAMissingDirectory) {
+TEST(Compare, RefusesAMissingDirectory)
+{
   auto dir = scratch_dir();
   EXPECT_THROW(cdref::compare_runs(settings_for({dir / "absent"})), cdpost::InputError);
   EXPECT_THROW(cdref::compare_runs(settings_for({})), cdpost::AnalysisError);

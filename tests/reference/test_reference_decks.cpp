@@ -31,7 +31,8 @@ constexpr int kGrains = 40;
 constexpr int kWallGrains = 6;  // 3 d of wall grains of 0.5 d
 const std::string kSmall = " -var bed_walls 3 -var settle 0.03 -var flow 0.1 -var sample_max 2e-4 -var dump_every 0.02";
 
-int run_in(const fs::path& dir, const std::string& command) {
+int run_in(const fs::path& dir, const std::string& command)
+{
   fs::create_directories(dir);
   const std::string line = "cd '" + dir.string() + "' && " + command + " > screen.txt 2>&1";
   return std::system(line.c_str());
@@ -42,25 +43,31 @@ class ReferenceDecks : public ::testing::Test {
   static fs::path root;
   static std::map<std::string, int> status;  // run name -> exit status (absent: not run)
 
-  static void SetUpTestSuite() {
+  static void SetUpTestSuite()
+  {
     root = cdref::testing::scratch_dir("decks");
-    status["rain"] = run_in(root, lmp + " -in " + reference_dir + "/in.rain -log none -var out rain.data -var cells 8 -var grains " +
-                                      std::to_string(kGrains) + " -var bed_walls 3");
+    status["rain"] =
+        run_in(root, lmp + " -in " + reference_dir + "/in.rain -log none -var out rain.data -var cells 8 -var grains " +
+                         std::to_string(kGrains) + " -var bed_walls 3");
     if (status["rain"] != 0) return;
     const std::string data = " -var data ../rain.data";
-    status["granular-hooke"] = run_in(root / "granular-hooke", lmp + " -in " + reference_dir + "/in.chute_granular -log log.lammps" +
-                                                                   data + kSmall + " -var model hooke -var overlap 1e-2");
-    status["granular-hertz"] = run_in(root / "granular-hertz", lmp + " -in " + reference_dir + "/in.chute_granular -log log.lammps" +
-                                                                   data + kSmall + " -var model hertz -var overlap 1e-2");
+    status["granular-hooke"] =
+        run_in(root / "granular-hooke", lmp + " -in " + reference_dir + "/in.chute_granular -log log.lammps" + data +
+                                            kSmall + " -var model hooke -var overlap 1e-2");
+    status["granular-hertz"] =
+        run_in(root / "granular-hertz", lmp + " -in " + reference_dir + "/in.chute_granular -log log.lammps" + data +
+                                            kSmall + " -var model hertz -var overlap 1e-2");
     if (!liggghts.empty())
-      status["liggghts"] = run_in(root / "liggghts", "stdbuf -o0 " + liggghts + " -in " + reference_dir +
-                                                         "/in.chute_liggghts -log log.liggghts" + data + kSmall + " -var overlap 1e-2");
+      status["liggghts"] =
+          run_in(root / "liggghts", "stdbuf -o0 " + liggghts + " -in " + reference_dir +
+                                        "/in.chute_liggghts -log log.liggghts" + data + kSmall + " -var overlap 1e-2");
     if (!lmp_cd.empty())
-      status["rigid"] = run_in(root / "rigid", lmp_cd + " -in " + reference_dir + "/in.chute_rigid -log log.lammps" + data + kSmall +
-                                                   " -var tolerance 1e-2");
+      status["rigid"] = run_in(root / "rigid", lmp_cd + " -in " + reference_dir + "/in.chute_rigid -log log.lammps" +
+                                                   data + kSmall + " -var tolerance 1e-2");
   }
 
-  static void require(const std::string& name) {
+  static void require(const std::string& name)
+  {
     if (name == "liggghts" && liggghts.empty()) GTEST_SKIP() << "liggghts not installed";
     if (name == "rigid" && lmp_cd.empty()) GTEST_SKIP() << "lmp_cd not built";
     ASSERT_EQ(status.at(name), 0) << name << " failed: " << read_file(root / name / "screen.txt");
@@ -68,21 +75,23 @@ class ReferenceDecks : public ::testing::Test {
 };
 fs::path ReferenceDecks::root;
 // Stops the calling test when `name` did not run (skipped, or failed with its screen output).
-#define REQUIRE_RUN(name)                              \
-  do {                                                 \
-    require(name);                                     \
-    if (HasFatalFailure() || IsSkipped()) return;      \
+#define REQUIRE_RUN(name)                         \
+  do {                                            \
+    require(name);                                \
+    if (HasFatalFailure() || IsSkipped()) return; \
   } while (0)
 std::map<std::string, int> ReferenceDecks::status;
 
 // The files of doc/postproc.md, with sane contents: every grain kept, wall grains unmoved,
 // the flowing layer moving downhill.
-void check_chute_outputs(const fs::path& dir, const std::string& code) {
+void check_chute_outputs(const fs::path& dir, const std::string& code)
+{
   auto info = cdref::read_run_info((dir / "run.info").string());
   EXPECT_EQ(info.text("code").value_or(""), code);
   EXPECT_EQ(info.number("grains").value_or(0), kGrains);
   auto flow = cdpost::read_ave_time((dir / "flow.time").string());
-  for (const char* column : {"v_u_all", "v_u_flow", "v_v_flow", "v_phi_flow", "v_h"}) EXPECT_TRUE(flow.has(column)) << column;
+  for (const char* column : {"v_u_all", "v_u_flow", "v_v_flow", "v_phi_flow", "v_h"})
+    EXPECT_TRUE(flow.has(column)) << column;
   const double samples = 0.1 / info.number("sample_interval").value();
   EXPECT_NEAR(static_cast<double>(flow.rows()), samples, 2);
   const auto& u = flow.column("v_u_flow");
@@ -109,79 +118,93 @@ void check_chute_outputs(const fs::path& dir, const std::string& code) {
   EXPECT_GE(frames, 5);
 }
 
-cdref::CollisionResult collide(const fs::path& dir, const std::string& command) {
+cdref::CollisionResult collide(const fs::path& dir, const std::string& command)
+{
   EXPECT_EQ(run_in(dir, command), 0) << read_file(dir / "screen.txt");
   return cdref::analyse_collision((dir / "collision.txt").string());
 }
 
 }  // namespace
 
-TEST_F(ReferenceDecks, RainHoldsTheGrainsAndTheWallColumn) {
+TEST_F(ReferenceDecks, RainHoldsTheGrainsAndTheWallColumn)
+{
   REQUIRE_RUN("rain");
   const auto text = read_file(root / "rain.data");
   EXPECT_NE(text.find(std::to_string(kGrains + kWallGrains) + " atoms"), std::string::npos);
   EXPECT_NE(text.find("2 atom types"), std::string::npos);
 }
 
-TEST_F(ReferenceDecks, LammpsGranularHookeChute) {
+TEST_F(ReferenceDecks, LammpsGranularHookeChute)
+{
   REQUIRE_RUN("granular-hooke");
   check_chute_outputs(root / "granular-hooke", "lammps-granular");
   EXPECT_NO_THROW(cdpost::read_ave_chunk((root / "granular-hooke" / "profile.chunk").string()));
 }
 
-TEST_F(ReferenceDecks, LammpsGranularHertzChute) {
+TEST_F(ReferenceDecks, LammpsGranularHertzChute)
+{
   REQUIRE_RUN("granular-hertz");
   check_chute_outputs(root / "granular-hertz", "lammps-granular");
 }
 
-TEST_F(ReferenceDecks, LiggghtsChuteAndItsConvertedChunks) {
+TEST_F(ReferenceDecks, LiggghtsChuteAndItsConvertedChunks)
+{
   REQUIRE_RUN("liggghts");
   const auto dir = root / "liggghts";
   for (const char* f : {"profile", "layers"})
-    cdref::spatial_to_chunk((dir / (std::string(f) + ".spatial")).string(), (dir / (std::string(f) + ".chunk")).string());
+    cdref::spatial_to_chunk((dir / (std::string(f) + ".spatial")).string(),
+                            (dir / (std::string(f) + ".chunk")).string());
   check_chute_outputs(dir, "liggghts");
 }
 
-TEST_F(ReferenceDecks, RigidCounterpart) {
+TEST_F(ReferenceDecks, RigidCounterpart)
+{
   REQUIRE_RUN("rigid");
   check_chute_outputs(root / "rigid", "lmp_cd");
 }
 
 // The damping gives e = 0.5 and the time step resolves the lightest pair's contact in about
 // steps_per_contact = 50 steps, with each chute deck's own parameters.
-TEST_F(ReferenceDecks, CollisionsCheckRestitutionAndTimeStep) {
+TEST_F(ReferenceDecks, CollisionsCheckRestitutionAndTimeStep)
+{
   REQUIRE_RUN("granular-hooke");
   auto info = cdref::read_run_info((root / "granular-hooke" / "run.info").string());
-  const std::string args = " -var kn " + *info.text("k_n") + " -var eT " + *info.text("e_tsuji") + " -var dt " + *info.text("dt");
-  auto light = collide(root / "collision-hooke", lmp + " -in " + reference_dir + "/in.collision_granular -log none" + args);
+  const std::string args =
+      " -var kn " + *info.text("k_n") + " -var eT " + *info.text("e_tsuji") + " -var dt " + *info.text("dt");
+  auto light =
+      collide(root / "collision-hooke", lmp + " -in " + reference_dir + "/in.collision_granular -log none" + args);
   EXPECT_NEAR(light.restitution, 0.5, 0.015);
   EXPECT_GE(light.contact_steps, 48);
-  auto mean = collide(root / "collision-hooke-d", lmp + " -in " + reference_dir + "/in.collision_granular -log none" + args +
-                                                      " -var d1 1 -var d2 1");
+  auto mean = collide(root / "collision-hooke-d", lmp + " -in " + reference_dir + "/in.collision_granular -log none" +
+                                                      args + " -var d1 1 -var d2 1");
   EXPECT_NEAR(mean.restitution, 0.5, 0.015);
 
   REQUIRE_RUN("granular-hertz");
   info = cdref::read_run_info((root / "granular-hertz" / "run.info").string());
-  auto hertz = collide(root / "collision-hertz", lmp + " -in " + reference_dir + "/in.collision_granular -log none -var model hertz" +
-                                                     " -var kn " + *info.text("k_n") + " -var eT " + *info.text("e_tsuji") +
-                                                     " -var dt " + *info.text("dt"));
+  auto hertz =
+      collide(root / "collision-hertz",
+              lmp + " -in " + reference_dir + "/in.collision_granular -log none -var model hertz" + " -var kn " +
+                  *info.text("k_n") + " -var eT " + *info.text("e_tsuji") + " -var dt " + *info.text("dt"));
   EXPECT_NEAR(hertz.restitution, 0.5, 0.015);
   EXPECT_GE(hertz.contact_steps, 45) << "at the impact speed v_ref = 1 m/s";
 
   REQUIRE_RUN("liggghts");
   info = cdref::read_run_info((root / "liggghts" / "run.info").string());
   const std::string largs = " -var Y " + *info.text("youngs_modulus") + " -var dt " + *info.text("dt");
-  auto lig = collide(root / "collision-liggghts", "stdbuf -o0 " + liggghts + " -in " + reference_dir +
-                                                      "/in.collision_liggghts -log none" + largs);
+  auto lig = collide(root / "collision-liggghts",
+                     "stdbuf -o0 " + liggghts + " -in " + reference_dir + "/in.collision_liggghts -log none" + largs);
   EXPECT_NEAR(lig.restitution, 0.5, 0.015);
   EXPECT_GE(lig.contact_steps, 50) << "LIGGGHTS's k_n of the lightest pair is below k";
-  auto lig_mean = collide(root / "collision-liggghts-d", "stdbuf -o0 " + liggghts + " -in " + reference_dir +
-                                                             "/in.collision_liggghts -log none" + largs + " -var d1 1 -var d2 1");
+  auto lig_mean =
+      collide(root / "collision-liggghts-d", "stdbuf -o0 " + liggghts + " -in " + reference_dir +
+                                                 "/in.collision_liggghts -log none" + largs + " -var d1 1 -var d2 1");
   auto granular_mean = mean;
-  EXPECT_NEAR(lig_mean.contact_steps, granular_mean.contact_steps, 1) << "Y is calibrated so that the mean pair has the same k";
+  EXPECT_NEAR(lig_mean.contact_steps, granular_mean.contact_steps, 1)
+      << "Y is calibrated so that the mean pair has the same k";
 }
 
-TEST_F(ReferenceDecks, CompareTheSmallRuns) {
+TEST_F(ReferenceDecks, CompareTheSmallRuns)
+{
   REQUIRE_RUN("granular-hooke");
   REQUIRE_RUN("granular-hertz");
   std::string dirs = " granular-hooke granular-hertz";

@@ -30,9 +30,8 @@
 #include "fc2d_compute_error.h"
 #undef restrict
 
-extern "C" void dsyev_(const char* jobz, const char* uplo, const int* n, double* a, const int* lda,
-                       double* w, double* work, const int* lwork, int* info, std::size_t jobz_len,
-                       std::size_t uplo_len);
+extern "C" void dsyev_(const char* jobz, const char* uplo, const int* n, double* a, const int* lda, double* w,
+                       double* work, const int* lwork, int* info, std::size_t jobz_len, std::size_t uplo_len);
 
 namespace {
 
@@ -115,8 +114,7 @@ struct SiconosSolution {
   int iterations = 0;
 };
 
-SiconosSolution solve_with_siconos(const Fc2dProblem& p, int solver_id, double tolerance,
-                                   int max_iterations)
+SiconosSolution solve_with_siconos(const Fc2dProblem& p, int solver_id, double tolerance, int max_iterations)
 {
   SiconosProblem problem(p);
   std::unique_ptr<SolverOptions, void (*)(SolverOptions*)> options(solver_options_create(solver_id),
@@ -151,8 +149,7 @@ double core_error(const Fc2dProblem& p, const std::vector<double>& reaction)
   const std::vector<double> u = p.velocity(reaction);
   double sum = 0.0;
   for (int i = 0; i < p.contacts; ++i)
-    sum += cd::natural_map_residual_squared({reaction[2 * i], reaction[2 * i + 1]},
-                                            {u[2 * i], u[2 * i + 1]}, p.mu[i]);
+    sum += cd::natural_map_residual_squared({reaction[2 * i], reaction[2 * i + 1]}, {u[2 * i], u[2 * i + 1]}, p.mu[i]);
   return std::sqrt(sum);
 }
 
@@ -298,10 +295,9 @@ TEST(SiconosLocal, ExactLocalSolverAgreesWithFc2dSolvers)
         if (!unique) continue;
         const double gap = distance(r_ours, theirs.reaction);
         EXPECT_LE(gap, 64.0 * impulse_rounding(solver.through_lcp))
-            << solver.name << " mu " << mu << " case " << k << ": W = (" << w.nn << ", " << w.nt
-            << ", " << w.tt << "), u_free = (" << u_free.n << ", " << u_free.t << "), core ("
-            << r_ours[0] << ", " << r_ours[1] << "), Siconos (" << theirs.reaction[0] << ", "
-            << theirs.reaction[1] << ")";
+            << solver.name << " mu " << mu << " case " << k << ": W = (" << w.nn << ", " << w.nt << ", " << w.tt
+            << "), u_free = (" << u_free.n << ", " << u_free.t << "), core (" << r_ours[0] << ", " << r_ours[1]
+            << "), Siconos (" << theirs.reaction[0] << ", " << theirs.reaction[1] << ")";
         worst_gap[s] = std::max(worst_gap[s], gap / impulse_rounding(solver.through_lcp));
       }
     }
@@ -311,10 +307,10 @@ TEST(SiconosLocal, ExactLocalSolverAgreesWithFc2dSolvers)
   // Every branch of the Coulomb graph is compared, and most cases are unique.
   for (int s = 0; s < 4; ++s) EXPECT_GE(status_count[s], 50) << "status " << s;
   EXPECT_GE(compared, 4 * residual_only);
-  std::printf("one contact: %d unique cases compared (no contact/stick/slip+/slip- %d/%d/%d/%d), "
-              "%d compared by residuals only\n",
-              compared, status_count[0], status_count[1], status_count[2], status_count[3],
-              residual_only);
+  std::printf(
+      "one contact: %d unique cases compared (no contact/stick/slip+/slip- %d/%d/%d/%d), "
+      "%d compared by residuals only\n",
+      compared, status_count[0], status_count[1], status_count[2], status_count[3], residual_only);
   for (int s = 0; s < 3; ++s)
     std::printf("  %-5s %4d solved, %d rejected by Siconos's own error, worst impulse gap %.2g x model\n",
                 local_solvers[s].name, attempts[s], rejected[s], worst_gap[s]);
@@ -327,8 +323,8 @@ TEST(SiconosLocal, ExactLocalSolverAgreesWithFc2dSolvers)
 // A contact as the test derives it from the disks alone.
 struct ContactKinematics {
   int body_a = 0;
-  int body_b = 0;        // cd::world_body for a wall
-  double nx = 0.0;       // unit normal from b to a
+  int body_b = 0;   // cd::world_body for a wall
+  double nx = 0.0;  // unit normal from b to a
   double ny = 0.0;
   double lever_a = 0.0;  // centre-to-contact distances (m); 0 for the world
   double lever_b = 0.0;
@@ -437,11 +433,9 @@ Scene random_scene(int disk_count, double nest_probability, double mu, std::mt19
   for (int i = 1; i <= n; ++i) {
     const cd::Disk& d = s.disks[i];
     if (d.y - d.radius < floor_y)
-      add(cd::disk_world_geometry(i, d, 0.0, d.y - floor_y, 0.0, 1.0),
-          {i, cd::world_body, 0.0, 1.0, d.radius, 0.0});
+      add(cd::disk_world_geometry(i, d, 0.0, d.y - floor_y, 0.0, 1.0), {i, cd::world_body, 0.0, 1.0, d.radius, 0.0});
     if (d.x - d.radius < wall_x)
-      add(cd::disk_world_geometry(i, d, d.x - wall_x, 0.0, 1.0, 0.0),
-          {i, cd::world_body, 1.0, 0.0, d.radius, 0.0});
+      add(cd::disk_world_geometry(i, d, d.x - wall_x, 0.0, 1.0, 0.0), {i, cd::world_body, 1.0, 0.0, d.radius, 0.0});
   }
   return s;
 }
@@ -520,8 +514,8 @@ Fc2dProblem assemble(const Scene& s, const std::vector<double>& h, double mu)
 // The solver core's run on a scene: Gauss–Seidel from zero impulses, as the driver runs it.
 struct CoreRun {
   cd::SolveReport report;
-  std::vector<double> reaction;        // r (N s), per contact [normal, tangent]
-  std::vector<double> body_velocity;   // u from the bodies' final velocities (m/s)
+  std::vector<double> reaction;       // r (N s), per contact [normal, tangent]
+  std::vector<double> body_velocity;  // u from the bodies' final velocities (m/s)
 };
 
 CoreRun run_core(Scene scene, double tolerance, int max_sweeps)
@@ -543,12 +537,12 @@ CoreRun run_core(Scene scene, double tolerance, int max_sweeps)
 
 // What the tolerances of one scene are made of.
 struct SceneScales {
-  Spectrum delassus;         // eigenvalues of W
-  double frobenius = 0.0;    // |W|_F, bounds the strictly upper block triangle of W
-  double tangential = 0.0;   // |W_T|_2, W_T the tangential rows of W
+  Spectrum delassus;             // eigenvalues of W
+  double frobenius = 0.0;        // |W|_F, bounds the strictly upper block triangle of W
+  double tangential = 0.0;       // |W_T|_2, W_T the tangential rows of W
   double local_condition = 0.0;  // max over contacts of the largest eigenvalue of W_ii / min of the smallest
-  double impulse = 0.0;      // P (N s)
-  double velocity = 0.0;     // V (m/s)
+  double impulse = 0.0;          // P (N s)
+  double velocity = 0.0;         // V (m/s)
 };
 
 SceneScales scene_scales(const Fc2dProblem& p, const std::vector<double>& reaction)
@@ -564,8 +558,8 @@ SceneScales scene_scales(const Fc2dProblem& p, const std::vector<double>& reacti
   s.tangential = std::sqrt(symmetric_spectrum(gram, m).max);
   double local_max = 0.0, local_min = std::numeric_limits<double>::infinity();
   for (int i = 0; i < m; ++i) {
-    const Spectrum block = symmetric_spectrum({p.w(2 * i, 2 * i), p.w(2 * i + 1, 2 * i),
-                                               p.w(2 * i, 2 * i + 1), p.w(2 * i + 1, 2 * i + 1)}, 2);
+    const Spectrum block = symmetric_spectrum(
+        {p.w(2 * i, 2 * i), p.w(2 * i + 1, 2 * i), p.w(2 * i, 2 * i + 1), p.w(2 * i + 1, 2 * i + 1)}, 2);
     local_max = std::max(local_max, block.max);
     local_min = std::min(local_min, block.min);
   }
@@ -577,8 +571,8 @@ SceneScales scene_scales(const Fc2dProblem& p, const std::vector<double>& reacti
 
 // Checks shared by every scene: the test's H and W against the core's kinematics and blocks,
 // and the core's body velocities against u = W r + q.
-void check_assembly(const Scene& scene, const std::vector<double>& h, const Fc2dProblem& p,
-                    const CoreRun& run, const SceneScales& scales, std::mt19937_64& rng)
+void check_assembly(const Scene& scene, const std::vector<double>& h, const Fc2dProblem& p, const CoreRun& run,
+                    const SceneScales& scales, std::mt19937_64& rng)
 {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   const int m = p.contacts;
@@ -594,7 +588,7 @@ void check_assembly(const Scene& scene, const std::vector<double>& h, const Fc2d
     EXPECT_NEAR(u.t, u_probe[2 * c + 1], rounding) << "contact " << c;
     const double block_scale = p.w(2 * c + 1, 2 * c + 1);
     EXPECT_NEAR(contact.delassus.nn, p.w(2 * c, 2 * c), rounding * block_scale) << "contact " << c;
-    EXPECT_NEAR(0.0, p.w(2 * c, 2 * c + 1), rounding * block_scale) << "contact " << c;    // disks: W_nt = 0
+    EXPECT_NEAR(0.0, p.w(2 * c, 2 * c + 1), rounding * block_scale) << "contact " << c;  // disks: W_nt = 0
     EXPECT_NEAR(contact.delassus.tt, p.w(2 * c + 1, 2 * c + 1), rounding * block_scale) << "contact " << c;
   }
   // The bodies' velocities accumulate one rounding per applied increment: a random walk of
@@ -618,23 +612,21 @@ constexpr int max_sweeps = 20000;
 // Rounding adds about eps (1 + mu) (P + V) per contact; 1e3 eps covers it.
 double core_residual_bound(const SceneScales& s, double mu)
 {
-  return (1.0 + mu) * (s.frobenius * s.local_condition * gauss_seidel_tolerance * s.impulse +
-                       1e3 * eps * (s.impulse + s.velocity));
+  return (1.0 + mu) *
+         (s.frobenius * s.local_condition * gauss_seidel_tolerance * s.impulse + 1e3 * eps * (s.impulse + s.velocity));
 }
 
 double nsgs_residual_bound(const SceneScales& s, const Fc2dProblem& p, double mu)
 {
-  return (1.0 + mu) * (gauss_seidel_tolerance * norm2(p.free_velocity) +
-                       1e3 * eps * (s.impulse + s.velocity));
+  return (1.0 + mu) * (gauss_seidel_tolerance * norm2(p.free_velocity) + 1e3 * eps * (s.impulse + s.velocity));
 }
 
 // Both codes measure the same natural map; they differ by rounding of u = W r + q, which
 // De Saxce's term counts (1 + mu) times.
-void expect_same_measure(const Fc2dProblem& p, const std::vector<double>& reaction,
-                         const SceneScales& s, double mu, const char* what)
+void expect_same_measure(const Fc2dProblem& p, const std::vector<double>& reaction, const SceneScales& s, double mu,
+                         const char* what)
 {
-  EXPECT_NEAR(core_error(p, reaction), siconos_error(p, reaction),
-              1e3 * eps * (1.0 + mu) * (s.impulse + s.velocity))
+  EXPECT_NEAR(core_error(p, reaction), siconos_error(p, reaction), 1e3 * eps * (1.0 + mu) * (s.impulse + s.velocity))
       << what;
 }
 
@@ -711,7 +703,8 @@ TEST(SiconosScene, UniqueProblemsGiveTheSameImpulsesInBothCodes)
     EXPECT_LE(r_nsgs, nsgs_residual_bound(s, p, mu)) << "scene " << k;
     expect_same_measure(p, nsgs.reaction, s, mu, "NSGS solution");
 
-    const SiconosSolution lemke = solve_with_siconos(p, SICONOS_FRICTION_2D_LEMKE, gauss_seidel_tolerance, 100 * p.size());
+    const SiconosSolution lemke =
+        solve_with_siconos(p, SICONOS_FRICTION_2D_LEMKE, gauss_seidel_tolerance, 100 * p.size());
     const bool lemke_ok = lemke_accepted(p, lemke.reaction);
     lemke_rejected += !lemke_ok;
     const double r_lemke = core_error(p, lemke.reaction);
@@ -725,15 +718,13 @@ TEST(SiconosScene, UniqueProblemsGiveTheSameImpulsesInBothCodes)
       const double impulse_tol = amplification * (r_ours + residual + 2.0 * rounding);
       const double gap = distance(ours.reaction, theirs->reaction);
       EXPECT_LE(gap, impulse_tol) << name << " scene " << k << " mu " << mu;
-      EXPECT_LE(distance(u_ours, p.velocity(theirs->reaction)), s.delassus.max * impulse_tol)
-          << name << " scene " << k;
+      EXPECT_LE(distance(u_ours, p.velocity(theirs->reaction)), s.delassus.max * impulse_tol) << name << " scene " << k;
       worst_gap = std::max(worst_gap, gap / s.impulse);
     }
   }
   // Lemke's failures are Siconos's; on these well-posed problems they stay rare.
   EXPECT_LE(lemke_rejected, scenes / 4);
-  std::printf("unique scenes: %d, Lemke rejected %d, worst impulse gap / P %.2g\n", scenes,
-              lemke_rejected, worst_gap);
+  std::printf("unique scenes: %d, Lemke rejected %d, worst impulse gap / P %.2g\n", scenes, lemke_rejected, worst_gap);
 }
 
 // Hyperstatic piles (nests close loops: mostly 2m > 3N, W singular) with large friction: the
@@ -780,11 +771,11 @@ TEST(SiconosScene, HyperstaticPilesFollowTheSameIterationAsSiconosNsgs)
       const double sweep_tol = nsgs.iterations * 64.0 * eps * (s.impulse + s.velocity / s.delassus.max);
       EXPECT_LE(distance(same_sweeps.reaction, nsgs.reaction), sweep_tol)
           << "mu " << mu << " scene " << k << " after " << nsgs.iterations << " sweeps";
-      EXPECT_LE(distance(p.velocity(same_sweeps.reaction), p.velocity(nsgs.reaction)),
-                s.delassus.max * sweep_tol);
+      EXPECT_LE(distance(p.velocity(same_sweeps.reaction), p.velocity(nsgs.reaction)), s.delassus.max * sweep_tol);
 
       // Lemke, when it succeeds, is another solution of the same law; it may be another one.
-      const SiconosSolution lemke = solve_with_siconos(p, SICONOS_FRICTION_2D_LEMKE, gauss_seidel_tolerance, 100 * p.size());
+      const SiconosSolution lemke =
+          solve_with_siconos(p, SICONOS_FRICTION_2D_LEMKE, gauss_seidel_tolerance, 100 * p.size());
       expect_same_measure(p, lemke.reaction, s, mu, "Lemke solution");
       if (lemke_accepted(p, lemke.reaction)) {
         ++lemke_accepted_count;
@@ -793,9 +784,10 @@ TEST(SiconosScene, HyperstaticPilesFollowTheSameIterationAsSiconosNsgs)
     }
   }
   EXPECT_GE(converged, 10);
-  std::printf("hyperstatic scenes: %d, core converged %d; Lemke accepted %d, of which %d equal "
-              "to the core's impulses within 1e-8 P\n",
-              3 * scenes_per_mu, converged, lemke_accepted_count, lemke_same);
+  std::printf(
+      "hyperstatic scenes: %d, core converged %d; Lemke accepted %d, of which %d equal "
+      "to the core's impulses within 1e-8 P\n",
+      3 * scenes_per_mu, converged, lemke_accepted_count, lemke_same);
 }
 
 }  // namespace
