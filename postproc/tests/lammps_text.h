@@ -9,8 +9,8 @@
 namespace cdpost::testing {
 
 // "# Time-averaged data ..." header, the column names, one line per row.
-inline std::string ave_time_text(const std::vector<std::string>& names,
-                                 const std::vector<std::vector<double>>& rows) {
+inline std::string ave_time_text(const std::vector<std::string>& names, const std::vector<std::vector<double>>& rows)
+{
   std::ostringstream out;
   out.precision(10);
   out << "# Time-averaged data for fix flow\n#";
@@ -25,8 +25,8 @@ inline std::string ave_time_text(const std::vector<std::string>& names,
 
 // value(block, chunk, column) gives the value columns after "Chunk".
 inline std::string ave_chunk_text(const std::vector<std::string>& names, const std::vector<long>& timesteps,
-                                  size_t chunks,
-                                  const std::function<double(size_t, size_t, size_t)>& value) {
+                                  size_t chunks, const std::function<double(size_t, size_t, size_t)>& value)
+{
   std::ostringstream out;
   out.precision(10);
   out << "# Chunk-averaged data for fix profile and group all\n"
@@ -49,11 +49,13 @@ struct DumpAtom {
   double x, y, vx, vy, radius;
 };
 
-inline std::string dump_frame_text(long timestep, double lx, double ly, const std::vector<DumpAtom>& atoms) {
+inline std::string dump_frame_text(long timestep, double lx, double ly, const std::vector<DumpAtom>& atoms)
+{
   std::ostringstream out;
   out.precision(10);
-  out << "ITEM: TIMESTEP\n" << timestep << "\nITEM: NUMBER OF ATOMS\n" << atoms.size()
-      << "\nITEM: BOX BOUNDS pp ff pp\n0 " << lx << "\n0 " << ly << "\n-0.5 0.5\n"
+  out << "ITEM: TIMESTEP\n"
+      << timestep << "\nITEM: NUMBER OF ATOMS\n"
+      << atoms.size() << "\nITEM: BOX BOUNDS pp ff pp\n0 " << lx << "\n0 " << ly << "\n-0.5 0.5\n"
       << "ITEM: ATOMS id type x y vx vy radius\n";
   for (const auto& a : atoms)
     out << a.id << " 1 " << a.x << ' ' << a.y << ' ' << a.vx << ' ' << a.vy << ' ' << a.radius << '\n';

@@ -15,31 +15,33 @@ namespace cdpost::testing {
 
 struct SyntheticRun {
   double d = 5e-4, g = 9.81;
-  double dt = 1e-5;          // s per step
-  long output_every = 100;   // steps: 1 kHz sampling
-  double duration = 6.0;     // s
-  double relaxation = 0.4;   // s, transient of U
-  double u_final = 10.0;     // sqrt(g d)
-  double h = 40.0;           // d
+  double dt = 1e-5;         // s per step
+  long output_every = 100;  // steps: 1 kHz sampling
+  double duration = 6.0;    // s
+  double relaxation = 0.4;  // s, transient of U
+  double u_final = 10.0;    // sqrt(g d)
+  double h = 40.0;          // d
   double phi = 0.78;
-  double frequency = 37.0;   // Hz
-  double amplitude = 0.2;    // sqrt(g d)
-  double noise = 0.3;        // sqrt(g d), white noise on v(t)
-  double creep_lambda = 3.0; // d
+  double frequency = 37.0;    // Hz
+  double amplitude = 0.2;     // sqrt(g d)
+  double noise = 0.3;         // sqrt(g d), white noise on v(t)
+  double creep_lambda = 3.0;  // d
   unsigned seed = 1;
   bool with_chunks_and_dump = true;
 
   double v0() const { return std::sqrt(g * d); }
   double u_of_t(double t) const { return u_final * (1 - std::exp(-t / relaxation)); }
   // Bagnold above the bed with u(h) = u_surface, exponential creep below.
-  double u_of_z(double z) const {
+  double u_of_z(double z) const
+  {
     const double slip = 0.3, surface = 2 * u_final;
     if (z < 0) return slip * std::exp(z / creep_lambda);
     return slip + (surface - slip) * (std::pow(h, 1.5) - std::pow(h - std::min(z, h), 1.5)) / std::pow(h, 1.5);
   }
 };
 
-inline void write_synthetic_run(const std::filesystem::path& dir, const SyntheticRun& run) {
+inline void write_synthetic_run(const std::filesystem::path& dir, const SyntheticRun& run)
+{
   std::filesystem::create_directories(dir);
   std::mt19937 rng(run.seed);
   std::normal_distribution<double> gauss(0, 1);
@@ -53,7 +55,8 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const Syntheti
     rows.push_back({double(step), t, 0.5 * run.u_of_t(t) * v0, (run.u_of_t(t) + 0.05 * gauss(rng)) * v0, v * v0,
                     run.phi + 0.005 * gauss(rng), (run.h + 0.3 * gauss(rng)) * run.d});
   }
-  write_file(dir / "flow.time", ave_time_text({"TimeStep", "v_time", "v_u_all", "v_u_flow", "v_v_flow", "v_phi_flow", "v_h"}, rows));
+  write_file(dir / "flow.time",
+             ave_time_text({"TimeStep", "v_time", "v_u_all", "v_u_flow", "v_v_flow", "v_phi_flow", "v_h"}, rows));
   if (!run.with_chunks_and_dump) return;
 
   std::vector<long> profile_steps;
@@ -87,8 +90,8 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const Syntheti
     const double x = (id % 30 + 0.5) * run.d * 1.5, z = ((id / 30) - 3.0) * run.d * 1.5;
     atoms.push_back({id, x, z, run.u_of_z(z / run.d) * v0, 0, 0.5 * run.d});
   }
-  write_gzip(dir / "dump.chute.gz", dump_frame_text(0, 45 * run.d, 60 * run.d, atoms) +
-                                        dump_frame_text(steps, 45 * run.d, 60 * run.d, atoms));
+  write_gzip(dir / "dump.chute.gz",
+             dump_frame_text(0, 45 * run.d, 60 * run.d, atoms) + dump_frame_text(steps, 45 * run.d, 60 * run.d, atoms));
 }
 
 }  // namespace cdpost::testing

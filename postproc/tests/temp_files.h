@@ -18,14 +18,16 @@ namespace cdpost::testing {
 // Removes the scratch directories at exit (keep them with CDPOST_KEEP_TEST_FILES=1).
 struct ScratchRegistry {
   std::vector<std::filesystem::path> made;
-  ~ScratchRegistry() {
+  ~ScratchRegistry()
+  {
     if (std::getenv("CDPOST_KEEP_TEST_FILES")) return;
     std::error_code ignored;
     for (const auto& dir : made) std::filesystem::remove_all(dir, ignored);
   }
 };
 
-inline std::filesystem::path scratch_dir() {
+inline std::filesystem::path scratch_dir()
+{
   static ScratchRegistry registry;
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   auto dir = std::filesystem::temp_directory_path() /
@@ -34,12 +36,14 @@ inline std::filesystem::path scratch_dir() {
   return dir;
 }
 
-inline std::string write_file(const std::filesystem::path& path, const std::string& text) {
+inline std::string write_file(const std::filesystem::path& path, const std::string& text)
+{
   std::ofstream(path, std::ios::binary) << text;
   return path.string();
 }
 
-inline std::string write_gzip(const std::filesystem::path& path, const std::string& text) {
+inline std::string write_gzip(const std::filesystem::path& path, const std::string& text)
+{
   gzFile file = gzopen(path.c_str(), "wb");
   gzwrite(file, text.data(), static_cast<unsigned>(text.size()));
   gzclose(file);

@@ -16,24 +16,31 @@ struct Outcome {
   std::string out, err;
 };
 
-std::string slurp(const std::filesystem::path& path) {
+std::string slurp(const std::filesystem::path& path)
+{
   std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
 }
 
-Outcome cdpost(const std::string& arguments) {
+Outcome cdpost(const std::string& arguments)
+{
   auto dir = testing::scratch_dir();
-  std::string command = std::string(CDPOST_EXE) + " " + arguments + " >" + (dir / "out.txt").string() + " 2>" + (dir / "err.txt").string();
+  std::string command = std::string(CDPOST_EXE) + " " + arguments + " >" + (dir / "out.txt").string() + " 2>" +
+                        (dir / "err.txt").string();
   int status = std::system(command.c_str());
   return {WEXITSTATUS(status), slurp(dir / "out.txt"), slurp(dir / "err.txt")};
 }
 
-size_t line_count(const std::string& text) { return static_cast<size_t>(std::count(text.begin(), text.end(), '\n')); }
+size_t line_count(const std::string& text)
+{
+  return static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
+}
 
 // The value column of row `name` in a name,value,error,... CSV.
-double csv_value(const std::filesystem::path& csv, const std::string& name) {
+double csv_value(const std::filesystem::path& csv, const std::string& name)
+{
   std::istringstream lines(slurp(csv));
   std::string line;
   while (std::getline(lines, line))
@@ -42,7 +49,8 @@ double csv_value(const std::filesystem::path& csv, const std::string& name) {
   return 0;
 }
 
-TEST(Cli, HelpAndUsageErrors) {
+TEST(Cli, HelpAndUsageErrors)
+{
   auto help = cdpost("--help");
   EXPECT_EQ(help.status, 0);
   EXPECT_NE(help.out.find("series MANIFEST"), std::string::npos);
@@ -56,7 +64,8 @@ TEST(Cli, HelpAndUsageErrors) {
   EXPECT_EQ(cdpost("transmogrify").status, 2);
 }
 
-TEST(Cli, RunWritesResultsFiguresAndReport) {
+TEST(Cli, RunWritesResultsFiguresAndReport)
+{
   auto dir = testing::scratch_dir() / "run";
   testing::SyntheticRun truth;
   truth.duration = 4.0;
@@ -75,7 +84,8 @@ TEST(Cli, RunWritesResultsFiguresAndReport) {
   }
 }
 
-TEST(Cli, BrokenInputGivesOneLineNamingFileAndLine) {
+TEST(Cli, BrokenInputGivesOneLineNamingFileAndLine)
+{
   auto dir = testing::scratch_dir() / "run";
   testing::SyntheticRun truth;
   truth.duration = 1.0;
@@ -86,7 +96,8 @@ TEST(Cli, BrokenInputGivesOneLineNamingFileAndLine) {
   auto outcome = cdpost("run " + dir.string());
   EXPECT_EQ(outcome.status, 1);
   EXPECT_EQ(line_count(outcome.err), 1u) << outcome.err;
-  EXPECT_EQ(outcome.err.rfind("cdpost: error: " + (dir / "flow.time").string() + ":1001: expected 7 values", 0), 0u) << outcome.err;
+  EXPECT_EQ(outcome.err.rfind("cdpost: error: " + (dir / "flow.time").string() + ":1001: expected 7 values", 0), 0u)
+      << outcome.err;
 
   testing::write_file(dir / "flow.time", "");
   outcome = cdpost("run " + dir.string());
@@ -94,25 +105,32 @@ TEST(Cli, BrokenInputGivesOneLineNamingFileAndLine) {
   EXPECT_EQ(cdpost("snapshot " + (dir / "nothing.gz").string()).status, 1);
 }
 
-TEST(Cli, SpectrumOfOneColumn) {
+TEST(Cli, SpectrumOfOneColumn)
+{
   auto dir = testing::scratch_dir() / "run";
   testing::SyntheticRun truth;
   truth.duration = 2.0;
   truth.with_chunks_and_dump = false;
   testing::write_synthetic_run(dir, truth);
-  auto outcome = cdpost("spectrum " + (dir / "flow.time").string() + " --column v_v_flow --out " + (dir / "s").string());
+  auto outcome =
+      cdpost("spectrum " + (dir / "flow.time").string() + " --column v_v_flow --out " + (dir / "s").string());
   ASSERT_EQ(outcome.status, 0) << outcome.err;
   EXPECT_NEAR(csv_value(dir / "s/spectrum_results.csv", "f"), truth.frequency, 1.0);
 }
 
 // A series following the mu(I) rule (I0 = 0.3) with f = 0.9 (sqrt(g d)/U g/d)^(1/2),
 // phi = phi_c(mu) - 0.002 U/sqrt(g d), plus an L series.
-TEST(Cli, SeriesRecoversTheFlowRulesAndScalings) {
+TEST(Cli, SeriesRecoversTheFlowRulesAndScalings)
+{
   auto dir = testing::scratch_dir();
   std::ofstream manifest(dir / "series.csv");
   manifest << "# synthetic series\nrun,mu,theta,L\n";
-  struct Friction { double mu, theta1, theta2, phi_c; std::vector<double> angles; };
-  const std::vector<Friction> frictions = {{0.05, 15, 26, 0.82, {16, 17.5, 19, 20.5, 22}}, {0.5, 21, 33, 0.80, {22, 23.5, 25, 26.5, 28}}};
+  struct Friction {
+    double mu, theta1, theta2, phi_c;
+    std::vector<double> angles;
+  };
+  const std::vector<Friction> frictions = {{0.05, 15, 26, 0.82, {16, 17.5, 19, 20.5, 22}},
+                                           {0.5, 21, 33, 0.80, {22, 23.5, 25, 26.5, 28}}};
   int index = 0;
   for (const auto& friction : frictions)
     for (double theta : friction.angles) {
@@ -142,13 +160,15 @@ TEST(Cli, SeriesRecoversTheFlowRulesAndScalings) {
   EXPECT_NEAR(csv_value(fits, "f_vs_scale_exponent"), 1.0, 0.1);
   EXPECT_GT(csv_value(fits, "f_vs_scale_correlation"), 0.95);
   EXPECT_NEAR(csv_value(fits, "pouliquen_theta1_mu0.5"), 21, 2.0);
-  for (const char* figure : {"f_vs_scale", "f_vs_shear_rate", "A_vs_U", "A_vs_phi", "phi_vs_U", "U_vs_theta", "L_series"})
+  for (const char* figure :
+       {"f_vs_scale", "f_vs_shear_rate", "A_vs_U", "A_vs_phi", "phi_vs_U", "U_vs_theta", "L_series"})
     EXPECT_TRUE(std::filesystem::exists(dir / "post/figures" / (std::string(figure) + ".png"))) << figure;
   EXPECT_EQ(line_count(slurp(dir / "post/runs.csv")), 11u);
   // No stopped run: beta free gives l/beta only, and says why.
   EXPECT_GT(csv_value(fits, "pouliquen_betafree_ell_over_beta_mu0.5"), 0);
   EXPECT_EQ(slurp(fits).find("pouliquen_betafree_beta_mu"), std::string::npos);
-  EXPECT_NE(slurp(dir / "post/fits.json").find("mu = 0.5: no stopped run, so beta and l are not determined separately"), std::string::npos);
+  EXPECT_NE(slurp(dir / "post/fits.json").find("mu = 0.5: no stopped run, so beta and l are not determined separately"),
+            std::string::npos);
   // Residuals: 10 runs in each of pouliquen, pouliquen_betafree, muI and phi_U, plus the header.
   EXPECT_EQ(line_count(slurp(dir / "post/residuals.csv")), 41u);
   EXPECT_GT(csv_value(fits, "muI_rms_residual"), 0);
@@ -167,13 +187,15 @@ TEST(Cli, SeriesRecoversTheFlowRulesAndScalings) {
 
   std::ofstream(dir / "bad.csv") << "run,mu,theta\nrun1,0.5\n";
   auto bad = cdpost("series " + (dir / "bad.csv").string());
-  EXPECT_EQ(bad.err, "cdpost: error: " + (dir / "bad.csv").string() + ":2: expected 3 fields (run, mu, theta), found 2\n");
+  EXPECT_EQ(bad.err,
+            "cdpost: error: " + (dir / "bad.csv").string() + ":2: expected 3 fields (run, mu, theta), found 2\n");
 }
 
 // Pouliquen's rule with beta = 0.3, l = 6 (theta1 = 20, theta2 = 33 deg) at mu = 0.5: five
 // flowing runs with layers (amplitude decaying as exp((z - h)/20 d)), two at mu = 2, and three stopped runs,
 // which have no run directory (a stopped run is not read).
-TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay) {
+TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay)
+{
   auto dir = testing::scratch_dir();
   const double beta = 0.3, ell = 6, tan1 = std::tan(20 * M_PI / 180), tan2 = std::tan(33 * M_PI / 180);
   auto h_stop = [&](double theta) { return -ell * std::log((std::tan(theta * M_PI / 180) - tan1) / (tan2 - tan1)); };
@@ -181,7 +203,8 @@ TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay) {
   manifest << "run,mu,theta,L,stopped,h_stop\n";
   int index = 0;
   // Two runs at mu = 2 make a friction too small for a correlation.
-  for (auto [mu, theta] : {std::pair{0.5, 21.0}, {0.5, 22.5}, {0.5, 24.0}, {0.5, 25.5}, {0.5, 27.0}, {2.0, 28.0}, {2.0, 29.0}}) {
+  for (auto [mu, theta] :
+       {std::pair{0.5, 21.0}, {0.5, 22.5}, {0.5, 24.0}, {0.5, 25.5}, {0.5, 27.0}, {2.0, 28.0}, {2.0, 29.0}}) {
     testing::SyntheticRun run;
     run.duration = 2.5;
     run.relaxation = 0.1;
@@ -191,7 +214,8 @@ TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay) {
     testing::write_synthetic_run(dir / name, run);
     manifest << name << "," << mu << "," << theta << ",45,0,\n";
   }
-  for (double theta : {20.5, 21.0, 21.5}) manifest << "stopped" << theta << ",0.5," << theta << ",45,1," << h_stop(theta) << "\n";
+  for (double theta : {20.5, 21.0, 21.5})
+    manifest << "stopped" << theta << ",0.5," << theta << ",45,1," << h_stop(theta) << "\n";
   manifest.close();
   auto outcome = cdpost("series " + (dir / "series.csv").string() + " --out " + (dir / "post").string());
   ASSERT_EQ(outcome.status, 0) << outcome.err;
@@ -206,18 +230,24 @@ TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay) {
     ADD_FAILURE() << "no error of " << name;
     return 0.0;
   };
-  EXPECT_NEAR(csv_value(fits, "pouliquen_betafree_beta_mu0.5"), beta, 3 * error_of("pouliquen_betafree_beta_mu0.5") + 0.02 * beta);
-  EXPECT_NEAR(csv_value(fits, "pouliquen_betafree_ell_mu0.5"), ell, 3 * error_of("pouliquen_betafree_ell_mu0.5") + 0.02 * ell);
+  EXPECT_NEAR(csv_value(fits, "pouliquen_betafree_beta_mu0.5"), beta,
+              3 * error_of("pouliquen_betafree_beta_mu0.5") + 0.02 * beta);
+  EXPECT_NEAR(csv_value(fits, "pouliquen_betafree_ell_mu0.5"), ell,
+              3 * error_of("pouliquen_betafree_ell_mu0.5") + 0.02 * ell);
   EXPECT_EQ(csv_value(fits, "pouliquen_betafree_stopped_runs_mu0.5"), 3);
   EXPECT_EQ(line_count(slurp(dir / "post/runs.csv")), 8u);
   const auto residuals = slurp(dir / "post/residuals.csv");
-  EXPECT_NE(residuals.find((dir / "stopped21.5").string() + ",0.5,21.5,pouliquen_betafree,tan_theta,"), std::string::npos) << residuals;
+  EXPECT_NE(residuals.find((dir / "stopped21.5").string() + ",0.5,21.5,pouliquen_betafree,tan_theta,"),
+            std::string::npos)
+      << residuals;
   EXPECT_EQ(line_count(residuals), 1u + 5 + 8 + 7 + 7);  // pouliquen, betafree (5 + 3) at mu 0.5; muI, phi_U over all
   EXPECT_EQ(line_count(slurp(dir / "post/layer_amplitudes.csv")), 1u + 7 * 5);  // 5 filled layers per run
   const auto json = slurp(dir / "post/fits.json");
-  EXPECT_NE(json.find("correlation of A with U (mu = 2): 2 runs, no correlation or p-value (they need 3)"), std::string::npos);
+  EXPECT_NE(json.find("correlation of A with U (mu = 2): 2 runs, no correlation or p-value (they need 3)"),
+            std::string::npos);
   EXPECT_EQ(slurp(fits).find("correlation_A_U_p_value_mu2"), std::string::npos);
-  EXPECT_NE(json.find("correlation of f with L not fitted: correlation is undefined: one of the series is constant"), std::string::npos);
+  EXPECT_NE(json.find("correlation of f with L not fitted: correlation is undefined: one of the series is constant"),
+            std::string::npos);
   EXPECT_EQ(slurp(fits).find("correlation_f_L"), std::string::npos);
   for (const char* figure : {"amplitude_vs_depth", "pouliquen_beta_free"})
     EXPECT_TRUE(std::filesystem::exists(dir / "post/figures" / (std::string(figure) + ".png"))) << figure;
@@ -235,16 +265,19 @@ TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay) {
     for (std::string field; std::getline(fields, field, ',');) f.push_back(field);
     ASSERT_EQ(f.size(), 7u) << line;
     EXPECT_NEAR(std::stod(f[3]), 20, 3 * std::stod(f[4]) + 1.0) << line;
-    EXPECT_GE(std::stoi(f[5]), 3) << line;  // layers 5 ... 35 d; the top one ends at the surface h = 40 d, the measured h may cut it
+    EXPECT_GE(std::stoi(f[5]), 3)
+        << line;  // layers 5 ... 35 d; the top one ends at the surface h = 40 d, the measured h may cut it
   }
   EXPECT_EQ(rows, 7);
 
   std::ofstream(dir / "bad.csv") << "run,mu,theta,stopped,h_stop\nrun1,0.5,21,0,12\n";
   auto bad = cdpost("series " + (dir / "bad.csv").string());
-  EXPECT_EQ(bad.err, "cdpost: error: " + (dir / "bad.csv").string() + ":2: h_stop is given for a run that did not stop (stopped is not 1)\n");
+  EXPECT_EQ(bad.err, "cdpost: error: " + (dir / "bad.csv").string() +
+                         ":2: h_stop is given for a run that did not stop (stopped is not 1)\n");
   std::ofstream(dir / "bad.csv") << "run,mu,theta,stopped\nrun1,0.5,21,1\n";
   bad = cdpost("series " + (dir / "bad.csv").string());
-  EXPECT_EQ(bad.err, "cdpost: error: " + (dir / "bad.csv").string() + ":2: a stopped run needs its deposit thickness in the column h_stop (d)\n");
+  EXPECT_EQ(bad.err, "cdpost: error: " + (dir / "bad.csv").string() +
+                         ":2: a stopped run needs its deposit thickness in the column h_stop (d)\n");
 }
 
 }  // namespace

@@ -10,13 +10,15 @@ namespace cdpost {
 namespace {
 
 // |fitted - truth| within 3 of its error (and the error exists).
-void expect_recovers(const Estimate& fitted, double truth, const char* what) {
+void expect_recovers(const Estimate& fitted, double truth, const char* what)
+{
   ASSERT_TRUE(fitted.error) << what;
   EXPECT_NEAR(fitted.value, truth, 3 * *fitted.error) << what;
   EXPECT_LT(*fitted.error, 0.2 * std::abs(truth)) << what;
 }
 
-TEST(ProfileFits, BagnoldRecoversSlipAndAmplitude) {
+TEST(ProfileFits, BagnoldRecoversSlipAndAmplitude)
+{
   std::mt19937 rng(1);
   std::normal_distribution<double> noise(0, 0.05);
   const double h = 40, slip = 0.5, amplitude = 0.02;
@@ -32,7 +34,8 @@ TEST(ProfileFits, BagnoldRecoversSlipAndAmplitude) {
   EXPECT_GT(fit.r_squared, 0.99);
 }
 
-TEST(ProfileFits, CreepRecoversTheDecayLength) {
+TEST(ProfileFits, CreepRecoversTheDecayLength)
+{
   std::mt19937 rng(2);
   std::normal_distribution<double> noise(0, 0.05);
   std::vector<double> z, u;
@@ -49,7 +52,8 @@ TEST(ProfileFits, CreepRecoversTheDecayLength) {
 
 // Runs of one friction coefficient following a rule, with noise on the measured I.
 std::vector<FlowPoint> series(double mu, const std::vector<double>& angles, const std::function<double(double)>& rule_i,
-                              unsigned seed) {
+                              unsigned seed)
+{
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0, 0.01);
   std::vector<FlowPoint> points;
@@ -66,7 +70,8 @@ std::vector<FlowPoint> series(double mu, const std::vector<double>& angles, cons
 
 // a(z) = 0.2 exp((z - h)/15) with 3 % log-normal noise in the flowing layer, layers 10 d apart,
 // h = 42 d; two bed layers far below the exponential and one astride the surface must be left out.
-TEST(ProfileFits, DepthDecayRecoversTheDecayLength) {
+TEST(ProfileFits, DepthDecayRecoversTheDecayLength)
+{
   std::mt19937 rng(13);
   std::normal_distribution<double> noise(0, 0.03);
   const double h = 42, lambda = 15;
@@ -83,7 +88,8 @@ TEST(ProfileFits, DepthDecayRecoversTheDecayLength) {
   EXPECT_LT(decay.log_rms_residual, 0.03 * std::sqrt(13.8 / 4));
 }
 
-TEST(ProfileFits, DepthDecayRefusesProfilesWithoutAResolvedDecay) {
+TEST(ProfileFits, DepthDecayRefusesProfilesWithoutAResolvedDecay)
+{
   std::mt19937 rng(14);
   std::normal_distribution<double> noise(0, 0.1);
   std::vector<double> z{-5, 5, 15, 25, 35}, flat;
@@ -97,7 +103,8 @@ TEST(ProfileFits, DepthDecayRefusesProfilesWithoutAResolvedDecay) {
   EXPECT_THROW(fit_depth_decay(z, decaying, 42), AnalysisError);  // a layer without amplitude
 }
 
-TEST(FlowRules, PouliquenRecoversAnglesAndLength) {
+TEST(FlowRules, PouliquenRecoversAnglesAndLength)
+{
   const double tan1 = std::tan(20 * M_PI / 180), tan2 = std::tan(33 * M_PI / 180), ell = 1.5, beta = 0.136;
   auto inverse = [&](double t) { return -beta / (ell * std::log((t - tan1) / (tan2 - tan1))); };
   auto points = series(0.5, {21, 22, 23, 24, 25, 26, 27, 28}, inverse, 3);
@@ -116,14 +123,16 @@ TEST(FlowRules, PouliquenRecoversAnglesAndLength) {
 struct PouliquenTruth {
   double tan1 = std::tan(20 * M_PI / 180), tan2 = std::tan(33 * M_PI / 180), ell = 6, beta = 0.3;
   double h_stop(double theta) const { return -ell * std::log((std::tan(theta * M_PI / 180) - tan1) / (tan2 - tan1)); }
-  std::vector<FlowPoint> flowing() const {
-    auto points = series(0.5, {21, 22, 23, 24, 25, 26, 27, 28}, [&](double t) {
-      return -beta / (ell * std::log((t - tan1) / (tan2 - tan1)));
-    }, 11);
+  std::vector<FlowPoint> flowing() const
+  {
+    auto points = series(
+        0.5, {21, 22, 23, 24, 25, 26, 27, 28},
+        [&](double t) { return -beta / (ell * std::log((t - tan1) / (tan2 - tan1))); }, 11);
     for (size_t i = 0; i < points.size(); ++i) points[i].run = "flowing" + std::to_string(i);
     return points;
   }
-  std::vector<StopPoint> stopped() const {
+  std::vector<StopPoint> stopped() const
+  {
     std::mt19937 rng(12);
     std::normal_distribution<double> noise(0, 0.02);
     std::vector<StopPoint> points;
@@ -133,7 +142,8 @@ struct PouliquenTruth {
   }
 };
 
-TEST(FlowRules, PouliquenBetaFreeRecoversBetaAndEllWithStoppedRuns) {
+TEST(FlowRules, PouliquenBetaFreeRecoversBetaAndEllWithStoppedRuns)
+{
   const PouliquenTruth truth;
   auto fit = fit_pouliquen_free(truth.flowing(), truth.stopped());
   ASSERT_TRUE(fit.beta && fit.ell);
@@ -147,11 +157,13 @@ TEST(FlowRules, PouliquenBetaFreeRecoversBetaAndEllWithStoppedRuns) {
   EXPECT_EQ(fit.residuals[8].run, "stopped0");
   // The stopped run's residual is its tan θ minus the fitted tan θ_stop(h_stop).
   const auto stop = truth.stopped()[0];
-  const double fitted = pouliquen_stop_tan(stop.h_stop_d, fit.raw["tan_theta1"].value, fit.raw["tan_theta2"].value, fit.ell->value);
+  const double fitted =
+      pouliquen_stop_tan(stop.h_stop_d, fit.raw["tan_theta1"].value, fit.raw["tan_theta2"].value, fit.ell->value);
   EXPECT_NEAR(fit.residuals[8].value, std::tan(stop.theta_deg * M_PI / 180) - fitted, 1e-12);
 }
 
-TEST(FlowRules, PouliquenBetaFreeWithoutStoppedRunsGivesOnlyTheRatio) {
+TEST(FlowRules, PouliquenBetaFreeWithoutStoppedRunsGivesOnlyTheRatio)
+{
   const PouliquenTruth truth;
   const auto flowing = truth.flowing();
   auto fit = fit_pouliquen_free(flowing, {});
@@ -165,15 +177,16 @@ TEST(FlowRules, PouliquenBetaFreeWithoutStoppedRunsGivesOnlyTheRatio) {
   EXPECT_THROW(fit_pouliquen_free({flowing[0], flowing[1]}, truth.stopped()), AnalysisError);
 }
 
-TEST(FlowRules, ResidualsAreObservedMinusFittedPerRun) {
+TEST(FlowRules, ResidualsAreObservedMinusFittedPerRun)
+{
   const PouliquenTruth truth;
   const auto points = truth.flowing();
   auto fit = fit_pouliquen(points, truth.beta);
   ASSERT_EQ(fit.residuals.size(), points.size());
   double squares = 0;
   for (size_t i = 0; i < points.size(); ++i) {
-    const double fitted = pouliquen_tan(points[i].inertial_number, fit.raw["tan_theta1"].value, fit.raw["tan_theta2"].value,
-                                        fit.ell.value, truth.beta);
+    const double fitted = pouliquen_tan(points[i].inertial_number, fit.raw["tan_theta1"].value,
+                                        fit.raw["tan_theta2"].value, fit.ell.value, truth.beta);
     EXPECT_EQ(fit.residuals[i].run, points[i].run);
     EXPECT_NEAR(fit.residuals[i].value, std::tan(points[i].theta_deg * M_PI / 180) - fitted, 1e-12);
     squares += fit.residuals[i].value * fit.residuals[i].value;
@@ -185,7 +198,8 @@ TEST(FlowRules, ResidualsAreObservedMinusFittedPerRun) {
   EXPECT_LT(fit.raw.rms_residual(), 5e-3);
 }
 
-TEST(FlowRules, MuOfIRecoversSharedI0AndAnglesPerFriction) {
+TEST(FlowRules, MuOfIRecoversSharedI0AndAnglesPerFriction)
+{
   const double i0 = 0.3;
   auto rule = [&](double t1, double t2) { return [=](double t) { return i0 * (t - t1) / (t2 - t); }; };
   const double a1 = std::tan(15 * M_PI / 180), a2 = std::tan(26 * M_PI / 180);
@@ -203,7 +217,8 @@ TEST(FlowRules, MuOfIRecoversSharedI0AndAnglesPerFriction) {
   expect_recovers(fit.angles[1].theta2_deg, 33, "theta2(0.5)");
 }
 
-TEST(FlowRules, PhiVelocityHasOneSlopeAndOnePhiCPerFriction) {
+TEST(FlowRules, PhiVelocityHasOneSlopeAndOnePhiCPerFriction)
+{
   std::mt19937 rng(6);
   std::normal_distribution<double> noise(0, 0.002);
   std::vector<FlowPoint> points;
@@ -227,7 +242,8 @@ TEST(FlowRules, PhiVelocityHasOneSlopeAndOnePhiCPerFriction) {
   EXPECT_EQ(fit.raw.points, 15);
 }
 
-TEST(LinearFits, PowerLawRecoversExponentAndCorrelation) {
+TEST(LinearFits, PowerLawRecoversExponentAndCorrelation)
+{
   std::mt19937 rng(8);
   std::normal_distribution<double> noise(0, 0.02);
   std::vector<double> x, y;
@@ -243,7 +259,8 @@ TEST(LinearFits, PowerLawRecoversExponentAndCorrelation) {
   EXPECT_THROW(fit_power_law({1, -2}, {1, 2}), AnalysisError);
 }
 
-TEST(LinearFits, AsManyPointsAsParametersGivesNoErrors) {
+TEST(LinearFits, AsManyPointsAsParametersGivesNoErrors)
+{
   Eigen::MatrixXd design(2, 2);
   design << 1, 0, 1, 1;
   auto fit = fit_linear(design, {1, 3}, {"a", "b"});

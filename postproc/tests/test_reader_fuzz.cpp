@@ -14,7 +14,8 @@
 namespace cdpost {
 namespace {
 
-std::string mutate(std::string text, std::mt19937& rng) {
+std::string mutate(std::string text, std::mt19937& rng)
+{
   const std::string alphabet = "0123456789 .-+eE#\nITEMnaXx\t";
   std::uniform_int_distribution<int> kind(0, 5);
   int edits = 1 + static_cast<int>(rng() % 3);
@@ -32,11 +33,13 @@ std::string mutate(std::string text, std::mt19937& rng) {
   return text;
 }
 
-void expect_all_finite(const std::vector<double>& values) {
+void expect_all_finite(const std::vector<double>& values)
+{
   for (double v : values) ASSERT_TRUE(std::isfinite(v));
 }
 
-void read_whole(const std::string& kind, const std::string& path) {
+void read_whole(const std::string& kind, const std::string& path)
+{
   if (kind == "time") {
     for (const auto& column : read_ave_time(path).columns) expect_all_finite(column);
   } else if (kind == "chunk") {
@@ -51,15 +54,19 @@ void read_whole(const std::string& kind, const std::string& path) {
   }
 }
 
-std::string valid_text(const std::string& kind) {
-  if (kind == "time") return testing::ave_time_text({"TimeStep", "v_u", "v_v"}, {{1, 0.5, 2}, {2, 0.25, -1}, {3, 1e-3, 4}});
+std::string valid_text(const std::string& kind)
+{
+  if (kind == "time")
+    return testing::ave_time_text({"TimeStep", "v_u", "v_v"}, {{1, 0.5, 2}, {2, 0.25, -1}, {3, 1e-3, 4}});
   if (kind == "chunk")
-    return testing::ave_chunk_text({"Coord1", "vx"}, {10, 20, 30}, 3, [](size_t b, size_t c, size_t) { return 0.1 * b + c; });
+    return testing::ave_chunk_text({"Coord1", "vx"}, {10, 20, 30}, 3,
+                                   [](size_t b, size_t c, size_t) { return 0.1 * b + c; });
   return testing::dump_frame_text(5, 4, 4, {{1, 1, 1, 0.5, 0, 0.25}, {2, 2, 2, 0.1, 0.2, 0.25}}) +
          testing::dump_frame_text(6, 4, 4, {{1, 1, 1, 0.5, 0, 0.25}, {2, 2, 2, 0.1, 0.2, 0.25}});
 }
 
-TEST(ReaderFuzz, MutatedFilesReadOrFailWithOneLocatedLine) {
+TEST(ReaderFuzz, MutatedFilesReadOrFailWithOneLocatedLine)
+{
   auto dir = testing::scratch_dir();
   std::mt19937 rng(20240611);
   int failures = 0, successes = 0;
@@ -67,10 +74,8 @@ TEST(ReaderFuzz, MutatedFilesReadOrFailWithOneLocatedLine) {
     for (int trial = 0; trial < 400; ++trial) {
       auto text = mutate(valid_text(kind), rng);
       auto path = (dir / (kind + std::to_string(trial))).string();
-      if (trial % 4 == 0)
-        testing::write_gzip(path, text);
-      else
-        testing::write_file(path, text);
+      if (trial % 4 == 0) testing::write_gzip(path, text);
+      else testing::write_file(path, text);
       try {
         read_whole(kind, path);
         ++successes;

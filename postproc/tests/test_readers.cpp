@@ -15,7 +15,8 @@ using testing::write_gzip;
 
 // The error raised by `action`, or "" if none.
 template <class Action>
-std::string error_of(Action action) {
+std::string error_of(Action action)
+{
   try {
     action();
   } catch (const InputError& e) {
@@ -24,7 +25,8 @@ std::string error_of(Action action) {
   return "";
 }
 
-TEST(AveTime, ReadsNamedColumns) {
+TEST(AveTime, ReadsNamedColumns)
+{
   auto path = write_file(scratch_dir() / "flow.time",
                          testing::ave_time_text({"TimeStep", "v_u", "v_v"}, {{100, 1.5, -2}, {200, 1.25, 3e-5}}));
   auto table = read_ave_time(path);
@@ -34,20 +36,24 @@ TEST(AveTime, ReadsNamedColumns) {
   EXPECT_EQ(table.row_lines[0], 3);
 }
 
-TEST(AveTime, ReadsGzip) {
+TEST(AveTime, ReadsGzip)
+{
   auto path = write_gzip(scratch_dir() / "flow.time.gz", testing::ave_time_text({"TimeStep", "v_u"}, {{1, 2}, {2, 3}}));
   EXPECT_DOUBLE_EQ(read_ave_time(path).column("v_u")[1], 3);
 }
 
-TEST(AveTime, AcceptsRepeatedHeaderAfterRestart) {
+TEST(AveTime, AcceptsRepeatedHeaderAfterRestart)
+{
   std::string text = testing::ave_time_text({"TimeStep", "v_u"}, {{1, 2}, {2, 3}});
   text += "# TimeStep v_u\n3 4\n";
   EXPECT_EQ(read_ave_time(write_file(scratch_dir() / "f", text)).rows(), 3u);
 }
 
-TEST(AveTime, ErrorsNameFileLineAndProblem) {
+TEST(AveTime, ErrorsNameFileLineAndProblem)
+{
   auto dir = scratch_dir();
-  EXPECT_EQ(error_of([&] { read_ave_time(write_file(dir / "empty", "")); }), (dir / "empty").string() + ": file is empty");
+  EXPECT_EQ(error_of([&] { read_ave_time(write_file(dir / "empty", "")); }),
+            (dir / "empty").string() + ": file is empty");
   EXPECT_EQ(error_of([&] { read_ave_time(write_file(dir / "short", "# TimeStep v_u\n1 2\n2\n")); }),
             (dir / "short").string() + ":3: expected 2 values (TimeStep, v_u), found 1");
   EXPECT_EQ(error_of([&] { read_ave_time(write_file(dir / "bad", "# TimeStep v_u\n1 2x\n")); }),
@@ -62,12 +68,14 @@ TEST(AveTime, ErrorsNameFileLineAndProblem) {
             (dir / "missing").string() + ": cannot open (no such file)");
 }
 
-TEST(AveTime, MissingColumnListsTheAvailableOnes) {
+TEST(AveTime, MissingColumnListsTheAvailableOnes)
+{
   auto table = read_ave_time(write_file(scratch_dir() / "f", "# TimeStep v_u\n1 2\n"));
   EXPECT_NE(error_of([&] { table.column("v_x"); }).find("no column 'v_x' (columns: TimeStep, v_u)"), std::string::npos);
 }
 
-TEST(AveTime, TruncatedGzipIsAnError) {
+TEST(AveTime, TruncatedGzipIsAnError)
+{
   auto dir = scratch_dir();
   std::string text;
   for (int i = 1; i < 5000; ++i) text += std::to_string(i) + " " + std::to_string(i * 0.37) + "\n";
@@ -78,14 +86,16 @@ TEST(AveTime, TruncatedGzipIsAnError) {
   EXPECT_NE(error_of([&] { read_ave_time(cut); }).find("corrupt or truncated compressed data"), std::string::npos);
 }
 
-std::string chunk_text(size_t blocks) {
+std::string chunk_text(size_t blocks)
+{
   std::vector<long> steps;
   for (size_t b = 0; b < blocks; ++b) steps.push_back(1000 * static_cast<long>(b + 1));
   return testing::ave_chunk_text({"Coord1", "Ncount", "vx"}, steps, 3,
                                  [](size_t b, size_t c, size_t k) { return k == 0 ? c + 0.5 : 10.0 * b + c + k; });
 }
 
-TEST(AveChunk, ReadsBlocks) {
+TEST(AveChunk, ReadsBlocks)
+{
   auto series = read_ave_chunk(write_file(scratch_dir() / "p.chunk", chunk_text(2)));
   ASSERT_EQ(series.blocks(), 2u);
   EXPECT_EQ(series.chunks, 3u);
@@ -95,7 +105,8 @@ TEST(AveChunk, ReadsBlocks) {
   EXPECT_DOUBLE_EQ(series.value(0, 1, series.column_index("Coord1")), 1.5);
 }
 
-TEST(AveChunk, TruncatedBlockNamesTheLine) {
+TEST(AveChunk, TruncatedBlockNamesTheLine)
+{
   auto dir = scratch_dir();
   std::string text = chunk_text(2);
   text = text.substr(0, text.rfind("  3"));  // drop the last chunk row
@@ -104,24 +115,28 @@ TEST(AveChunk, TruncatedBlockNamesTheLine) {
             path + ":10: file ends inside the block of timestep 2000 (2 of 3 chunk rows)");
 }
 
-TEST(AveChunk, ChangingChunkCountIsAnError) {
+TEST(AveChunk, ChangingChunkCountIsAnError)
+{
   std::string text = chunk_text(1) + "2000 4 100\n";
   auto path = write_file(scratch_dir() / "p.chunk", text);
   EXPECT_EQ(error_of([&] { read_ave_chunk(path); }),
             path + ":8: number of chunks changed from 3 to 4 (fix the bin bounds in the deck)");
 }
 
-TEST(AveChunk, HeaderWithoutChunkLineIsAnError) {
+TEST(AveChunk, HeaderWithoutChunkLineIsAnError)
+{
   auto path = write_file(scratch_dir() / "p.chunk", "# Timestep Number-of-chunks Total-count\n100 1 1\n");
   EXPECT_EQ(error_of([&] { read_ave_chunk(path); }), path + ":2: no '# Chunk ...' header line naming the columns");
 }
 
-std::string two_frames() {
+std::string two_frames()
+{
   return testing::dump_frame_text(0, 10, 5, {{1, 1, 1, 0.5, 0, 0.25}, {2, 3, 1, 1.5, 0.1, 0.25}}) +
          testing::dump_frame_text(100, 10, 5, {{1, 1.1, 1, 0.6, 0, 0.25}, {2, 3.2, 1, 1.7, 0.1, 0.25}});
 }
 
-TEST(Dump, StreamsFramesPlainAndGzip) {
+TEST(Dump, StreamsFramesPlainAndGzip)
+{
   auto dir = scratch_dir();
   for (const auto& path : {write_file(dir / "d.txt", two_frames()), write_gzip(dir / "d.gz", two_frames())}) {
     DumpReader reader(path);
@@ -137,14 +152,16 @@ TEST(Dump, StreamsFramesPlainAndGzip) {
   }
 }
 
-TEST(Dump, TruncatedFrameNamesTheLine) {
+TEST(Dump, TruncatedFrameNamesTheLine)
+{
   std::string text = two_frames();
   text = text.substr(0, text.rfind("2 1 3.2"));
   auto path = write_file(scratch_dir() / "d.txt", text);
   DumpReader reader(path);
   DumpFrame frame;
   reader.next(frame);
-  EXPECT_EQ(error_of([&] { reader.next(frame); }), path + ":21: file ends where atom 2 of 2 was expected (truncated dump?)");
+  EXPECT_EQ(error_of([&] { reader.next(frame); }),
+            path + ":21: file ends where atom 2 of 2 was expected (truncated dump?)");
 }
 
 }  // namespace

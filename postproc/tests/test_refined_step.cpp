@@ -22,8 +22,8 @@ constexpr long samples_before = 2000, refined_samples = 1000, steps_per_sample =
 
 long refined_step(long uniform_step)
 {
-  const long into_refined = std::clamp(uniform_step - samples_before * steps_per_sample, 0L,
-                                       refined_samples * steps_per_sample);
+  const long into_refined =
+      std::clamp(uniform_step - samples_before * steps_per_sample, 0L, refined_samples * steps_per_sample);
   return uniform_step + into_refined;
 }
 
@@ -48,8 +48,8 @@ void refine_time_file(const std::filesystem::path& from, const std::filesystem::
     if (!in_refined_stretch(step)) continue;
     std::vector<double> between = row;
     for (size_t c = 2; c < between.size(); ++c) between[c] *= 3;
-    between[0] += steps_per_sample;                              // 100 half steps later
-    between[1] += 0.5 * steps_per_sample * table.columns[1][1] / table.columns[0][1];    // half a sample
+    between[0] += steps_per_sample;                                                    // 100 half steps later
+    between[1] += 0.5 * steps_per_sample * table.columns[1][1] / table.columns[0][1];  // half a sample
     rows.push_back(between);
   }
   testing::write_file(to, testing::ave_time_text(table.names, rows));
@@ -66,14 +66,15 @@ void refine_chunk_file(const std::filesystem::path& from, const std::filesystem:
     source_block.push_back(b);
     if (every_sample && in_refined_stretch(step)) {
       steps.push_back(refined_step(step) + steps_per_sample);
-      source_block.push_back(chunks.blocks());    // an extra sample
+      source_block.push_back(chunks.blocks());  // an extra sample
     }
   }
-  testing::write_file(to, testing::ave_chunk_text(chunks.names, steps, chunks.chunks, [&](size_t b, size_t c, size_t k) {
-    const size_t source = source_block[b];
-    if (source < chunks.blocks()) return chunks.value(source, c, k);
-    return 3 * chunks.value(source_block[b - 1], c, k);
-  }));
+  testing::write_file(to,
+                      testing::ave_chunk_text(chunks.names, steps, chunks.chunks, [&](size_t b, size_t c, size_t k) {
+                        const size_t source = source_block[b];
+                        if (source < chunks.blocks()) return chunks.value(source, c, k);
+                        return 3 * chunks.value(source_block[b - 1], c, k);
+                      }));
 }
 
 TEST(RefinedStep, ExtraSamplesAndShiftedStepsLeaveEveryResultUnchanged)

@@ -7,19 +7,22 @@
 namespace cdpost {
 namespace {
 
-double result(const RunAnalysis& run, const std::string& name) {
+double result(const RunAnalysis& run, const std::string& name)
+{
   const auto* row = run.results.find(name);
   if (!row) ADD_FAILURE() << "no result " << name;
   return row ? row->value : 0;
 }
-double error(const RunAnalysis& run, const std::string& name) {
+double error(const RunAnalysis& run, const std::string& name)
+{
   const auto* row = run.results.find(name);
   return row && row->error ? *row->error : 0;
 }
 
 class SyntheticRunTest : public ::testing::Test {
  protected:
-  void SetUp() override {
+  void SetUp() override
+  {
     dir_ = testing::scratch_dir() / "run";
     testing::write_synthetic_run(dir_, truth_);
     settings_.directory = dir_.string();
@@ -29,7 +32,8 @@ class SyntheticRunTest : public ::testing::Test {
   RunSettings settings_;
 };
 
-TEST_F(SyntheticRunTest, RecoversEveryMeasuredQuantity) {
+TEST_F(SyntheticRunTest, RecoversEveryMeasuredQuantity)
+{
   auto run = analyse_run(settings_);
   EXPECT_TRUE(run.window_detected);
   EXPECT_GT(result(run, "t_start") * std::sqrt(truth_.d / truth_.g), 3 * truth_.relaxation * 0.5);
@@ -48,7 +52,8 @@ TEST_F(SyntheticRunTest, RecoversEveryMeasuredQuantity) {
   EXPECT_TRUE(run.warnings.empty());
 }
 
-TEST_F(SyntheticRunTest, ExplicitWindowOverridesDetection) {
+TEST_F(SyntheticRunTest, ExplicitWindowOverridesDetection)
+{
   settings_.t_start = 0.0;
   auto run = analyse_run(settings_);
   EXPECT_FALSE(run.window_detected);
@@ -56,26 +61,30 @@ TEST_F(SyntheticRunTest, ExplicitWindowOverridesDetection) {
   EXPECT_LT(result(run, "U"), truth_.u_final - 0.2);  // the transient drags the mean down
 }
 
-TEST_F(SyntheticRunTest, MissingTimeInformationIsAnErrorNamingTheFile) {
+TEST_F(SyntheticRunTest, MissingTimeInformationIsAnErrorNamingTheFile)
+{
   settings_.columns.time = "v_elapsed";
   try {
     analyse_run(settings_);
     FAIL() << "expected an error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("flow.time: no time column 'v_elapsed': give --dt"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("flow.time: no time column 'v_elapsed': give --dt"), std::string::npos)
+        << e.what();
   }
   settings_.timestep_size = truth_.dt;
   EXPECT_NEAR(result(analyse_run(settings_), "f"), truth_.frequency, 1.0);
 }
 
-TEST_F(SyntheticRunTest, ReducedInputUnitsGiveTheSameNumbers) {
+TEST_F(SyntheticRunTest, ReducedInputUnitsGiveTheSameNumbers)
+{
   auto si = analyse_run(settings_);
   // Re-express the flow file in reduced units: time in sqrt(d/g), velocities in sqrt(g d).
   const double t0 = std::sqrt(truth_.d / truth_.g), v0 = truth_.v0();
   auto text = testing::ave_time_text({"TimeStep", "v_time", "v_u_flow", "v_v_flow"}, [&] {
     std::vector<std::vector<double>> rows;
     for (size_t i = 0; i < si.series.time_s.size(); ++i)
-      rows.push_back({double(i + 1), si.series.time_s[i] / t0, si.series.u_flow_mps[i] / v0, si.series.v_flow_mps[i] / v0});
+      rows.push_back(
+          {double(i + 1), si.series.time_s[i] / t0, si.series.u_flow_mps[i] / v0, si.series.v_flow_mps[i] / v0});
     return rows;
   }());
   auto reduced_dir = testing::scratch_dir() / "reduced";

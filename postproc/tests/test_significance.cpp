@@ -11,13 +11,22 @@ namespace cdpost {
 namespace {
 
 // r whose t = r sqrt(dof / (1 - r^2)) equals `t`.
-double r_of_t(double t, int dof) { return t / std::sqrt(t * t + dof); }
+double r_of_t(double t, int dof)
+{
+  return t / std::sqrt(t * t + dof);
+}
 
 // Two-sided critical values of Student's t from the printed tables (three decimals). Rounding
 // t by 5e-4 moves p by at most 2 x 5e-4 x the t density there, below 0.1: 1e-4.
-TEST(Significance, PValueMatchesTheStudentTable) {
-  struct Row { int dof; double t; double p; };
-  for (const Row& row : {Row{1, 12.706, 0.05}, Row{4, 2.776, 0.05}, Row{8, 2.306, 0.05}, Row{8, 3.355, 0.01}, Row{28, 2.048, 0.05}}) {
+TEST(Significance, PValueMatchesTheStudentTable)
+{
+  struct Row {
+    int dof;
+    double t;
+    double p;
+  };
+  for (const Row& row :
+       {Row{1, 12.706, 0.05}, Row{4, 2.776, 0.05}, Row{8, 2.306, 0.05}, Row{8, 3.355, 0.01}, Row{28, 2.048, 0.05}}) {
     EXPECT_NEAR(correlation_p_value(r_of_t(row.t, row.dof), row.dof + 2), row.p, 1e-4) << "dof " << row.dof;
     EXPECT_NEAR(correlation_p_value(-r_of_t(row.t, row.dof), row.dof + 2), row.p, 1e-4) << "two-sided";
   }
@@ -25,7 +34,8 @@ TEST(Significance, PValueMatchesTheStudentTable) {
 
 // The fraction of independent normal samples of 6 pairs with |r| >= 0.7, against the p-value of
 // r = 0.7 at n = 6; the estimate's standard error is sqrt(p (1 - p) / N), the tolerance 4 of it.
-TEST(Significance, PValueMatchesAMonteCarloEstimate) {
+TEST(Significance, PValueMatchesAMonteCarloEstimate)
+{
   std::mt19937 rng(21);
   std::normal_distribution<double> normal(0, 1);
   const int n = 6, trials = 200000;
@@ -42,7 +52,8 @@ TEST(Significance, PValueMatchesAMonteCarloEstimate) {
   EXPECT_GT(estimate, 0.05);  // the comparison is not made in a tail where both vanish
 }
 
-TEST(Significance, EdgeCases) {
+TEST(Significance, EdgeCases)
+{
   EXPECT_EQ(correlation_p_value(1.0, 5), 0.0);
   EXPECT_EQ(correlation_p_value(-1.0, 3), 0.0);
   EXPECT_NEAR(correlation_p_value(0.0, 10), 1.0, 1e-12);

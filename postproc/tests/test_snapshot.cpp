@@ -11,7 +11,8 @@
 namespace cdpost {
 namespace {
 
-const Curve* curve_named(const Figure& figure, const std::string& title) {
+const Curve* curve_named(const Figure& figure, const std::string& title)
+{
   for (const auto& curve : figure.panels.at(0).curves)
     if (curve.title == title) return &curve;
   return nullptr;
@@ -19,7 +20,8 @@ const Curve* curve_named(const Figure& figure, const std::string& title) {
 
 // A 20 d cell (d = 1 input unit), wall tops at y = 8: grains next to both boundaries below
 // and above the wall tops, and one in the middle.
-SnapshotRequest cell_dump() {
+SnapshotRequest cell_dump()
+{
   const std::vector<testing::DumpAtom> atoms = {
       {1, 0.6, 3.0, 0, 0, 0.5},    // in the bed, at x = 0
       {2, 19.4, 7.4, 0, 0, 0.5},   // in the bed, at x = L, centre just below the wall tops
@@ -33,13 +35,15 @@ SnapshotRequest cell_dump() {
   return request;
 }
 
-Units unit_d() {
+Units unit_d()
+{
   Units units;
   units.d_m = 1;
   return units;
 }
 
-TEST(Snapshot, WallsStandOnTheBoundaryUpToTheWallTops) {
+TEST(Snapshot, WallsStandOnTheBoundaryUpToTheWallTops)
+{
   const Figure figure = snapshot_figure(cell_dump(), unit_d(), 8.0);
   const Curve* walls = curve_named(figure, "walls");
   ASSERT_NE(walls, nullptr);
@@ -57,7 +61,8 @@ TEST(Snapshot, WallsStandOnTheBoundaryUpToTheWallTops) {
   EXPECT_NE(figure.caption.find("above the wall tops"), std::string::npos);
 }
 
-TEST(Snapshot, ImagesOnlyAboveTheWallTops) {
+TEST(Snapshot, ImagesOnlyAboveTheWallTops)
+{
   const Figure figure = snapshot_figure(cell_dump(), unit_d(), 8.0);
   ASSERT_NE(curve_named(figure, "grains"), nullptr);
   EXPECT_EQ(curve_named(figure, "grains")->x.size(), 5u);
@@ -72,7 +77,8 @@ TEST(Snapshot, ImagesOnlyAboveTheWallTops) {
   EXPECT_DOUBLE_EQ(images->y[1], 4.0);
 }
 
-TEST(Snapshot, WithoutWallsEveryGrainNearTheBoundaryHasAnImage) {
+TEST(Snapshot, WithoutWallsEveryGrainNearTheBoundaryHasAnImage)
+{
   const Figure figure = snapshot_figure(cell_dump(), unit_d(), 0.0);
   EXPECT_EQ(curve_named(figure, "walls"), nullptr);
   const Curve* images = curve_named(figure, "periodic images");
@@ -80,7 +86,8 @@ TEST(Snapshot, WithoutWallsEveryGrainNearTheBoundaryHasAnImage) {
   EXPECT_EQ(images->x.size(), 4u);
 }
 
-TEST(Snapshot, GnuplotBreaksTheLineBetweenTheWalls) {
+TEST(Snapshot, GnuplotBreaksTheLineBetweenTheWalls)
+{
   const std::string script = gnuplot_script(snapshot_figure(cell_dump(), unit_d(), 8.0));
   EXPECT_NE(script.find("0 -8\n0 0\n\n20 -8\n20 0\nEOD"), std::string::npos) << script;
   EXPECT_NE(script.find("with lines lw 3 lc rgb 'black'"), std::string::npos);

@@ -10,7 +10,8 @@ namespace {
 
 // a sin(2 pi f t) + Gaussian noise of standard deviation `noise`, sampled every dt.
 std::vector<double> tone(double amplitude, double frequency_hz, double noise, double duration_s, double dt,
-                         unsigned seed = 1) {
+                         unsigned seed = 1)
+{
   std::mt19937 rng(seed);
   std::normal_distribution<double> gauss(0.0, noise);
   std::vector<double> signal;
@@ -19,7 +20,8 @@ std::vector<double> tone(double amplitude, double frequency_hz, double noise, do
   return signal;
 }
 
-TEST(Spectrum, PureToneOnABinReadsItsAmplitudeAndFrequency) {
+TEST(Spectrum, PureToneOnABinReadsItsAmplitudeAndFrequency)
+{
   auto spectrum = amplitude_spectrum(tone(0.7, 40.0, 0.0, 4.0, 1e-3), 1e-3, {});
   EXPECT_DOUBLE_EQ(spectrum.resolution_hz, 1.0);
   EXPECT_EQ(spectrum.segments, 7);
@@ -31,7 +33,8 @@ TEST(Spectrum, PureToneOnABinReadsItsAmplitudeAndFrequency) {
   EXPECT_NEAR(peak.frequency_error_hz, 0.586, 0.01);
 }
 
-TEST(Spectrum, NoisyToneRecoversFrequencyWithinItsErrorBar) {
+TEST(Spectrum, NoisyToneRecoversFrequencyWithinItsErrorBar)
+{
   std::mt19937 seeds(7);
   for (double f : {23.3, 61.7, 137.2}) {
     auto spectrum = amplitude_spectrum(tone(0.5, f, 1.0, 8.0, 1e-3, seeds()), 1e-3, {});
@@ -41,25 +44,30 @@ TEST(Spectrum, NoisyToneRecoversFrequencyWithinItsErrorBar) {
   }
 }
 
-TEST(Spectrum, AmplitudeIsComparableBetweenRunsOfDifferentLengths) {
+TEST(Spectrum, AmplitudeIsComparableBetweenRunsOfDifferentLengths)
+{
   auto short_run = amplitude_spectrum(tone(0.3, 50, 0.5, 3.0, 1e-3, 3), 1e-3, {});
   auto long_run = amplitude_spectrum(tone(0.3, 50, 0.5, 12.0, 1e-3, 4), 1e-3, {});
   EXPECT_NEAR(find_peak(short_run, 5, 400).amplitude, find_peak(long_run, 5, 400).amplitude, 0.06);
-  EXPECT_NEAR(mean_amplitude_above(short_run, 100), mean_amplitude_above(long_run, 100), 0.1 * mean_amplitude_above(long_run, 100));
+  EXPECT_NEAR(mean_amplitude_above(short_run, 100), mean_amplitude_above(long_run, 100),
+              0.1 * mean_amplitude_above(long_run, 100));
 }
 
-TEST(Spectrum, WhiteNoiseLevelMatchesTheNormalisation) {
+TEST(Spectrum, WhiteNoiseLevelMatchesTheNormalisation)
+{
   // For white noise of variance s^2 and a Hann window, <a_k^2> = 4 s^2 sum(w^2)/sum(w)^2 = 6 s^2 / N.
   const double dt = 1e-3, sigma = 2.0;
   auto spectrum = amplitude_spectrum(tone(0, 1, sigma, 20.0, dt, 11), dt, {});
   const double n = 1.0 / dt;
   double rms = 0;
   int count = 0;
-  for (size_t k = 100; k < spectrum.amplitude.size() - 1; ++k, ++count) rms += spectrum.amplitude[k] * spectrum.amplitude[k];
+  for (size_t k = 100; k < spectrum.amplitude.size() - 1; ++k, ++count)
+    rms += spectrum.amplitude[k] * spectrum.amplitude[k];
   EXPECT_NEAR(std::sqrt(rms / count), std::sqrt(6.0 / n) * sigma, 0.05 * std::sqrt(6.0 / n) * sigma);
 }
 
-TEST(Spectrum, ResonancePeakErrorBarIsItsHalfWidth) {
+TEST(Spectrum, ResonancePeakErrorBarIsItsHalfWidth)
+{
   // Noise driving a damped oscillator (AR(2) process): a Lorentzian peak at 40 Hz whose
   // half width at half power is damping / (2 pi) = 3 Hz.
   const double dt = 1e-3, f0 = 40, damping = 2 * M_PI * 3;
@@ -73,7 +81,8 @@ TEST(Spectrum, ResonancePeakErrorBarIsItsHalfWidth) {
   EXPECT_NEAR(peak.frequency_error_hz, 3.0, 1.0);
 }
 
-TEST(Spectrum, ShortSignalIsOneSegmentAndBadInputsThrow) {
+TEST(Spectrum, ShortSignalIsOneSegmentAndBadInputsThrow)
+{
   auto spectrum = amplitude_spectrum(tone(1, 100, 0, 0.2, 1e-3), 1e-3, {});
   EXPECT_EQ(spectrum.segments, 1);
   EXPECT_NEAR(spectrum.resolution_hz, 5.0, 1e-9);

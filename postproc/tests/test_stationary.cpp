@@ -9,7 +9,8 @@
 namespace cdpost {
 namespace {
 
-TEST(Stationary, SkipsAnExponentialTransient) {
+TEST(Stationary, SkipsAnExponentialTransient)
+{
   std::mt19937 rng(5);
   std::normal_distribution<double> noise(0, 0.3);
   std::vector<double> t, u;
@@ -25,7 +26,8 @@ TEST(Stationary, SkipsAnExponentialTransient) {
   EXPECT_EQ(window.end, u.size());
 }
 
-TEST(Stationary, SteadyAccelerationHasNoStationaryRegime) {
+TEST(Stationary, SteadyAccelerationHasNoStationaryRegime)
+{
   std::vector<double> t, u;
   for (int i = 0; i < 500; ++i) {
     t.push_back(i);
@@ -37,7 +39,8 @@ TEST(Stationary, SteadyAccelerationHasNoStationaryRegime) {
   EXPECT_EQ(window.end, 200u);
 }
 
-TEST(Statistics, BlockMeanErrorCoversTheTruth) {
+TEST(Statistics, BlockMeanErrorCoversTheTruth)
+{
   std::mt19937 rng(9);
   std::normal_distribution<double> noise(0, 1);
   std::vector<double> x;

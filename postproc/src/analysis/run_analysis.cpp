@@ -12,23 +12,35 @@
 
 namespace cdpost {
 
-double Units::reduced_velocity_mps() const { return std::sqrt(g_mps2 * d_m); }
-double Units::reduced_time_s() const { return std::sqrt(d_m / g_mps2); }
-double Units::reduced_rate_hz() const { return std::sqrt(g_mps2 / d_m); }
-void Units::use_reduced_input() {
+double Units::reduced_velocity_mps() const
+{
+  return std::sqrt(g_mps2 * d_m);
+}
+double Units::reduced_time_s() const
+{
+  return std::sqrt(d_m / g_mps2);
+}
+double Units::reduced_rate_hz() const
+{
+  return std::sqrt(g_mps2 / d_m);
+}
+void Units::use_reduced_input()
+{
   length_unit_m = d_m;
   time_unit_s = reduced_time_s();
 }
 
 namespace {
 
-std::string path_in(const RunSettings& settings, const std::string& file) {
+std::string path_in(const RunSettings& settings, const std::string& file)
+{
   return (std::filesystem::path(settings.directory) / file).string();
 }
 
 // Runs `step`, turning an AnalysisError into an InputError that names `file`.
 template <class Step>
-auto about_file(const std::string& file, Step step) {
+auto about_file(const std::string& file, Step step)
+{
   try {
     return step();
   } catch (const AnalysisError& e) {
@@ -36,18 +48,21 @@ auto about_file(const std::string& file, Step step) {
   }
 }
 
-std::vector<double> scaled(const std::vector<double>& values, double factor) {
+std::vector<double> scaled(const std::vector<double>& values, double factor)
+{
   std::vector<double> out(values);
   for (double& v : out) v *= factor;
   return out;
 }
 
-std::vector<double> slice(const std::vector<double>& values, const Window& window) {
+std::vector<double> slice(const std::vector<double>& values, const Window& window)
+{
   return {values.begin() + static_cast<long>(window.begin), values.begin() + static_cast<long>(window.end)};
 }
 
 // Spectra need one sampling interval: LAMMPS writes at a fixed Nfreq unless the deck changes it.
-double regular_interval(const std::string& source, const std::vector<double>& time_s) {
+double regular_interval(const std::string& source, const std::vector<double>& time_s)
+{
   if (time_s.size() < 2) throw InputError(source, 0, "fewer than 2 samples");
   const double interval = time_s[1] - time_s[0];
   for (size_t i = 1; i < time_s.size(); ++i) {
@@ -62,7 +77,8 @@ double regular_interval(const std::string& source, const std::vector<double>& ti
 
 // Rows on the coarsest uniform grid (see TimeSeries): the longest interval is the grid's; every
 // interval must divide it, and every grid point must be there. Other sampling is refused.
-std::vector<size_t> coarse_rows(const ColumnTable& table, const std::vector<double>& time_s) {
+std::vector<size_t> coarse_rows(const ColumnTable& table, const std::vector<double>& time_s)
+{
   if (time_s.size() < 2) throw InputError(table.source, 0, "fewer than 2 samples");
   double coarse = 0, finest = std::numeric_limits<double>::infinity();
   for (size_t i = 1; i < time_s.size(); ++i) {
@@ -85,32 +101,36 @@ std::vector<size_t> coarse_rows(const ColumnTable& table, const std::vector<doub
   return kept;
 }
 
-std::vector<double> rows_of(const std::vector<double>& values, const std::vector<size_t>& rows) {
+std::vector<double> rows_of(const std::vector<double>& values, const std::vector<size_t>& rows)
+{
   std::vector<double> out;
   out.reserve(rows.size());
   for (size_t r : rows) out.push_back(values[r]);
   return out;
 }
 
-std::vector<double> time_in_seconds(const ColumnTable& table, const RunSettings& settings) {
+std::vector<double> time_in_seconds(const ColumnTable& table, const RunSettings& settings)
+{
   const auto& c = settings.columns;
   const double unit = settings.units.time_unit_s;
   if (table.has(c.time)) return scaled(table.column(c.time), unit);
   if (!settings.timestep_size)
     throw InputError(table.source, 0,
-                     "no time column '" + c.time + "': give --dt (the time step in input time units) so that time = " +
-                         c.timestep + " * dt");
+                     "no time column '" + c.time +
+                         "': give --dt (the time step in input time units) so that time = " + c.timestep + " * dt");
   return scaled(table.column(c.timestep), *settings.timestep_size * unit);
 }
 
 std::optional<std::vector<double>> optional_column(const ColumnTable& table, const std::string& name, double factor,
-                                                   std::vector<std::string>& warnings, const std::string& consequence) {
+                                                   std::vector<std::string>& warnings, const std::string& consequence)
+{
   if (table.has(name)) return scaled(table.column(name), factor);
   warnings.push_back(table.source + ": no column '" + name + "': " + consequence);
   return std::nullopt;
 }
 
-TimeSeries read_time_series(const RunSettings& settings, std::vector<std::string>& warnings) {
+TimeSeries read_time_series(const RunSettings& settings, std::vector<std::string>& warnings)
+{
   const auto& c = settings.columns;
   auto table = read_ave_time(path_in(settings, c.time_file));
   const double velocity = settings.units.velocity_unit_mps();
@@ -136,7 +156,8 @@ TimeSeries read_time_series(const RunSettings& settings, std::vector<std::string
 }
 
 // Time (s) of a TimeStep: linear between the time file's samples, where the step is constant.
-double time_of_step(const TimeSeries& series, double step) {
+double time_of_step(const TimeSeries& series, double step)
+{
   const auto& steps = series.timestep;
   auto upper = std::upper_bound(steps.begin(), steps.end(), step);
   size_t i = static_cast<size_t>(upper - steps.begin());
@@ -145,14 +166,16 @@ double time_of_step(const TimeSeries& series, double step) {
   return series.time_s[i - 1] + (step - steps[i - 1]) * rate;
 }
 
-Window given_window(const RunSettings& settings, const std::vector<double>& time_s) {
+Window given_window(const RunSettings& settings, const std::vector<double>& time_s)
+{
   const double unit = settings.units.time_unit_s;
   double start = settings.t_start ? *settings.t_start * unit : time_s.front();
   double end = settings.t_end ? *settings.t_end * unit : time_s.back();
   return window_between(time_s, start, end);
 }
 
-Window choose_window(const RunSettings& settings, const TimeSeries& series, bool& detected, const std::string& file) {
+Window choose_window(const RunSettings& settings, const TimeSeries& series, bool& detected, const std::string& file)
+{
   detected = !settings.t_start && !settings.t_end;
   return about_file(file, [&] {
     if (detected) return detect_stationary(series.time_s, series.u_flow_mps, settings.criterion);
@@ -161,7 +184,8 @@ Window choose_window(const RunSettings& settings, const TimeSeries& series, bool
 }
 
 // Blocks of a chunk file whose time lies in [t0, t1].
-std::vector<size_t> blocks_between(const ChunkSeries& chunks, const TimeSeries& clock, double t0, double t1) {
+std::vector<size_t> blocks_between(const ChunkSeries& chunks, const TimeSeries& clock, double t0, double t1)
+{
   std::vector<size_t> blocks;
   const double tolerance = 1e-9 * (std::abs(t1) + clock.sample_interval_s);
   for (size_t b = 0; b < chunks.blocks(); ++b) {
@@ -173,7 +197,8 @@ std::vector<size_t> blocks_between(const ChunkSeries& chunks, const TimeSeries& 
 
 // Duration (s) each block averages: from the previous block's time (the first block: as long
 // as the second). Blocks of a run whose step was refined are shorter.
-std::vector<double> block_durations(const ChunkSeries& chunks, const TimeSeries& clock) {
+std::vector<double> block_durations(const ChunkSeries& chunks, const TimeSeries& clock)
+{
   std::vector<double> durations(chunks.blocks(), 1.0);
   if (chunks.blocks() < 2) return durations;
   for (size_t b = 1; b < chunks.blocks(); ++b)
@@ -185,7 +210,8 @@ std::vector<double> block_durations(const ChunkSeries& chunks, const TimeSeries&
 
 // Time average over the blocks, each weighted by the duration it covers (block_durations).
 VelocityProfile average_profile(const ChunkSeries& chunks, const std::vector<size_t>& blocks,
-                                const std::vector<double>& durations, const RunSettings& settings) {
+                                const std::vector<double>& durations, const RunSettings& settings)
+{
   const auto& c = settings.columns;
   const size_t coord = chunks.column_index(c.profile_coord), vx = chunks.column_index(c.profile_vx);
   const size_t count = chunks.column_index(c.profile_count);
@@ -210,7 +236,8 @@ VelocityProfile average_profile(const ChunkSeries& chunks, const std::vector<siz
 
 // Layer top: the highest bin above z = 0 still holding half the median count of the
 // occupied bins above z = 0.
-std::optional<Estimate> thickness_from_profile(const VelocityProfile& profile) {
+std::optional<Estimate> thickness_from_profile(const VelocityProfile& profile)
+{
   std::vector<double> counts;
   for (size_t i = 0; i < profile.z_d.size(); ++i)
     if (profile.z_d[i] > 0) counts.push_back(profile.count[i]);
@@ -224,11 +251,14 @@ std::optional<Estimate> thickness_from_profile(const VelocityProfile& profile) {
 }
 
 void add_spectrum_results(ResultTable& results, const Spectrum& spectrum, const SpectralPeak& peak,
-                          const RunSettings& settings, const std::string& unit) {
-  results.add("f", Estimate{peak.frequency_hz, peak.frequency_error_hz}, "Hz", "peak frequency of v(t); error = half width at half power");
+                          const RunSettings& settings, const std::string& unit)
+{
+  results.add("f", Estimate{peak.frequency_hz, peak.frequency_error_hz}, "Hz",
+              "peak frequency of v(t); error = half width at half power");
   results.add("A", peak.amplitude, unit, "spectral amplitude of v(t) at the peak");
-  results.add("A_mean", mean_amplitude_above(spectrum, settings.high_frequency_hz), unit,
-              "mean spectral amplitude of v(t) at f >= " + format_estimate(settings.high_frequency_hz, std::nullopt) + " Hz");
+  results.add(
+      "A_mean", mean_amplitude_above(spectrum, settings.high_frequency_hz), unit,
+      "mean spectral amplitude of v(t) at f >= " + format_estimate(settings.high_frequency_hz, std::nullopt) + " Hz");
   results.add("spectrum_resolution", spectrum.resolution_hz, "Hz", "frequency resolution (1 / segment duration)");
   results.add("spectrum_segments", spectrum.segments, "", "Hann-windowed segments averaged (Welch)");
 }
@@ -242,16 +272,17 @@ struct Analyser {
   double reduced_velocity(double mps) const { return mps / units.reduced_velocity_mps(); }
   double reduced_time(double s) const { return s / units.reduced_time_s(); }
 
-  Estimate window_mean(const std::vector<double>& values, double factor) const {
-    auto estimate = about_file(time_path(), [&] {
-      return block_mean(values, run.window.begin, run.window.end, settings.averaging_blocks);
-    });
+  Estimate window_mean(const std::vector<double>& values, double factor) const
+  {
+    auto estimate = about_file(
+        time_path(), [&] { return block_mean(values, run.window.begin, run.window.end, settings.averaging_blocks); });
     estimate.value *= factor;
     if (estimate.error) *estimate.error *= factor;
     return estimate;
   }
 
-  void time_averages() {
+  void time_averages()
+  {
     const auto& s = run.series;
     auto& r = run.results;
     r.add("t_start", reduced_time(s.time_s[run.window.begin]), "sqrt(d/g)",
@@ -259,13 +290,18 @@ struct Analyser {
     r.add("t_end", reduced_time(s.time_s[run.window.end - 1]), "sqrt(d/g)", "end of the stationary window");
     r.add("stationary_drift", relative_drift(s.time_s, s.u_flow_mps, run.window), "",
           "drift of the line fitted to U(t) across the window, relative to its mean");
-    r.add("U", window_mean(s.u_flow_mps, 1 / units.reduced_velocity_mps()), "sqrt(g d)", "mean x-velocity of the grains with z > 0");
-    if (s.u_all_mps) r.add("u_all", window_mean(*s.u_all_mps, 1 / units.reduced_velocity_mps()), "sqrt(g d)", "mean x-velocity of all grains");
+    r.add("U", window_mean(s.u_flow_mps, 1 / units.reduced_velocity_mps()), "sqrt(g d)",
+          "mean x-velocity of the grains with z > 0");
+    if (s.u_all_mps)
+      r.add("u_all", window_mean(*s.u_all_mps, 1 / units.reduced_velocity_mps()), "sqrt(g d)",
+            "mean x-velocity of all grains");
     if (s.phi) r.add("phi", window_mean(*s.phi, 1.0), "", "area fraction of the flowing layer");
-    if (s.h_m) r.add("h", window_mean(*s.h_m, 1 / units.d_m), "d", "flowing-layer thickness (from " + settings.columns.h + ")");
+    if (s.h_m)
+      r.add("h", window_mean(*s.h_m, 1 / units.d_m), "d", "flowing-layer thickness (from " + settings.columns.h + ")");
   }
 
-  void spectrum_of_v() {
+  void spectrum_of_v()
+  {
     auto v = scaled(slice(run.series.v_flow_mps, run.window), 1 / units.reduced_velocity_mps());
     about_file(time_path(), [&] {
       run.spectrum = amplitude_spectrum(v, run.series.sample_interval_s, settings.spectrum);
@@ -275,7 +311,8 @@ struct Analyser {
     });
   }
 
-  std::optional<ChunkSeries> read_optional_chunks(const std::string& file, const std::string& consequence) {
+  std::optional<ChunkSeries> read_optional_chunks(const std::string& file, const std::string& consequence)
+  {
     const auto path = path_in(settings, file);
     if (!std::filesystem::exists(path)) {
       run.warnings.push_back(path + " not found: " + consequence);
@@ -284,25 +321,28 @@ struct Analyser {
     return read_ave_chunk(path);
   }
 
-  std::vector<size_t> window_blocks(const ChunkSeries& chunks) const {
-    auto blocks = blocks_between(chunks, run.series, run.series.time_s[run.window.begin],
-                                 run.series.time_s[run.window.end - 1]);
+  std::vector<size_t> window_blocks(const ChunkSeries& chunks) const
+  {
+    auto blocks =
+        blocks_between(chunks, run.series, run.series.time_s[run.window.begin], run.series.time_s[run.window.end - 1]);
     if (blocks.empty()) throw InputError(chunks.source, 0, "no output block inside the stationary window");
     return blocks;
   }
 
   // The blocks of a per-sample chunk file (layers.chunk) on the time file's uniform grid.
-  std::vector<size_t> uniform_blocks(const ChunkSeries& chunks, const std::vector<size_t>& blocks) const {
+  std::vector<size_t> uniform_blocks(const ChunkSeries& chunks, const std::vector<size_t>& blocks) const
+  {
     std::vector<size_t> kept;
     const double t0 = run.series.time_s.front(), interval = run.series.sample_interval_s;
     for (size_t b : blocks) {
       const double grid = (time_of_step(run.series, chunks.timesteps[b]) - t0) / interval;
-      if (std::abs(grid - std::round(grid)) < 1e-6) kept.push_back(b);    // exact: from TimeStep
+      if (std::abs(grid - std::round(grid)) < 1e-6) kept.push_back(b);  // exact: from TimeStep
     }
     return kept;
   }
 
-  void profile() {
+  void profile()
+  {
     auto chunks = read_optional_chunks(settings.columns.profile_file, "no u(z), Bagnold or creep fit");
     if (!chunks) return;
     run.profile = average_profile(*chunks, window_blocks(*chunks), block_durations(*chunks, run.series), settings);
@@ -316,11 +356,13 @@ struct Analyser {
     fit_profile(chunks->source);
   }
 
-  void fit_profile(const std::string& file) {
+  void fit_profile(const std::string& file)
+  {
     const auto& p = *run.profile;
     try {
       run.bagnold = fit_bagnold(p.z_d, p.u_reduced, run.h_d);
-      run.results.add("bagnold_slip", run.bagnold->slip, "sqrt(g d)", "u(0) of the Bagnold fit u = slip + a (h^1.5 - (h-z)^1.5)");
+      run.results.add("bagnold_slip", run.bagnold->slip, "sqrt(g d)",
+                      "u(0) of the Bagnold fit u = slip + a (h^1.5 - (h-z)^1.5)");
       run.results.add("bagnold_amplitude", run.bagnold->amplitude, "sqrt(g d)/d^1.5", "a of the Bagnold fit");
       run.results.add("bagnold_r2", run.bagnold->r_squared, "", "coefficient of determination of the Bagnold fit");
     } catch (const AnalysisError& e) {
@@ -335,9 +377,11 @@ struct Analyser {
     }
   }
 
-  void derived_rates() {
+  void derived_rates()
+  {
     if (run.h_d <= 0) {
-      run.warnings.push_back("no layer thickness h (no column " + settings.columns.h + " and no profile): U/h and I not reported");
+      run.warnings.push_back("no layer thickness h (no column " + settings.columns.h +
+                             " and no profile): U/h and I not reported");
       return;
     }
     const auto& U = *run.results.find("U");
@@ -346,7 +390,10 @@ struct Analyser {
     auto relative = [&](double power) {  // relative error of U / h^power
       return std::hypot(U.error.value_or(0) / U.value, power * h_error / run.h_d);
     };
-    run.results.add("shear_rate", Estimate{rate_reduced * units.reduced_rate_hz(), rate_reduced * units.reduced_rate_hz() * relative(1)}, "1/s", "U/h");
+    run.results.add(
+        "shear_rate",
+        Estimate{rate_reduced * units.reduced_rate_hz(), rate_reduced * units.reduced_rate_hz() * relative(1)}, "1/s",
+        "U/h");
     run.results.add("shear_rate_reduced", Estimate{rate_reduced, rate_reduced * relative(1)}, "sqrt(g/d)", "U/h");
     const double inertial = U.value / std::pow(run.h_d, 1.5);
     run.results.add("I", Estimate{inertial, inertial * relative(1.5)}, "", "inertial number d U / (sqrt(g) h^1.5)");
@@ -354,7 +401,8 @@ struct Analyser {
     run.results.add("f_scale", Estimate{x, 0.5 * x * U.error.value_or(0) / U.value}, "Hz", "(sqrt(g d)/U * g/d)^(1/2)");
   }
 
-  void layer_spectra() {
+  void layer_spectra()
+  {
     auto chunks = read_optional_chunks(settings.columns.layers_file, "no depth-resolved spectra");
     if (!chunks) return;
     const auto& c = settings.columns;
@@ -384,7 +432,8 @@ struct Analyser {
     run.results.add("layers", static_cast<double>(run.layers.size()), "", "layers with a depth-resolved spectrum");
   }
 
-  double mean_count(const ChunkSeries& chunks, const std::vector<size_t>& blocks, size_t chunk) const {
+  double mean_count(const ChunkSeries& chunks, const std::vector<size_t>& blocks, size_t chunk) const
+  {
     const size_t count = chunks.column_index(settings.columns.layers_count);
     double sum = 0;
     for (size_t b : blocks) sum += chunks.value(b, chunk, count);
@@ -394,7 +443,8 @@ struct Analyser {
 
 }  // namespace
 
-ColumnSpectrum analyse_column_spectrum(const std::string& path, const std::string& column, const RunSettings& settings) {
+ColumnSpectrum analyse_column_spectrum(const std::string& path, const std::string& column, const RunSettings& settings)
+{
   auto table = read_ave_time(path);
   const auto all_times = time_in_seconds(table, settings);
   const auto rows = coarse_rows(table, all_times);
@@ -403,7 +453,8 @@ ColumnSpectrum analyse_column_spectrum(const std::string& path, const std::strin
   return about_file(path, [&] {
     auto window = given_window(settings, time_s);
     ColumnSpectrum result;
-    result.spectrum = amplitude_spectrum(slice(rows_of(table.column(column), rows), window), interval, settings.spectrum);
+    result.spectrum =
+        amplitude_spectrum(slice(rows_of(table.column(column), rows), window), interval, settings.spectrum);
     result.peak = find_peak(result.spectrum, settings.peak_fmin_hz, settings.peak_fmax_hz);
     result.results.add("t_start", time_s[window.begin], "s", "start of the analysed window");
     result.results.add("t_end", time_s[window.end - 1], "s", "end of the analysed window");
@@ -412,7 +463,8 @@ ColumnSpectrum analyse_column_spectrum(const std::string& path, const std::strin
   });
 }
 
-RunAnalysis analyse_run(const RunSettings& settings) {
+RunAnalysis analyse_run(const RunSettings& settings)
+{
   RunAnalysis run;
   run.settings = settings;
   run.series = read_time_series(settings, run.warnings);

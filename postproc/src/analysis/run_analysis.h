@@ -17,10 +17,10 @@ namespace cdpost {
 // Physical scales and the units of the input files. Internally everything is SI; results
 // are reported in d, sqrt(d/g), sqrt(g d) and Hz.
 struct Units {
-  double d_m = 500e-6;      // mean grain diameter
-  double g_mps2 = 9.81;     // gravity
-  double length_unit_m = 1; // one input length unit in metres
-  double time_unit_s = 1;   // one input time unit in seconds
+  double d_m = 500e-6;       // mean grain diameter
+  double g_mps2 = 9.81;      // gravity
+  double length_unit_m = 1;  // one input length unit in metres
+  double time_unit_s = 1;    // one input time unit in seconds
   double velocity_unit_mps() const { return length_unit_m / time_unit_s; }
   double reduced_velocity_mps() const;  // sqrt(g d)
   double reduced_time_s() const;        // sqrt(d / g)
@@ -31,30 +31,30 @@ struct Units {
 
 // The files a run directory holds (names relative to it) and their column names.
 struct RunColumns {
-  std::string time_file = "flow.time";        // fix ave/time, sampled finely (>= 400 Hz)
+  std::string time_file = "flow.time";  // fix ave/time, sampled finely (>= 400 Hz)
   std::string timestep = "TimeStep";
-  std::string time = "v_time";                // optional: elapsed time (else TimeStep * dt)
-  std::string u_all = "v_u_all";              // optional: mean x-velocity of all grains
-  std::string u_flow = "v_u_flow";            // mean x-velocity of the grains with z > 0
-  std::string v_flow = "v_v_flow";            // mean z-velocity of the grains with z > 0
-  std::string phi = "v_phi_flow";             // optional: area fraction of the flowing layer
-  std::string h = "v_h";                      // optional: flowing-layer thickness (else from the profile)
-  std::string profile_file = "profile.chunk"; // fix ave/chunk over bin/1d y
+  std::string time = "v_time";                 // optional: elapsed time (else TimeStep * dt)
+  std::string u_all = "v_u_all";               // optional: mean x-velocity of all grains
+  std::string u_flow = "v_u_flow";             // mean x-velocity of the grains with z > 0
+  std::string v_flow = "v_v_flow";             // mean z-velocity of the grains with z > 0
+  std::string phi = "v_phi_flow";              // optional: area fraction of the flowing layer
+  std::string h = "v_h";                       // optional: flowing-layer thickness (else from the profile)
+  std::string profile_file = "profile.chunk";  // fix ave/chunk over bin/1d y
   std::string profile_coord = "Coord1";
   std::string profile_vx = "vx";
   std::string profile_count = "Ncount";
-  std::string layers_file = "layers.chunk";   // fix ave/chunk of vy per layer, sampled finely
+  std::string layers_file = "layers.chunk";  // fix ave/chunk of vy per layer, sampled finely
   std::string layers_coord = "Coord1";
   std::string layers_vz = "vy";
-  std::string layers_count = "Ncount";        // optional
+  std::string layers_count = "Ncount";  // optional
 };
 
 struct RunSettings {
   std::string directory;
   Units units;
   RunColumns columns;
-  std::optional<double> timestep_size;  // input time units per step (--dt)
-  std::optional<double> t_start, t_end; // override of the stationary window, input time units
+  std::optional<double> timestep_size;   // input time units per step (--dt)
+  std::optional<double> t_start, t_end;  // override of the stationary window, input time units
   StationaryCriterion criterion;
   SpectrumOptions spectrum;
   double peak_fmin_hz = 5;

@@ -13,7 +13,8 @@ namespace cdpost {
 
 namespace {
 
-Curve line_curve(const std::string& title, CurveStyle style, std::vector<double> x, std::vector<double> y) {
+Curve line_curve(const std::string& title, CurveStyle style, std::vector<double> x, std::vector<double> y)
+{
   Curve curve;
   curve.title = title;
   curve.style = style;
@@ -22,13 +23,15 @@ Curve line_curve(const std::string& title, CurveStyle style, std::vector<double>
   return curve;
 }
 
-std::vector<double> reduced(const std::vector<double>& values, double scale) {
+std::vector<double> reduced(const std::vector<double>& values, double scale)
+{
   std::vector<double> out;
   for (double v : values) out.push_back(v / scale);
   return out;
 }
 
-Figure time_series_figure(const RunAnalysis& run) {
+Figure time_series_figure(const RunAnalysis& run)
+{
   const auto& s = run.series;
   const auto& units = run.settings.units;
   const auto t = reduced(s.time_s, units.reduced_time_s());
@@ -38,8 +41,11 @@ Figure time_series_figure(const RunAnalysis& run) {
   u.x_label = "t / sqrt(d/g)";
   u.y_label = "velocity / sqrt(g d)";
   u.x_band = band;
-  u.curves.push_back(line_curve("U(t), grains with z > 0", CurveStyle::Lines, t, reduced(s.u_flow_mps, units.reduced_velocity_mps())));
-  if (s.u_all_mps) u.curves.push_back(line_curve("u(t), all grains", CurveStyle::Lines, t, reduced(*s.u_all_mps, units.reduced_velocity_mps())));
+  u.curves.push_back(
+      line_curve("U(t), grains with z > 0", CurveStyle::Lines, t, reduced(s.u_flow_mps, units.reduced_velocity_mps())));
+  if (s.u_all_mps)
+    u.curves.push_back(
+        line_curve("u(t), all grains", CurveStyle::Lines, t, reduced(*s.u_all_mps, units.reduced_velocity_mps())));
   u.origin_y = 0.5;
   u.height = 0.5;
   Panel v;
@@ -53,7 +59,8 @@ Figure time_series_figure(const RunAnalysis& run) {
   return {"u_t", "u(t), U(t) and v(t) of the run", {u, v}, 900, 800};
 }
 
-Figure spectrum_figure(const RunAnalysis& run) {
+Figure spectrum_figure(const RunAnalysis& run)
+{
   Panel panel;
   panel.title = "Amplitude spectrum of v(t) (Hann, " + std::to_string(run.spectrum.segments) + " segments of " +
                 format_estimate(run.spectrum.segment_duration_s, std::nullopt) + " s)";
@@ -65,13 +72,14 @@ Figure spectrum_figure(const RunAnalysis& run) {
                           CurveStyle::Points, {run.peak.frequency_hz}, {run.peak.amplitude});
   panel.curves.push_back(peak);
   if (const auto* a_mean = run.results.find("A_mean"))
-    panel.curves.push_back(line_curve("A_mean (f >= " + format_estimate(run.settings.high_frequency_hz, std::nullopt) + " Hz)",
-                                      CurveStyle::Lines, {run.settings.high_frequency_hz, run.spectrum.frequency_hz.back()},
-                                      {a_mean->value, a_mean->value}));
+    panel.curves.push_back(line_curve(
+        "A_mean (f >= " + format_estimate(run.settings.high_frequency_hz, std::nullopt) + " Hz)", CurveStyle::Lines,
+        {run.settings.high_frequency_hz, run.spectrum.frequency_hz.back()}, {a_mean->value, a_mean->value}));
   return {"spectrum", "Spectrum of v(t) over the stationary regime", {panel}};
 }
 
-Figure profile_figure(const RunAnalysis& run) {
+Figure profile_figure(const RunAnalysis& run)
+{
   const auto& p = *run.profile;
   Panel main;
   main.title = "Velocity profile u(z)";
@@ -84,7 +92,8 @@ Figure profile_figure(const RunAnalysis& run) {
       z.push_back(zi);
       u.push_back(bagnold_velocity(*run.bagnold, zi));
     }
-    main.curves.push_back(line_curve("Bagnold fit, h = " + format_estimate(run.bagnold->h, std::nullopt) + " d", CurveStyle::Lines, u, z));
+    main.curves.push_back(line_curve("Bagnold fit, h = " + format_estimate(run.bagnold->h, std::nullopt) + " d",
+                                     CurveStyle::Lines, u, z));
   }
   Figure figure{"profile", "u(z) with the Bagnold fit; inset: creep below z = 0 (semi-log)", {main}};
   std::vector<double> creep_u, creep_z;
@@ -115,7 +124,8 @@ Figure profile_figure(const RunAnalysis& run) {
   return figure;
 }
 
-Figure depth_figure(const RunAnalysis& run) {
+Figure depth_figure(const RunAnalysis& run)
+{
   Panel spectra;
   spectra.title = "Spectra of v(t) by layer";
   spectra.x_label = "f (Hz)";
@@ -125,7 +135,8 @@ Figure depth_figure(const RunAnalysis& run) {
   spectra.origin_y = 0.4;
   const size_t shown = std::min<size_t>(6, run.layers.size());
   for (size_t i = 0; i < shown; ++i) {
-    const auto& layer = run.layers[run.layers.size() - 1 - i * (run.layers.size() - 1) / std::max<size_t>(1, shown - 1)];
+    const auto& layer =
+        run.layers[run.layers.size() - 1 - i * (run.layers.size() - 1) / std::max<size_t>(1, shown - 1)];
     spectra.curves.push_back(line_curve("z = " + format_estimate(layer.z_d, std::nullopt) + " d", CurveStyle::Lines,
                                         layer.spectrum.frequency_hz, layer.spectrum.amplitude));
   }
@@ -144,10 +155,12 @@ Figure depth_figure(const RunAnalysis& run) {
   return {"spectra_depth", "Depth-resolved spectra of v(t)", {spectra, decay}, 900, 900};
 }
 
-void write_tables(const RunAnalysis& run, const std::string& out) {
+void write_tables(const RunAnalysis& run, const std::string& out)
+{
   write_columns_csv(out + "/spectrum.csv", {"f_Hz", "A_sqrt_gd"}, {run.spectrum.frequency_hz, run.spectrum.amplitude});
   if (run.profile)
-    write_columns_csv(out + "/profile.csv", {"z_d", "u_sqrt_gd", "count"}, {run.profile->z_d, run.profile->u_reduced, run.profile->count});
+    write_columns_csv(out + "/profile.csv", {"z_d", "u_sqrt_gd", "count"},
+                      {run.profile->z_d, run.profile->u_reduced, run.profile->count});
   if (!run.layers.empty()) {
     std::vector<std::vector<double>> columns(5);
     for (const auto& layer : run.layers) {
@@ -157,11 +170,13 @@ void write_tables(const RunAnalysis& run, const std::string& out) {
       columns[3].push_back(layer.peak.amplitude);
       columns[4].push_back(layer.amplitude_at_f);
     }
-    write_columns_csv(out + "/layers.csv", {"z_d", "f_peak_Hz", "f_error_Hz", "A_peak_sqrt_gd", "A_at_f_sqrt_gd"}, columns);
+    write_columns_csv(out + "/layers.csv", {"z_d", "f_peak_Hz", "f_error_Hz", "A_peak_sqrt_gd", "A_at_f_sqrt_gd"},
+                      columns);
   }
 }
 
-std::string method_text(const RunAnalysis& run) {
+std::string method_text(const RunAnalysis& run)
+{
   const auto& s = run.settings;
   std::string window = run.window_detected
                            ? "detected: earliest start at which the line fitted to U(t) drifts by at most " +
@@ -169,19 +184,24 @@ std::string method_text(const RunAnalysis& run) {
                                  "% of the mean across a window of at least " +
                                  format_estimate(s.criterion.min_window_fraction * 100, std::nullopt) + "% of the run"
                            : "given on the command line";
-  return "Units: d = " + format_estimate(s.units.d_m, std::nullopt) + " m, g = " + format_estimate(s.units.g_mps2, std::nullopt) +
-         " m/s^2 (sqrt(g/d) = " + format_estimate(s.units.reduced_rate_hz(), std::nullopt) + " Hz). Stationary window " + window +
-         ". Means carry the standard error of " + std::to_string(s.averaging_blocks) +
+  return "Units: d = " + format_estimate(s.units.d_m, std::nullopt) +
+         " m, g = " + format_estimate(s.units.g_mps2, std::nullopt) +
+         " m/s^2 (sqrt(g/d) = " + format_estimate(s.units.reduced_rate_hz(), std::nullopt) +
+         " Hz). Stationary window " + window + ". Means carry the standard error of " +
+         std::to_string(s.averaging_blocks) +
          " block means. Spectrum: Welch average of Hann-windowed, detrended segments of " +
-         format_estimate(run.spectrum.segment_duration_s, std::nullopt) + " s, amplitude normalised so that a sinusoid of amplitude a reads a; "
-         "f is the maximum in [" + format_estimate(s.peak_fmin_hz, std::nullopt) + " Hz, " +
+         format_estimate(run.spectrum.segment_duration_s, std::nullopt) +
+         " s, amplitude normalised so that a sinusoid of amplitude a reads a; "
+         "f is the maximum in [" +
+         format_estimate(s.peak_fmin_hz, std::nullopt) + " Hz, " +
          format_estimate(std::min(s.peak_fmax_hz, run.spectrum.frequency_hz.back()), std::nullopt) +
          " Hz], its error the half width at half power.";
 }
 
 }  // namespace
 
-void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::string& dump_path) {
+void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::string& dump_path)
+{
   const std::string figures_dir = out_dir + "/figures";
   std::filesystem::create_directories(figures_dir);
   std::vector<Figure> figures{time_series_figure(run), spectrum_figure(run)};
@@ -199,10 +219,8 @@ void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::
   report.table(run.results);
   report.heading("Figures");
   for (const auto& figure : figures) {
-    if (auto problem = render_figure(figure, figures_dir))
-      run.warnings.push_back(*problem);
-    else
-      report.figure("figures", figure.name, figure.caption);
+    if (auto problem = render_figure(figure, figures_dir)) run.warnings.push_back(*problem);
+    else report.figure("figures", figure.name, figure.caption);
   }
   report.warnings(run.warnings);
   write_tables(run, out_dir);

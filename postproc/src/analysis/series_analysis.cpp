@@ -15,13 +15,15 @@ namespace cdpost {
 
 namespace {
 
-std::string trim(const std::string& text) {
+std::string trim(const std::string& text)
+{
   auto first = text.find_first_not_of(" \t");
   if (first == std::string::npos) return "";
   return text.substr(first, text.find_last_not_of(" \t") - first + 1);
 }
 
-std::vector<std::string> split_commas(const std::string& line) {
+std::vector<std::string> split_commas(const std::string& line)
+{
   std::vector<std::string> fields;
   std::stringstream stream(line);
   std::string field;
@@ -30,7 +32,10 @@ std::vector<std::string> split_commas(const std::string& line) {
   return fields;
 }
 
-std::string mu_label(double mu) { return format_estimate(mu, std::nullopt); }
+std::string mu_label(double mu)
+{
+  return format_estimate(mu, std::nullopt);
+}
 
 }  // namespace
 
@@ -41,11 +46,13 @@ struct ManifestColumns {
   std::vector<std::string> header;
   int run = -1, mu = -1, theta = -1, length = -1, stopped = -1, h_stop = -1;
 
-  explicit ManifestColumns(std::vector<std::string> names) : header(std::move(names)) {
+  explicit ManifestColumns(std::vector<std::string> names) : header(std::move(names))
+  {
     run = index_of("run"), mu = index_of("mu"), theta = index_of("theta"), length = index_of("L");
     stopped = index_of("stopped"), h_stop = index_of("h_stop");
   }
-  int index_of(const std::string& name) const {
+  int index_of(const std::string& name) const
+  {
     auto found = std::find(header.begin(), header.end(), name);
     return found == header.end() ? -1 : static_cast<int>(found - header.begin());
   }
@@ -53,10 +60,12 @@ struct ManifestColumns {
 
 // stopped is 0 or 1 (empty: 0); h_stop is given exactly for the stopped runs.
 void read_stop_fields(const std::vector<std::string>& fields, const ManifestColumns& columns, const LineSource& source,
-                      ManifestEntry& entry) {
+                      ManifestEntry& entry)
+{
   if (columns.stopped >= 0 && !fields[static_cast<size_t>(columns.stopped)].empty()) {
     const double flag = parse_number(fields[static_cast<size_t>(columns.stopped)], source, "stopped");
-    if (flag != 0 && flag != 1) source.fail("stopped must be 0 or 1, found " + fields[static_cast<size_t>(columns.stopped)]);
+    if (flag != 0 && flag != 1)
+      source.fail("stopped must be 0 or 1, found " + fields[static_cast<size_t>(columns.stopped)]);
     entry.stopped = flag == 1;
   }
   const bool has_h_stop = columns.h_stop >= 0 && !fields[static_cast<size_t>(columns.h_stop)].empty();
@@ -69,7 +78,8 @@ void read_stop_fields(const std::vector<std::string>& fields, const ManifestColu
 
 }  // namespace
 
-std::vector<ManifestEntry> read_manifest(const std::string& path) {
+std::vector<ManifestEntry> read_manifest(const std::string& path)
+{
   LineSource source(path);
   const auto base = std::filesystem::path(path).parent_path();
   std::optional<ManifestColumns> columns;
@@ -85,8 +95,8 @@ std::vector<ManifestEntry> read_manifest(const std::string& path) {
       continue;
     }
     if (fields.size() != columns->header.size())
-      source.fail("expected " + std::to_string(columns->header.size()) + " fields (" + join_names(columns->header) + "), found " +
-                  std::to_string(fields.size()));
+      source.fail("expected " + std::to_string(columns->header.size()) + " fields (" + join_names(columns->header) +
+                  "), found " + std::to_string(fields.size()));
     ManifestEntry entry;
     entry.name = fields[static_cast<size_t>(columns->run)];
     entry.directory = (base / entry.name).string();
@@ -102,13 +112,15 @@ std::vector<ManifestEntry> read_manifest(const std::string& path) {
   return entries;
 }
 
-std::optional<Estimate> SeriesRun::estimate(const std::string& name) const {
+std::optional<Estimate> SeriesRun::estimate(const std::string& name) const
+{
   const auto* row = analysis.results.find(name);
   if (!row) return std::nullopt;
   return Estimate{row->value, row->error};
 }
 
-double SeriesRun::value(const std::string& name) const {
+double SeriesRun::value(const std::string& name) const
+{
   auto found = estimate(name);
   if (!found) throw AnalysisError("run " + entry.directory + " has no result '" + name + "'");
   return found->value;
@@ -119,7 +131,8 @@ namespace {
 struct SeriesFitter {
   SeriesAnalysis& series;
 
-  std::vector<FlowPoint> flow_points() const {
+  std::vector<FlowPoint> flow_points() const
+  {
     std::vector<FlowPoint> points;
     for (const auto& run : series.runs) {
       if (!run.estimate("I")) continue;
@@ -135,7 +148,8 @@ struct SeriesFitter {
     return points;
   }
 
-  std::vector<StopPoint> stop_points(double mu) const {
+  std::vector<StopPoint> stop_points(double mu) const
+  {
     std::vector<StopPoint> points;
     for (const auto& entry : series.stopped)
       if (entry.mu == mu) points.push_back({entry.directory, entry.mu, entry.theta_deg, *entry.h_stop_d});
@@ -144,7 +158,8 @@ struct SeriesFitter {
 
   // Runs `fit`, recording a warning instead of failing the series when it cannot be done.
   template <class Fit>
-  void attempt(const std::string& what, Fit fit) {
+  void attempt(const std::string& what, Fit fit)
+  {
     try {
       fit();
     } catch (const AnalysisError& e) {
@@ -152,16 +167,19 @@ struct SeriesFitter {
     }
   }
 
-  const ManifestEntry& entry_of(const std::string& directory) const {
+  const ManifestEntry& entry_of(const std::string& directory) const
+  {
     for (const auto& run : series.runs)
       if (run.entry.directory == directory) return run.entry;
     // Every residual names a run of the manifest, flowing or stopped.
-    return *std::find_if(series.stopped.begin(), series.stopped.end(), [&](const ManifestEntry& e) { return e.directory == directory; });
+    return *std::find_if(series.stopped.begin(), series.stopped.end(),
+                         [&](const ManifestEntry& e) { return e.directory == directory; });
   }
 
   // The rms residual as a fit result, and every residual in series.residuals.
-  void record_residuals(const std::string& fit_name, const std::string& suffix, const std::string& quantity, const FitResult& raw,
-                        const std::vector<PointResidual>& residuals) {
+  void record_residuals(const std::string& fit_name, const std::string& suffix, const std::string& quantity,
+                        const FitResult& raw, const std::vector<PointResidual>& residuals)
+  {
     series.fits.add(fit_name + "_rms_residual" + suffix, raw.rms_residual(), "",
                     "rms of the " + std::to_string(raw.points) + " residuals in " + quantity + " of the fit (" +
                         std::to_string(raw.dof) + " degrees of freedom); per run in residuals.csv");
@@ -171,12 +189,14 @@ struct SeriesFitter {
     }
   }
 
-  void pouliquen_fixed(const std::vector<FlowPoint>& points, double mu) {
+  void pouliquen_fixed(const std::vector<FlowPoint>& points, double mu)
+  {
     const std::string suffix = "_mu" + mu_label(mu);
     attempt("Pouliquen's rule for mu = " + mu_label(mu), [&] {
       auto fit = fit_pouliquen(points, series.settings.beta);
       auto& r = series.fits;
-      r.add("pouliquen_theta1" + suffix, fit.angles.theta1_deg, "deg", "theta1 of Pouliquen's rule (beta = " + format_estimate(fit.beta, std::nullopt) + ")");
+      r.add("pouliquen_theta1" + suffix, fit.angles.theta1_deg, "deg",
+            "theta1 of Pouliquen's rule (beta = " + format_estimate(fit.beta, std::nullopt) + ")");
       r.add("pouliquen_theta2" + suffix, fit.angles.theta2_deg, "deg", "theta2 of Pouliquen's rule");
       r.add("pouliquen_ell" + suffix, fit.ell, "", "l of Pouliquen's rule");
       record_residuals("pouliquen", suffix, "tan_theta", fit.raw, fit.residuals);
@@ -184,29 +204,35 @@ struct SeriesFitter {
     });
   }
 
-  void pouliquen_free(const std::vector<FlowPoint>& points, double mu) {
+  void pouliquen_free(const std::vector<FlowPoint>& points, double mu)
+  {
     const std::string suffix = "_mu" + mu_label(mu), what = " of Pouliquen's rule with beta free";
     attempt("Pouliquen's rule with beta free for mu = " + mu_label(mu), [&] {
       auto fit = fit_pouliquen_free(points, stop_points(mu));
       auto& r = series.fits;
-      r.add("pouliquen_betafree_ell_over_beta" + suffix, fit.ell_over_beta, "", "l/beta" + what + " (the only combination the flowing runs determine)");
+      r.add("pouliquen_betafree_ell_over_beta" + suffix, fit.ell_over_beta, "",
+            "l/beta" + what + " (the only combination the flowing runs determine)");
       if (fit.beta) {
-        r.add("pouliquen_betafree_theta1" + suffix, fit.angles.theta1_deg, "deg", "theta1" + what + ", flowing and stopped runs");
+        r.add("pouliquen_betafree_theta1" + suffix, fit.angles.theta1_deg, "deg",
+              "theta1" + what + ", flowing and stopped runs");
         r.add("pouliquen_betafree_theta2" + suffix, fit.angles.theta2_deg, "deg", "theta2" + what);
         r.add("pouliquen_betafree_ell" + suffix, *fit.ell, "", "l" + what + ", fixed by h_stop of the stopped runs");
         r.add("pouliquen_betafree_beta" + suffix, *fit.beta, "", "beta" + what);
-        r.add("pouliquen_betafree_stopped_runs" + suffix, fit.stopped_runs, "", "stopped runs in the fit with beta free");
+        r.add("pouliquen_betafree_stopped_runs" + suffix, fit.stopped_runs, "",
+              "stopped runs in the fit with beta free");
       } else {
-        series.warnings.push_back("Pouliquen's rule with beta free, mu = " + mu_label(mu) +
-                                  ": no stopped run, so beta and l are not determined separately (flowing runs depend on them only "
-                                  "through beta/l; h_stop of a stopped run fixes l): only l/beta is given");
+        series.warnings.push_back(
+            "Pouliquen's rule with beta free, mu = " + mu_label(mu) +
+            ": no stopped run, so beta and l are not determined separately (flowing runs depend on them only "
+            "through beta/l; h_stop of a stopped run fixes l): only l/beta is given");
       }
       record_residuals("pouliquen_betafree", suffix, "tan_theta", fit.raw, fit.residuals);
       series.pouliquen_free.push_back(fit);
     });
   }
 
-  void flow_rules() {
+  void flow_rules()
+  {
     const auto points = flow_points();
     auto& r = series.fits;
     const auto mus = friction_values(points);
@@ -216,7 +242,8 @@ struct SeriesFitter {
     }
     for (const auto& entry : series.stopped)
       if (std::find(mus.begin(), mus.end(), entry.mu) == mus.end())
-        series.warnings.push_back("stopped run " + entry.directory + " (mu = " + mu_label(entry.mu) + ") not used: no flowing run at that mu");
+        series.warnings.push_back("stopped run " + entry.directory + " (mu = " + mu_label(entry.mu) +
+                                  ") not used: no flowing run at that mu");
     attempt("the mu(I) rule", [&] {
       auto fit = fit_mu_of_i(points);
       r.add("muI_I0", fit.i0, "", "I0 of the mu(I) rule, shared by every mu");
@@ -230,14 +257,16 @@ struct SeriesFitter {
     attempt("phi = phi_c(mu) - k U/sqrt(g d)", [&] {
       auto fit = fit_phi_velocity(points);
       r.add("phi_k", fit.k, "", "k of phi = phi_c(mu) - k U/sqrt(g d), shared by every mu");
-      for (const auto& [mu, phi_c] : fit.phi_c) r.add("phi_c_mu" + mu_label(mu), phi_c, "", "phi_c of the linear phi(U) law");
+      for (const auto& [mu, phi_c] : fit.phi_c)
+        r.add("phi_c_mu" + mu_label(mu), phi_c, "", "phi_c of the linear phi(U) law");
       record_residuals("phi_U", "", "phi", fit.raw, fit.residuals);
       series.phi_of_u = fit;
     });
   }
 
   // A result of a run by name; "L" is the manifest's cell length.
-  static std::optional<double> quantity(const SeriesRun& run, const std::string& name) {
+  static std::optional<double> quantity(const SeriesRun& run, const std::string& name)
+  {
     if (name == "L") return run.entry.length_d;
     auto e = run.estimate(name);
     return e ? std::optional<double>(e->value) : std::nullopt;
@@ -245,7 +274,8 @@ struct SeriesFitter {
 
   // The runs (of friction `mu`, if given) having both quantities, as two columns.
   std::pair<std::vector<double>, std::vector<double>> columns(const std::string& x, const std::string& y,
-                                                              std::optional<double> mu = std::nullopt) const {
+                                                              std::optional<double> mu = std::nullopt) const
+  {
     std::pair<std::vector<double>, std::vector<double>> xy;
     for (const auto& run : series.runs) {
       auto xv = quantity(run, x), yv = quantity(run, y);
@@ -260,7 +290,8 @@ struct SeriesFitter {
   // Each analysis over all runs (suffix and scope "") and, when the series has several
   // frictions, per mu (suffix "_mu<mu>", scope " (mu = <mu>)").
   template <class Analysis>
-  void overall_and_per_friction(Analysis analysis) {
+  void overall_and_per_friction(Analysis analysis)
+  {
     analysis(std::optional<double>(), std::string(), std::string());
     std::set<double> mus;
     for (const auto& run : series.runs) mus.insert(run.entry.mu);
@@ -270,8 +301,10 @@ struct SeriesFitter {
 
   // Rows r_name, stem_n and stem_p_value (each + suffix): r, n and the p-value of a correlation;
   // with fewer than 3 runs a warning says why they are missing.
-  void significance(const std::string& r_name, const std::string& stem, const std::string& suffix, const std::string& scope,
-                    const std::string& what, const std::vector<double>& x, const std::vector<double>& y) {
+  void significance(const std::string& r_name, const std::string& stem, const std::string& suffix,
+                    const std::string& scope, const std::string& what, const std::vector<double>& x,
+                    const std::vector<double>& y)
+  {
     if (x.size() < 3) {
       series.warnings.push_back("correlation of " + what + scope + ": " + std::to_string(x.size()) +
                                 " runs, no correlation or p-value (they need 3)");
@@ -288,7 +321,9 @@ struct SeriesFitter {
 
   // The law is a line in log-log, so its significance is that of the correlation of ln f with
   // ln x (the t-test of the exponent); the correlation on linear scales is kept beside it.
-  void power_law(const std::string& x, const std::string& name, const std::string& meaning, std::optional<PowerLaw>& slot) {
+  void power_law(const std::string& x, const std::string& name, const std::string& meaning,
+                 std::optional<PowerLaw>& slot)
+  {
     overall_and_per_friction([&](std::optional<double> mu, const std::string& suffix, const std::string& scope) {
       auto [xs, fs] = columns(x, "f", mu);
       attempt(meaning + scope, [&] {
@@ -296,25 +331,30 @@ struct SeriesFitter {
         series.fits.add(name + "_exponent" + suffix, law.exponent, "", "exponent n of " + meaning + scope);
         series.fits.add(name + "_prefactor" + suffix, law.prefactor, "", "prefactor c of " + meaning + scope);
         if (law.correlation)
-          series.fits.add(name + "_correlation" + suffix, *law.correlation, "", "Pearson correlation of f with " + x + " on linear scales" + scope);
+          series.fits.add(name + "_correlation" + suffix, *law.correlation, "",
+                          "Pearson correlation of f with " + x + " on linear scales" + scope);
         if (!mu) slot = law;
         auto logarithms = [](std::vector<double> v) {
           for (double& e : v) e = std::log(e);
           return v;
         };
-        significance(name + "_log_correlation", name, suffix, scope, "ln f with ln " + x, logarithms(xs), logarithms(fs));
+        significance(name + "_log_correlation", name, suffix, scope, "ln f with ln " + x, logarithms(xs),
+                     logarithms(fs));
       });
     });
   }
 
-  void correlation_of(const std::string& x, const std::string& y, const std::string& label) {
+  void correlation_of(const std::string& x, const std::string& y, const std::string& label)
+  {
     overall_and_per_friction([&](std::optional<double> mu, const std::string& suffix, const std::string& scope) {
       auto [xs, ys] = columns(x, y, mu);
-      if (!xs.empty()) significance("correlation_" + label, "correlation_" + label, suffix, scope, y + " with " + x, xs, ys);
+      if (!xs.empty())
+        significance("correlation_" + label, "correlation_" + label, suffix, scope, y + " with " + x, xs, ys);
     });
   }
 
-  void scalings() {
+  void scalings()
+  {
     power_law("f_scale", "f_vs_scale", "f against (sqrt(g d)/U g/d)^(1/2): f = c x^n", series.f_vs_scale);
     power_law("shear_rate", "f_vs_shear_rate", "f against U/h: f = c (U/h)^n", series.f_vs_shear_rate);
     correlation_of("U", "A", "A_U");
@@ -322,16 +362,20 @@ struct SeriesFitter {
   }
 
   // Over the runs with an L column only (the L series is at one friction).
-  void length_dependence() {
+  void length_dependence()
+  {
     for (const auto& [y, label] : {std::pair{"f", "f_L"}, {"A", "A_L"}, {"A_mean", "A_mean_L"}}) {
       auto [lengths, ys] = columns("L", y);
-      if (!lengths.empty()) significance("correlation_" + std::string(label), "correlation_" + std::string(label), "", "", std::string(y) + " with L", lengths, ys);
+      if (!lengths.empty())
+        significance("correlation_" + std::string(label), "correlation_" + std::string(label), "", "",
+                     std::string(y) + " with L", lengths, ys);
     }
   }
 };
 
 // The decay length of the amplitude at f with depth, for each run with layers and h.
-void depth_decay(SeriesAnalysis& series) {
+void depth_decay(SeriesAnalysis& series)
+{
   for (auto& run : series.runs) {
     const auto& layers = run.analysis.layers;
     if (layers.empty() || !run.estimate("h")) continue;
@@ -347,7 +391,8 @@ void depth_decay(SeriesAnalysis& series) {
 
 }  // namespace
 
-SeriesAnalysis analyse_series(const SeriesSettings& settings) {
+SeriesAnalysis analyse_series(const SeriesSettings& settings)
+{
   SeriesAnalysis series;
   series.settings = settings;
   const auto entries = read_manifest(settings.manifest);
@@ -365,9 +410,11 @@ SeriesAnalysis analyse_series(const SeriesSettings& settings) {
     } catch (const std::exception& e) {
       throw InputError(settings.manifest, entries[i].line, std::string("run failed: ") + e.what());
     }
-    for (const auto& w : series.runs.back().analysis.warnings) series.warnings.push_back(entries[i].directory + ": " + w);
+    for (const auto& w : series.runs.back().analysis.warnings)
+      series.warnings.push_back(entries[i].directory + ": " + w);
   }
-  if (series.runs.empty()) throw InputError(settings.manifest, 0, "every run listed has stopped: nothing flows to analyse");
+  if (series.runs.empty())
+    throw InputError(settings.manifest, 0, "every run listed has stopped: nothing flows to analyse");
   SeriesFitter fitter{series};
   fitter.flow_rules();
   fitter.scalings();

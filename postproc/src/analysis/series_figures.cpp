@@ -12,10 +12,14 @@ namespace cdpost {
 
 namespace {
 
-std::string label(double value) { return format_estimate(value, std::nullopt); }
+std::string label(double value)
+{
+  return format_estimate(value, std::nullopt);
+}
 
 // One curve per friction coefficient of result y (with its error bars if any) against x.
-std::vector<Curve> by_friction(const SeriesAnalysis& series, const std::string& x, const std::string& y) {
+std::vector<Curve> by_friction(const SeriesAnalysis& series, const std::string& x, const std::string& y)
+{
   std::set<double> mus;
   for (const auto& run : series.runs) mus.insert(run.entry.mu);
   std::vector<Curve> curves;
@@ -36,7 +40,8 @@ std::vector<Curve> by_friction(const SeriesAnalysis& series, const std::string& 
   return curves;
 }
 
-Panel panel(const std::string& title, const std::string& x_label, const std::string& y_label, std::vector<Curve> curves) {
+Panel panel(const std::string& title, const std::string& x_label, const std::string& y_label, std::vector<Curve> curves)
+{
   Panel p;
   p.title = title;
   p.x_label = x_label;
@@ -45,7 +50,8 @@ Panel panel(const std::string& title, const std::string& x_label, const std::str
   return p;
 }
 
-Curve sampled(const std::string& title, double x0, double x1, const std::function<std::optional<double>(double)>& y) {
+Curve sampled(const std::string& title, double x0, double x1, const std::function<std::optional<double>(double)>& y)
+{
   Curve curve;
   curve.title = title;
   curve.style = CurveStyle::Lines;
@@ -59,26 +65,31 @@ Curve sampled(const std::string& title, double x0, double x1, const std::functio
   return curve;
 }
 
-std::pair<double, double> x_extent(const std::vector<Curve>& curves) {
+std::pair<double, double> x_extent(const std::vector<Curve>& curves)
+{
   double low = INFINITY, high = -INFINITY;
   for (const auto& c : curves)
     for (double x : c.x) low = std::min(low, x), high = std::max(high, x);
   return {low, high};
 }
 
-Figure power_law_figure(const SeriesAnalysis& series, const std::string& name, const std::string& x, const std::string& x_label,
-                        const std::optional<PowerLaw>& law) {
+Figure power_law_figure(const SeriesAnalysis& series, const std::string& name, const std::string& x,
+                        const std::string& x_label, const std::optional<PowerLaw>& law)
+{
   auto curves = by_friction(series, x, "f");
   if (law && !curves.empty()) {
     auto [x0, x1] = x_extent(curves);
     curves.push_back(sampled("f = " + format_estimate(law->prefactor.value, law->prefactor.error) + " x^(" +
                                  format_estimate(law->exponent.value, law->exponent.error) + ")",
-                             x0, x1, [&](double xv) { return law->prefactor.value * std::pow(xv, law->exponent.value); }));
+                             x0, x1,
+                             [&](double xv) { return law->prefactor.value * std::pow(xv, law->exponent.value); }));
   }
-  return {name, "Oscillation frequency f against " + x_label, {panel("f against " + x_label, x_label, "f (Hz)", curves)}};
+  return {
+      name, "Oscillation frequency f against " + x_label, {panel("f against " + x_label, x_label, "f (Hz)", curves)}};
 }
 
-Figure phi_figure(const SeriesAnalysis& series) {
+Figure phi_figure(const SeriesAnalysis& series)
+{
   auto curves = by_friction(series, "U", "phi");
   if (series.phi_of_u && !curves.empty()) {
     auto [u0, u1] = x_extent(curves);
@@ -87,11 +98,14 @@ Figure phi_figure(const SeriesAnalysis& series) {
       curves.push_back(sampled("phi_c - k U, mu = " + label(mu), u0, u1, [=](double u) { return c - k * u; }));
     }
   }
-  return {"phi_vs_U", "phi against U with the linear law", {panel("Area fraction against velocity", "U / sqrt(g d)", "phi", curves)}};
+  return {"phi_vs_U",
+          "phi against U with the linear law",
+          {panel("Area fraction against velocity", "U / sqrt(g d)", "phi", curves)}};
 }
 
 // Mean h (in d) of the runs of one friction coefficient: the flow-rule curves are drawn for it.
-double mean_thickness(const SeriesAnalysis& series, double mu) {
+double mean_thickness(const SeriesAnalysis& series, double mu)
+{
   double sum = 0;
   int count = 0;
   for (const auto& run : series.runs)
@@ -99,14 +113,15 @@ double mean_thickness(const SeriesAnalysis& series, double mu) {
   return count ? sum / count : 0;
 }
 
-Figure flow_rule_figure(const SeriesAnalysis& series) {
+Figure flow_rule_figure(const SeriesAnalysis& series)
+{
   auto curves = by_friction(series, "theta", "U");
   auto velocity = [](double inertial, double h) { return inertial * std::pow(h, 1.5); };  // U/sqrt(gd) = I (h/d)^1.5
   auto tan_deg = [](double deg) { return std::tan(deg * M_PI / 180); };
   for (const auto& fit : series.pouliquen) {
     const double h = mean_thickness(series, fit.angles.mu);
-    curves.push_back(sampled("Pouliquen, mu = " + label(fit.angles.mu), fit.angles.theta1_deg.value, fit.angles.theta2_deg.value,
-                             [&](double theta) -> std::optional<double> {
+    curves.push_back(sampled("Pouliquen, mu = " + label(fit.angles.mu), fit.angles.theta1_deg.value,
+                             fit.angles.theta2_deg.value, [&](double theta) -> std::optional<double> {
                                auto i = pouliquen_inertial_number(tan_deg(theta), fit);
                                if (!i) return std::nullopt;
                                return velocity(*i, h);
@@ -122,7 +137,8 @@ Figure flow_rule_figure(const SeriesAnalysis& series) {
                                  return velocity(*i, h);
                                }));
     }
-  auto p = panel("U against tilt with the flow rules (curves at the mean h of each mu)", "theta (deg)", "U / sqrt(g d)", curves);
+  auto p = panel("U against tilt with the flow rules (curves at the mean h of each mu)", "theta (deg)", "U / sqrt(g d)",
+                 curves);
   const auto measured = by_friction(series, "theta", "U");
   auto [t0, t1] = x_extent(measured);
   double u_max = 0;
@@ -132,8 +148,10 @@ Figure flow_rule_figure(const SeriesAnalysis& series) {
   return {"U_vs_theta", "U against theta with Pouliquen's and the mu(I) rule", {p}};
 }
 
-std::optional<Figure> length_figure(const SeriesAnalysis& series) {
-  std::vector<std::pair<std::string, std::string>> quantities = {{"f", "f (Hz)"}, {"A", "A / sqrt(g d)"}, {"A_mean", "A_mean / sqrt(g d)"}};
+std::optional<Figure> length_figure(const SeriesAnalysis& series)
+{
+  std::vector<std::pair<std::string, std::string>> quantities = {
+      {"f", "f (Hz)"}, {"A", "A / sqrt(g d)"}, {"A_mean", "A_mean / sqrt(g d)"}};
   Figure figure{"L_series", "f, A and A_mean against the cell length L", {}, 900, 1000};
   for (size_t q = 0; q < quantities.size(); ++q) {
     Curve curve;
@@ -156,11 +174,13 @@ std::optional<Figure> length_figure(const SeriesAnalysis& series) {
 }
 
 // A run's label in figures and tables: its manifest name, friction and tilt.
-std::string run_label(const ManifestEntry& entry) {
+std::string run_label(const ManifestEntry& entry)
+{
   return entry.name + " (mu " + label(entry.mu) + ", " + label(entry.theta_deg) + " deg)";
 }
 
-std::optional<Figure> depth_figure(const SeriesAnalysis& series) {
+std::optional<Figure> depth_figure(const SeriesAnalysis& series)
+{
   std::vector<Curve> curves;
   for (const auto& run : series.runs) {
     Curve curve;
@@ -177,16 +197,22 @@ std::optional<Figure> depth_figure(const SeriesAnalysis& series) {
   auto p = panel("Amplitude at each run's f by layer", "z / d (layer centre)", "amplitude at f / sqrt(g d)", curves);
   p.log_y = true;
   p.key = "outside right top";
-  return Figure{"amplitude_vs_depth", "Amplitude of v at the run's peak frequency f in each layer, one curve per run", {p}, 1200, 650};
+  return Figure{"amplitude_vs_depth",
+                "Amplitude of v at the run's peak frequency f in each layer, one curve per run",
+                {p},
+                1200,
+                650};
 }
 
 // h_stop against theta (stopped runs, fitted h_stop(theta)) and Fr = U/sqrt(g h) against
 // h/h_stop(theta) (flowing runs, Fr = beta h/h_stop): the evidence of each beta fitted.
-std::optional<Figure> beta_free_figure(const SeriesAnalysis& series) {
+std::optional<Figure> beta_free_figure(const SeriesAnalysis& series)
+{
   std::vector<Curve> stops, froude;
   for (const auto& fit : series.pouliquen_free) {
     if (!fit.beta) continue;
-    const double mu = fit.angles.mu, tan1 = fit.raw["tan_theta1"].value, tan2 = fit.raw["tan_theta2"].value, ell = fit.ell->value;
+    const double mu = fit.angles.mu, tan1 = fit.raw["tan_theta1"].value, tan2 = fit.raw["tan_theta2"].value,
+                 ell = fit.ell->value;
     Curve measured, flowing;
     measured.title = "stopped runs, mu = " + label(mu);
     flowing.title = "flowing runs, mu = " + label(mu);
@@ -200,11 +226,13 @@ std::optional<Figure> beta_free_figure(const SeriesAnalysis& series) {
         flowing.y.push_back(run.value("U") / std::sqrt(h));
       }
     stops.push_back(measured);
-    stops.push_back(sampled("h_stop(theta), mu = " + label(mu), fit.angles.theta1_deg.value, fit.angles.theta2_deg.value, h_stop));
+    stops.push_back(
+        sampled("h_stop(theta), mu = " + label(mu), fit.angles.theta1_deg.value, fit.angles.theta2_deg.value, h_stop));
     froude.push_back(flowing);
     if (!flowing.x.empty())
       froude.push_back(sampled("Fr = beta h/h_stop, beta = " + format_estimate(fit.beta->value, fit.beta->error), 0,
-                               *std::max_element(flowing.x.begin(), flowing.x.end()), [&](double x) { return fit.beta->value * x; }));
+                               *std::max_element(flowing.x.begin(), flowing.x.end()),
+                               [&](double x) { return fit.beta->value * x; }));
   }
   if (stops.empty()) return std::nullopt;
   double h_max = 0;
@@ -215,15 +243,24 @@ std::optional<Figure> beta_free_figure(const SeriesAnalysis& series) {
   auto right = panel("Froude number of the flowing runs", "h / h_stop(theta)", "Fr = U / sqrt(g h)", froude);
   right.width = 0.5;
   right.origin_x = 0.5;
-  return Figure{"pouliquen_beta_free", "Pouliquen's rule with beta free: h_stop(theta) and Fr = beta h/h_stop", {left, right}, 1300, 600};
+  return Figure{"pouliquen_beta_free",
+                "Pouliquen's rule with beta free: h_stop(theta) and Fr = beta h/h_stop",
+                {left, right},
+                1300,
+                600};
 }
 
-std::vector<Figure> series_figures(const SeriesAnalysis& series) {
+std::vector<Figure> series_figures(const SeriesAnalysis& series)
+{
   std::vector<Figure> figures{
       power_law_figure(series, "f_vs_scale", "f_scale", "(sqrt(g d)/U g/d)^(1/2) (Hz)", series.f_vs_scale),
       power_law_figure(series, "f_vs_shear_rate", "shear_rate", "U/h (1/s)", series.f_vs_shear_rate),
-      {"A_vs_U", "Peak amplitude A against U", {panel("A against U", "U / sqrt(g d)", "A / sqrt(g d)", by_friction(series, "U", "A"))}},
-      {"A_vs_phi", "Peak amplitude A against phi", {panel("A against phi", "phi", "A / sqrt(g d)", by_friction(series, "phi", "A"))}},
+      {"A_vs_U",
+       "Peak amplitude A against U",
+       {panel("A against U", "U / sqrt(g d)", "A / sqrt(g d)", by_friction(series, "U", "A"))}},
+      {"A_vs_phi",
+       "Peak amplitude A against phi",
+       {panel("A against phi", "phi", "A / sqrt(g d)", by_friction(series, "phi", "A"))}},
       phi_figure(series),
       flow_rule_figure(series)};
   if (auto lengths = length_figure(series)) figures.push_back(*lengths);
@@ -232,8 +269,10 @@ std::vector<Figure> series_figures(const SeriesAnalysis& series) {
   return figures;
 }
 
-void write_runs_table(const SeriesAnalysis& series, const std::string& path) {
-  const std::vector<std::string> names = {"U", "phi", "h", "I", "shear_rate", "f_scale", "f", "A", "A_mean", "creep_lambda"};
+void write_runs_table(const SeriesAnalysis& series, const std::string& path)
+{
+  const std::vector<std::string> names = {"U",       "phi", "h", "I",      "shear_rate",
+                                          "f_scale", "f",   "A", "A_mean", "creep_lambda"};
   auto out = open_output(path);
   out << "run,mu,theta_deg,L_d";
   for (const auto& n : names) out << ',' << n << ',' << n << "_error";
@@ -250,7 +289,8 @@ void write_runs_table(const SeriesAnalysis& series, const std::string& path) {
 }
 
 // One CSV row per residual: run, mu, theta, fit, quantity, observed − fitted.
-void write_residuals(const SeriesAnalysis& series, const std::string& path) {
+void write_residuals(const SeriesAnalysis& series, const std::string& path)
+{
   auto out = open_output(path);
   out.precision(10);
   out << "run,mu,theta_deg,fit,quantity,residual\n";
@@ -259,7 +299,8 @@ void write_residuals(const SeriesAnalysis& series, const std::string& path) {
 }
 
 // One row per run and layer: the amplitude at the run's f against the layer's z.
-void write_layer_amplitudes(const SeriesAnalysis& series, const std::string& path) {
+void write_layer_amplitudes(const SeriesAnalysis& series, const std::string& path)
+{
   auto out = open_output(path);
   out.precision(10);
   out << "run,mu,theta_deg,z_d,amplitude_at_f\n";
@@ -270,18 +311,20 @@ void write_layer_amplitudes(const SeriesAnalysis& series, const std::string& pat
 }
 
 // One row per run whose decay length could be fitted (the others are warnings).
-void write_depth_decay(const SeriesAnalysis& series, const std::string& path) {
+void write_depth_decay(const SeriesAnalysis& series, const std::string& path)
+{
   auto out = open_output(path);
   out.precision(10);
   out << "run,mu,theta_deg,decay_length_d,decay_length_error_d,layers,log_rms_residual\n";
   for (const auto& run : series.runs)
     if (const auto& decay = run.depth_decay)
-      out << run.entry.directory << ',' << run.entry.mu << ',' << run.entry.theta_deg << ',' << decay->lambda.value << ','
-          << *decay->lambda.error << ',' << decay->layers << ',' << decay->log_rms_residual << '\n';
+      out << run.entry.directory << ',' << run.entry.mu << ',' << run.entry.theta_deg << ',' << decay->lambda.value
+          << ',' << *decay->lambda.error << ',' << decay->layers << ',' << decay->log_rms_residual << '\n';
 }
 
 // Per run (flowing, then stopped), the residual of each flow-rule fit; empty where a fit left the run out.
-void residual_table(MarkdownReport& report, const SeriesAnalysis& series) {
+void residual_table(MarkdownReport& report, const SeriesAnalysis& series)
+{
   std::vector<std::string> fits;
   for (const auto& r : series.residuals)
     if (std::find(fits.begin(), fits.end(), r.fit) == fits.end()) fits.push_back(r.fit);
@@ -304,51 +347,58 @@ void residual_table(MarkdownReport& report, const SeriesAnalysis& series) {
   report.table(header, rows);
 }
 
-void depth_table(MarkdownReport& report, const SeriesAnalysis& series) {
+void depth_table(MarkdownReport& report, const SeriesAnalysis& series)
+{
   std::vector<std::vector<std::string>> rows;
   for (const auto& run : series.runs)
     if (const auto& decay = run.depth_decay)
-      rows.push_back({run_label(run.entry), format_estimate(decay->lambda.value, decay->lambda.error), std::to_string(decay->layers),
-                      format_estimate(decay->log_rms_residual, std::nullopt)});
-  if (rows.empty())
-    report.paragraph("No run has a decay length (see the warnings).");
-  else
-    report.table({"run", "decay length lambda (d)", "layers fitted", "rms of ln a about the fit"}, rows);
+      rows.push_back({run_label(run.entry), format_estimate(decay->lambda.value, decay->lambda.error),
+                      std::to_string(decay->layers), format_estimate(decay->log_rms_residual, std::nullopt)});
+  if (rows.empty()) report.paragraph("No run has a decay length (see the warnings).");
+  else report.table({"run", "decay length lambda (d)", "layers fitted", "rms of ln a about the fit"}, rows);
 }
 
 }  // namespace
 
-void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir) {
+void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
+{
   const std::string figures_dir = out_dir + "/figures";
   std::filesystem::create_directories(figures_dir);
   MarkdownReport report("Series " + series.settings.manifest);
-  report.paragraph(std::to_string(series.runs.size()) + " flowing runs, each analysed as by `cdpost run` (see its report for the method), and " +
-                   std::to_string(series.stopped.size()) +
-                   " stopped runs (manifest: stopped = 1, deposit thickness h_stop; not analysed). Fits by GSL least squares; "
-                   "errors are one sigma from the covariance scaled by the residual variance. Pouliquen's rule with beta = " +
-                   label(series.settings.beta) +
-                   " (`pouliquen_*`) and with beta free (`pouliquen_betafree_*`): the flowing runs depend on beta and l only through "
-                   "l/beta, so beta and l are given separately only for a friction with stopped runs, whose h_stop(theta) fixes l. "
-                   "Correlations are Pearson's r with the number of runs n and the two-sided p-value of r (Student t, n - 2 degrees "
-                   "of freedom); over all runs and, when the series has several frictions, per mu (`_mu<mu>`). Per-run numbers: runs.csv.");
+  report.paragraph(
+      std::to_string(series.runs.size()) +
+      " flowing runs, each analysed as by `cdpost run` (see its report for the method), and " +
+      std::to_string(series.stopped.size()) +
+      " stopped runs (manifest: stopped = 1, deposit thickness h_stop; not analysed). Fits by GSL least squares; "
+      "errors are one sigma from the covariance scaled by the residual variance. Pouliquen's rule with beta = " +
+      label(series.settings.beta) +
+      " (`pouliquen_*`) and with beta free (`pouliquen_betafree_*`): the flowing runs depend on beta and l only "
+      "through "
+      "l/beta, so beta and l are given separately only for a friction with stopped runs, whose h_stop(theta) fixes l. "
+      "Correlations are Pearson's r with the number of runs n and the two-sided p-value of r (Student t, n - 2 degrees "
+      "of freedom); over all runs and, when the series has several frictions, per mu (`_mu<mu>`). Per-run numbers: "
+      "runs.csv.");
   report.heading("Fitted numbers");
   report.table(series.fits);
   report.heading("Residuals of the flow-rule fits");
-  report.paragraph("Observed minus fitted, in tan theta for the flow rules and in phi for phi(U); the rms of each fit is in the table "
-                   "above (`*_rms_residual*`); every residual is in residuals.csv.");
+  report.paragraph(
+      "Observed minus fitted, in tan theta for the flow rules and in phi for phi(U); the rms of each fit is in the "
+      "table "
+      "above (`*_rms_residual*`); every residual is in residuals.csv.");
   residual_table(report, series);
   report.heading("Decay of the oscillation with depth");
-  report.paragraph("The amplitude of v at each run's f per layer (layer_amplitudes.csv, figure amplitude_vs_depth), fitted as "
-                   "a = a_s exp(z/lambda) over the layers lying wholly in the flowing layer 0 <= z <= h (the bed is left out); given "
-                   "only when at least 3 layers qualify and 1/lambda exceeds twice its error (depth_decay.csv). A layer at the noise "
-                   "floor flattens the profile; the rms of ln a shows how far the profile is from one exponential.");
+  report.paragraph(
+      "The amplitude of v at each run's f per layer (layer_amplitudes.csv, figure amplitude_vs_depth), fitted as "
+      "a = a_s exp(z/lambda) over the layers lying wholly in the flowing layer 0 <= z <= h (the bed is left out); "
+      "given "
+      "only when at least 3 layers qualify and 1/lambda exceeds twice its error (depth_decay.csv). A layer at the "
+      "noise "
+      "floor flattens the profile; the rms of ln a shows how far the profile is from one exponential.");
   depth_table(report, series);
   report.heading("Figures");
   for (const auto& figure : series_figures(series)) {
-    if (auto problem = render_figure(figure, figures_dir))
-      series.warnings.push_back(*problem);
-    else
-      report.figure("figures", figure.name, figure.caption);
+    if (auto problem = render_figure(figure, figures_dir)) series.warnings.push_back(*problem);
+    else report.figure("figures", figure.name, figure.caption);
   }
   report.warnings(series.warnings);
   write_runs_table(series, out_dir + "/runs.csv");

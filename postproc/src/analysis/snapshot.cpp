@@ -9,7 +9,8 @@ namespace cdpost {
 
 namespace {
 
-DumpFrame select_frame(const SnapshotRequest& request) {
+DumpFrame select_frame(const SnapshotRequest& request)
+{
   DumpReader reader(request.dump_path);
   Progress progress("reading " + request.dump_path, true, request.progress);
   DumpFrame frame, chosen;
@@ -23,14 +24,16 @@ DumpFrame select_frame(const SnapshotRequest& request) {
     }
   }
   if (!found)
-    throw InputError(request.dump_path, 0,
-                     request.timestep ? "no frame at timestep " + std::to_string(*request.timestep) : "no frame (empty dump)");
+    throw InputError(
+        request.dump_path, 0,
+        request.timestep ? "no frame at timestep " + std::to_string(*request.timestep) : "no frame (empty dump)");
   return chosen;
 }
 
 }  // namespace
 
-Figure snapshot_figure(const SnapshotRequest& request, const Units& units, double z0) {
+Figure snapshot_figure(const SnapshotRequest& request, const Units& units, double z0)
+{
   const DumpFrame frame = select_frame(request);
   const size_t x = frame.column_index("x"), y = frame.column_index("y");
   const size_t vx = frame.column_index("vx"), radius = frame.column_index("radius");
@@ -72,7 +75,8 @@ Figure snapshot_figure(const SnapshotRequest& request, const Units& units, doubl
   std::string caption = "Snapshot of the cell, grains coloured by x-velocity; periodic images shaded";
   if (walls) {
     const double nan = std::numeric_limits<double>::quiet_NaN();  // a break between the two walls
-    panel.curves.push_back(Curve{"walls", CurveStyle::Walls, {xlo, xlo, nan, xhi, xhi}, {floor_z, 0.0, nan, floor_z, 0.0}, {}, {}, {}});
+    panel.curves.push_back(
+        Curve{"walls", CurveStyle::Walls, {xlo, xlo, nan, xhi, xhi}, {floor_z, 0.0, nan, floor_z, 0.0}, {}, {}, {}});
     caption += " above the wall tops (z = 0), where grains cross the periodic boundary; the walls in black";
   }
   Figure figure{"snapshot", caption, {panel}, 1400, 700};

@@ -53,7 +53,8 @@ const std::vector<ColumnOption> column_options = {
     {"col-layers-count", &RunColumns::layers_count, "its grain-count column (optional)"},
 };
 
-std::vector<OptionSpec> unit_options() {
+std::vector<OptionSpec> unit_options()
+{
   return {{"d", "METRES", "mean grain diameter (default 5e-4)"},
           {"g", "M/S2", "gravity (default 9.81)"},
           {"units", "si|reduced", "units of the input: SI (default) or reduced (d, sqrt(d/g))"},
@@ -64,7 +65,8 @@ std::vector<OptionSpec> unit_options() {
           {"help", "", "show this help"}};
 }
 
-std::vector<OptionSpec> analysis_options() {
+std::vector<OptionSpec> analysis_options()
+{
   std::vector<OptionSpec> specs = unit_options();
   std::vector<OptionSpec> more = {
       {"t-start", "TIME", "start of the stationary window (input time units; disables detection)"},
@@ -81,26 +83,27 @@ std::vector<OptionSpec> analysis_options() {
       {"blocks", "N", "blocks for the standard error of means (default 10)"},
       {"out", "DIR", "output directory"}};
   specs.insert(specs.end(), more.begin(), more.end());
-  for (const auto& c : column_options) specs.push_back({c.name, "NAME", std::string(c.help) + " (default " + RunColumns().*c.member + ")"});
+  for (const auto& c : column_options)
+    specs.push_back({c.name, "NAME", std::string(c.help) + " (default " + RunColumns().*c.member + ")"});
   return specs;
 }
 
-Units units_from(const ParsedOptions& options, const std::string& command) {
+Units units_from(const ParsedOptions& options, const std::string& command)
+{
   Units units;
   units.d_m = options.number("d").value_or(units.d_m);
   units.g_mps2 = options.number("g").value_or(units.g_mps2);
   if (!(units.d_m > 0 && units.g_mps2 > 0)) throw UsageError(command + ": --d and --g must be positive");
   auto system = options.text("units").value_or("si");
-  if (system == "reduced")
-    units.use_reduced_input();
-  else if (system != "si")
-    throw UsageError(command + ": --units must be 'si' or 'reduced', not '" + system + "'");
+  if (system == "reduced") units.use_reduced_input();
+  else if (system != "si") throw UsageError(command + ": --units must be 'si' or 'reduced', not '" + system + "'");
   units.length_unit_m = options.number("length-unit").value_or(units.length_unit_m);
   units.time_unit_s = options.number("time-unit").value_or(units.time_unit_s);
   return units;
 }
 
-RunSettings settings_from(const ParsedOptions& options, const std::string& command) {
+RunSettings settings_from(const ParsedOptions& options, const std::string& command)
+{
   RunSettings s;
   s.units = units_from(options, command);
   s.timestep_size = options.number("dt");
@@ -126,8 +129,9 @@ RunSettings settings_from(const ParsedOptions& options, const std::string& comma
 
 // Parses `arguments`, printing help and returning nothing if --help was asked.
 std::optional<ParsedOptions> parse_or_help(const std::string& command, const std::string& usage,
-                                           const std::vector<std::string>& arguments, const std::vector<OptionSpec>& specs,
-                                           size_t positional_count) {
+                                           const std::vector<std::string>& arguments,
+                                           const std::vector<OptionSpec>& specs, size_t positional_count)
+{
   auto options = parse_options(command, arguments, specs);
   if (options.flag("help")) {
     std::cout << "usage: " << usage << "\n\noptions:\n" << options_help(specs);
@@ -137,11 +141,13 @@ std::optional<ParsedOptions> parse_or_help(const std::string& command, const std
   return options;
 }
 
-void print_warnings(const std::vector<std::string>& warnings) {
+void print_warnings(const std::vector<std::string>& warnings)
+{
   for (const auto& w : warnings) std::cerr << "cdpost: warning: " << w << '\n';
 }
 
-int command_run(const std::vector<std::string>& arguments) {
+int command_run(const std::vector<std::string>& arguments)
+{
   auto specs = analysis_options();
   specs.push_back({"dump", "FILE", "LAMMPS dump (.gz allowed) for the snapshot figure; default: none"});
   auto options = parse_or_help("cdpost run", "cdpost run DIR [options]", arguments, specs, 1);
@@ -157,25 +163,30 @@ int command_run(const std::vector<std::string>& arguments) {
   return 0;
 }
 
-int command_series(const std::vector<std::string>& arguments) {
-  auto options = parse_or_help("cdpost series", "cdpost series MANIFEST.csv [options]", arguments, analysis_options(), 1);
+int command_series(const std::vector<std::string>& arguments)
+{
+  auto options =
+      parse_or_help("cdpost series", "cdpost series MANIFEST.csv [options]", arguments, analysis_options(), 1);
   if (!options) return 0;
   SeriesSettings series;
   series.run = settings_from(*options, "cdpost series");
   series.manifest = options->positional[0];
-  auto out = options->text("out").value_or((std::filesystem::path(series.manifest).parent_path() / "series-post").string());
+  auto out =
+      options->text("out").value_or((std::filesystem::path(series.manifest).parent_path() / "series-post").string());
   auto result = analyse_series(series);
   write_series_outputs(result, out);
-  std::cout << result.fits.text() << "results: " << out << "/fits.csv, " << out << "/runs.csv, " << out << "/residuals.csv, " << out
-            << "/depth_decay.csv, report: " << out << "/report.md\n";
+  std::cout << result.fits.text() << "results: " << out << "/fits.csv, " << out << "/runs.csv, " << out
+            << "/residuals.csv, " << out << "/depth_decay.csv, report: " << out << "/report.md\n";
   print_warnings(result.warnings);
   return 0;
 }
 
-int command_spectrum(const std::vector<std::string>& arguments) {
+int command_spectrum(const std::vector<std::string>& arguments)
+{
   auto specs = analysis_options();
   specs.push_back({"column", "NAME", "column to transform (default v_v_flow)"});
-  auto options = parse_or_help("cdpost spectrum", "cdpost spectrum FILE [--column NAME] [options]", arguments, specs, 1);
+  auto options =
+      parse_or_help("cdpost spectrum", "cdpost spectrum FILE [--column NAME] [options]", arguments, specs, 1);
   if (!options) return 0;
   auto settings = settings_from(*options, "cdpost spectrum");
   const std::string column = options->text("column").value_or(settings.columns.v_flow);
@@ -189,10 +200,13 @@ int command_spectrum(const std::vector<std::string>& arguments) {
   return 0;
 }
 
-int command_snapshot(const std::vector<std::string>& arguments) {
+int command_snapshot(const std::vector<std::string>& arguments)
+{
   auto specs = unit_options();
   specs.insert(specs.end(), {{"timestep", "N", "frame to draw (default: the last)"},
-                             {"z0", "LENGTH", "height of the wall tops in input length units: walls on the periodic boundary from the box bottom up to it, periodic images shaded above it (default 0: no walls)"},
+                             {"z0", "LENGTH",
+                              "height of the wall tops in input length units: walls on the periodic boundary from the "
+                              "box bottom up to it, periodic images shaded above it (default 0: no walls)"},
                              {"out", "DIR", "output directory (default: the dump's directory)"}});
   auto options = parse_or_help("cdpost snapshot", "cdpost snapshot DUMP [options]", arguments, specs, 1);
   if (!options) return 0;
@@ -211,7 +225,8 @@ int command_snapshot(const std::vector<std::string>& arguments) {
 
 }  // namespace
 
-int run_command_line(const std::vector<std::string>& arguments) {
+int run_command_line(const std::vector<std::string>& arguments)
+{
   const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
       {"run", command_run}, {"series", command_series}, {"spectrum", command_spectrum}, {"snapshot", command_snapshot}};
   if (arguments.empty() || arguments[0] == "--help" || arguments[0] == "-h" || arguments[0] == "help") {

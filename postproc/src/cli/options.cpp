@@ -7,13 +7,15 @@
 
 namespace cdpost {
 
-std::optional<std::string> ParsedOptions::text(const std::string& name) const {
+std::optional<std::string> ParsedOptions::text(const std::string& name) const
+{
   auto found = values_.find(name);
   if (found == values_.end()) return std::nullopt;
   return found->second;
 }
 
-std::optional<double> ParsedOptions::number(const std::string& name) const {
+std::optional<double> ParsedOptions::number(const std::string& name) const
+{
   auto value = text(name);
   if (!value) return std::nullopt;
   double parsed = 0;
@@ -23,7 +25,8 @@ std::optional<double> ParsedOptions::number(const std::string& name) const {
   return parsed;
 }
 
-std::optional<long> ParsedOptions::integer(const std::string& name) const {
+std::optional<long> ParsedOptions::integer(const std::string& name) const
+{
   auto value = text(name);
   if (!value) return std::nullopt;
   long parsed = 0;
@@ -34,7 +37,8 @@ std::optional<long> ParsedOptions::integer(const std::string& name) const {
 }
 
 ParsedOptions parse_options(const std::string& command, const std::vector<std::string>& arguments,
-                            const std::vector<OptionSpec>& specs) {
+                            const std::vector<OptionSpec>& specs)
+{
   ParsedOptions parsed;
   parsed.command_ = command;
   for (size_t i = 0; i < arguments.size(); ++i) {
@@ -50,13 +54,15 @@ ParsedOptions parse_options(const std::string& command, const std::vector<std::s
       parsed.flags_.insert(name);
       continue;
     }
-    if (i + 1 >= arguments.size()) throw UsageError(command + ": option '" + argument + "' needs a value (" + spec->value_name + ")");
+    if (i + 1 >= arguments.size())
+      throw UsageError(command + ": option '" + argument + "' needs a value (" + spec->value_name + ")");
     parsed.values_[name] = arguments[++i];
   }
   return parsed;
 }
 
-std::string options_help(const std::vector<OptionSpec>& specs) {
+std::string options_help(const std::vector<OptionSpec>& specs)
+{
   std::ostringstream out;
   for (const auto& spec : specs) {
     std::string left = "  --" + spec.name + (spec.value_name.empty() ? "" : " " + spec.value_name);

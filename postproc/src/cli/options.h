@@ -32,7 +32,8 @@ class ParsedOptions {
   std::optional<long> integer(const std::string& name) const;
 
  private:
-  friend ParsedOptions parse_options(const std::string&, const std::vector<std::string>&, const std::vector<OptionSpec>&);
+  friend ParsedOptions parse_options(const std::string&, const std::vector<std::string>&,
+                                     const std::vector<OptionSpec>&);
   std::string command_;
   std::map<std::string, std::string> values_;
   std::set<std::string> flags_;

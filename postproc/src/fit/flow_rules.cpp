@@ -10,38 +10,46 @@ namespace cdpost {
 namespace {
 
 constexpr double degrees_per_radian = 180.0 / M_PI;
-double tan_deg(double degrees) { return std::tan(degrees / degrees_per_radian); }
+double tan_deg(double degrees)
+{
+  return std::tan(degrees / degrees_per_radian);
+}
 
 // θ = atan(t) with dθ = dt / (1 + t²), in degrees.
-Estimate angle_of_tangent(const Estimate& tangent) {
+Estimate angle_of_tangent(const Estimate& tangent)
+{
   Estimate angle{std::atan(tangent.value) * degrees_per_radian, std::nullopt};
   if (tangent.error) angle.error = *tangent.error / (1 + tangent.value * tangent.value) * degrees_per_radian;
   return angle;
 }
 
 template <class Point>
-std::vector<double> tangents(const std::vector<Point>& points) {
+std::vector<double> tangents(const std::vector<Point>& points)
+{
   std::vector<double> t;
   for (const auto& p : points) t.push_back(tan_deg(p.theta_deg));
   return t;
 }
 
 template <class Point>
-std::vector<std::string> run_names(const std::vector<Point>& points) {
+std::vector<std::string> run_names(const std::vector<Point>& points)
+{
   std::vector<std::string> names;
   for (const auto& p : points) names.push_back(p.run);
   return names;
 }
 
 // The residuals of `fit`, whose points are those of the runs named, in order.
-std::vector<PointResidual> named_residuals(const std::vector<std::string>& runs, const FitResult& fit) {
+std::vector<PointResidual> named_residuals(const std::vector<std::string>& runs, const FitResult& fit)
+{
   std::vector<PointResidual> residuals;
   for (size_t i = 0; i < runs.size(); ++i) residuals.push_back({runs[i], fit.residuals[i]});
   return residuals;
 }
 
 // p[a]/p[b] with its error from the covariance (first order).
-Estimate parameter_ratio(const FitResult& fit, Eigen::Index a, Eigen::Index b) {
+Estimate parameter_ratio(const FitResult& fit, Eigen::Index a, Eigen::Index b)
+{
   const double pa = fit.parameters[a].value, pb = fit.parameters[b].value;
   Estimate ratio{pa / pb, std::nullopt};
   if (fit.covariance.size() == 0) return ratio;
@@ -54,14 +62,16 @@ Estimate parameter_ratio(const FitResult& fit, Eigen::Index a, Eigen::Index b) {
 }
 
 // Starting bounds just outside the observed range of tan θ.
-std::pair<double, double> initial_tangents(const std::vector<double>& t) {
+std::pair<double, double> initial_tangents(const std::vector<double>& t)
+{
   auto [low, high] = std::minmax_element(t.begin(), t.end());
   double margin = 0.1 * std::max(*high - *low, 0.02);
   return {*low - margin, *high + margin};
 }
 
 // The run of median angle: where the initial guesses of ℓ and I0 are taken.
-FlowPoint median_point(std::vector<FlowPoint> points) {
+FlowPoint median_point(std::vector<FlowPoint> points)
+{
   std::nth_element(points.begin(), points.begin() + points.size() / 2, points.end(),
                    [](const FlowPoint& a, const FlowPoint& b) { return a.theta_deg < b.theta_deg; });
   return points[points.size() / 2];
@@ -69,7 +79,8 @@ FlowPoint median_point(std::vector<FlowPoint> points) {
 
 }  // namespace
 
-std::vector<double> friction_values(const std::vector<FlowPoint>& points) {
+std::vector<double> friction_values(const std::vector<FlowPoint>& points)
+{
   std::vector<double> mus;
   for (const auto& p : points)
     if (std::find(mus.begin(), mus.end(), p.mu) == mus.end()) mus.push_back(p.mu);
@@ -77,17 +88,21 @@ std::vector<double> friction_values(const std::vector<FlowPoint>& points) {
   return mus;
 }
 
-std::vector<FlowPoint> points_with_mu(const std::vector<FlowPoint>& points, double mu) {
+std::vector<FlowPoint> points_with_mu(const std::vector<FlowPoint>& points, double mu)
+{
   std::vector<FlowPoint> selected;
-  std::copy_if(points.begin(), points.end(), std::back_inserter(selected), [mu](const FlowPoint& p) { return p.mu == mu; });
+  std::copy_if(points.begin(), points.end(), std::back_inserter(selected),
+               [mu](const FlowPoint& p) { return p.mu == mu; });
   return selected;
 }
 
-double pouliquen_tan(double inertial_number, double tan1, double tan2, double ell, double beta) {
+double pouliquen_tan(double inertial_number, double tan1, double tan2, double ell, double beta)
+{
   return tan1 + (tan2 - tan1) * std::exp(-beta / (ell * inertial_number));
 }
 
-PouliquenFit fit_pouliquen(const std::vector<FlowPoint>& points, double beta) {
+PouliquenFit fit_pouliquen(const std::vector<FlowPoint>& points, double beta)
+{
   if (points.size() < 3) throw AnalysisError("Pouliquen's rule needs at least 3 runs per friction coefficient");
   const auto observed = tangents(points);
   auto [tan1, tan2] = initial_tangents(observed);
@@ -105,19 +120,23 @@ PouliquenFit fit_pouliquen(const std::vector<FlowPoint>& points, double beta) {
   return fit;
 }
 
-double pouliquen_stop_tan(double h_stop_d, double tan1, double tan2, double ell) {
+double pouliquen_stop_tan(double h_stop_d, double tan1, double tan2, double ell)
+{
   return tan1 + (tan2 - tan1) * std::exp(-h_stop_d / ell);
 }
 
-std::optional<double> pouliquen_stop_thickness(double tan_theta, double tan1, double tan2, double ell) {
+std::optional<double> pouliquen_stop_thickness(double tan_theta, double tan1, double tan2, double ell)
+{
   double fraction = (tan_theta - tan1) / (tan2 - tan1);
   if (!(fraction > 0 && fraction < 1)) return std::nullopt;
   return -ell * std::log(fraction);
 }
 
 // Fr = β h/h_stop is I = β/(h_stop/d).
-std::optional<double> pouliquen_inertial_number(double tan_theta, const PouliquenFit& fit) {
-  auto h_stop = pouliquen_stop_thickness(tan_theta, fit.raw["tan_theta1"].value, fit.raw["tan_theta2"].value, fit.ell.value);
+std::optional<double> pouliquen_inertial_number(double tan_theta, const PouliquenFit& fit)
+{
+  auto h_stop =
+      pouliquen_stop_thickness(tan_theta, fit.raw["tan_theta1"].value, fit.raw["tan_theta2"].value, fit.ell.value);
   if (!h_stop) return std::nullopt;
   return fit.beta / *h_stop;
 }
@@ -127,7 +146,8 @@ namespace {
 // Start of the joint fit: the bounds widened to hold every run, ℓ from the stopped runs at
 // those bounds (median), β from the flowing runs' ℓ/β.
 std::vector<double> joint_start(const std::vector<FlowPoint>& flowing, const std::vector<StopPoint>& stopped,
-                                const PouliquenFit& ratio) {
+                                const PouliquenFit& ratio)
+{
   auto all = tangents(flowing);
   for (double t : tangents(stopped)) all.push_back(t);
   const auto around_all = initial_tangents(all);
@@ -147,7 +167,8 @@ std::vector<double> joint_start(const std::vector<FlowPoint>& flowing, const std
 
 }  // namespace
 
-PouliquenFreeFit fit_pouliquen_free(const std::vector<FlowPoint>& flowing, const std::vector<StopPoint>& stopped) {
+PouliquenFreeFit fit_pouliquen_free(const std::vector<FlowPoint>& flowing, const std::vector<StopPoint>& stopped)
+{
   const auto ratio = fit_pouliquen(flowing, 1.0);  // ℓ at β = 1 is ℓ/β
   PouliquenFreeFit fit;
   fit.stopped_runs = static_cast<int>(stopped.size());
@@ -165,10 +186,12 @@ PouliquenFreeFit fit_pouliquen_free(const std::vector<FlowPoint>& flowing, const
     return i < n_flowing ? pouliquen_tan(flowing[i].inertial_number, p[0], p[1], p[2], p[3])
                          : pouliquen_stop_tan(stopped[i - n_flowing].h_stop_d, p[0], p[1], p[2]);
   };
-  fit.raw = fit_nonlinear(observed, model, joint_start(flowing, stopped, ratio), {"tan_theta1", "tan_theta2", "ell", "beta"});
+  fit.raw =
+      fit_nonlinear(observed, model, joint_start(flowing, stopped, ratio), {"tan_theta1", "tan_theta2", "ell", "beta"});
   fit.ell = fit.raw["ell"];
   fit.beta = fit.raw["beta"];
-  if (!(fit.ell->value > 0 && fit.beta->value > 0)) throw AnalysisError("the joint fit gives a length l or a beta that is not positive");
+  if (!(fit.ell->value > 0 && fit.beta->value > 0))
+    throw AnalysisError("the joint fit gives a length l or a beta that is not positive");
   fit.angles = {flowing.front().mu, angle_of_tangent(fit.raw["tan_theta1"]), angle_of_tangent(fit.raw["tan_theta2"])};
   fit.ell_over_beta = parameter_ratio(fit.raw, 2, 3);
   auto runs = run_names(flowing);
@@ -177,21 +200,25 @@ PouliquenFreeFit fit_pouliquen_free(const std::vector<FlowPoint>& flowing, const
   return fit;
 }
 
-double mu_of_i_tan(double inertial_number, double tan1, double tan2, double i0) {
+double mu_of_i_tan(double inertial_number, double tan1, double tan2, double i0)
+{
   return tan1 + (tan2 - tan1) / (i0 / inertial_number + 1);
 }
 
-std::optional<double> mu_of_i_inertial_number(double tan_theta, const AngleBounds& angles, double i0) {
+std::optional<double> mu_of_i_inertial_number(double tan_theta, const AngleBounds& angles, double i0)
+{
   double tan1 = tan_deg(angles.theta1_deg.value), tan2 = tan_deg(angles.theta2_deg.value);
   if (!(tan_theta > tan1 && tan_theta < tan2)) return std::nullopt;
   return i0 * (tan_theta - tan1) / (tan2 - tan_theta);
 }
 
-MuIFit fit_mu_of_i(const std::vector<FlowPoint>& points) {
+MuIFit fit_mu_of_i(const std::vector<FlowPoint>& points)
+{
   const auto mus = friction_values(points);
   const auto observed = tangents(points);
   std::vector<size_t> group;  // friction coefficient index of each point
-  for (const auto& p : points) group.push_back(static_cast<size_t>(std::find(mus.begin(), mus.end(), p.mu) - mus.begin()));
+  for (const auto& p : points)
+    group.push_back(static_cast<size_t>(std::find(mus.begin(), mus.end(), p.mu) - mus.begin()));
   std::vector<double> initial{median_point(points).inertial_number};
   std::vector<std::string> names{"I0"};
   for (size_t m = 0; m < mus.size(); ++m) {
@@ -207,15 +234,19 @@ MuIFit fit_mu_of_i(const std::vector<FlowPoint>& points) {
   fit.i0 = fit.raw.parameters[0];
   fit.residuals = named_residuals(run_names(points), fit.raw);
   for (size_t m = 0; m < mus.size(); ++m)
-    fit.angles.push_back({mus[m], angle_of_tangent(fit.raw.parameters[1 + 2 * m]), angle_of_tangent(fit.raw.parameters[2 + 2 * m])});
+    fit.angles.push_back(
+        {mus[m], angle_of_tangent(fit.raw.parameters[1 + 2 * m]), angle_of_tangent(fit.raw.parameters[2 + 2 * m])});
   return fit;
 }
 
-PhiFit fit_phi_velocity(const std::vector<FlowPoint>& points) {
+PhiFit fit_phi_velocity(const std::vector<FlowPoint>& points)
+{
   std::vector<FlowPoint> with_phi;
-  std::copy_if(points.begin(), points.end(), std::back_inserter(with_phi), [](const FlowPoint& p) { return p.phi.has_value(); });
+  std::copy_if(points.begin(), points.end(), std::back_inserter(with_phi),
+               [](const FlowPoint& p) { return p.phi.has_value(); });
   const auto mus = friction_values(with_phi);
-  Eigen::MatrixXd design = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(with_phi.size()), static_cast<Eigen::Index>(mus.size() + 1));
+  Eigen::MatrixXd design =
+      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(with_phi.size()), static_cast<Eigen::Index>(mus.size() + 1));
   std::vector<double> phi;
   for (size_t i = 0; i < with_phi.size(); ++i) {
     auto m = std::find(mus.begin(), mus.end(), with_phi[i].mu) - mus.begin();

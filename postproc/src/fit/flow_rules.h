@@ -20,12 +20,12 @@ namespace cdpost {
 
 // One run of a series, as the flow rules see it.
 struct FlowPoint {
-  std::string run;           // names the run in the residuals
-  double mu = 0;             // contact friction coefficient (groups the runs)
-  double theta_deg = 0;      // tilt
+  std::string run;       // names the run in the residuals
+  double mu = 0;         // contact friction coefficient (groups the runs)
+  double theta_deg = 0;  // tilt
   double inertial_number = 0;
-  double velocity = 0;       // U / sqrt(g d)
-  std::optional<double> phi; // area fraction of the flowing layer
+  double velocity = 0;        // U / sqrt(g d)
+  std::optional<double> phi;  // area fraction of the flowing layer
 };
 
 // A run that stopped at tilt θ, leaving a deposit of thickness h_stop.
@@ -91,7 +91,7 @@ double mu_of_i_tan(double inertial_number, double tan1, double tan2, double i0);
 std::optional<double> mu_of_i_inertial_number(double tan_theta, const AngleBounds& angles, double i0);
 
 struct PhiFit {
-  Estimate k;  // shared slope
+  Estimate k;                                      // shared slope
   std::vector<std::pair<double, Estimate>> phi_c;  // per friction coefficient
   FitResult raw;
   std::vector<PointResidual> residuals;  // in phi, of the points that have phi

@@ -7,16 +7,21 @@
 
 namespace cdpost {
 
-const Estimate& FitResult::operator[](const std::string& name) const {
+const Estimate& FitResult::operator[](const std::string& name) const
+{
   for (size_t i = 0; i < names.size(); ++i)
     if (names[i] == name) return parameters[i];
   throw AnalysisError("fit has no parameter '" + name + "'");
 }
 
-void use_gsl_error_codes() { gsl_set_error_handler_off(); }
+void use_gsl_error_codes()
+{
+  gsl_set_error_handler_off();
+}
 
 FitResult fit_result(std::vector<std::string> names, const std::vector<double>& parameters,
-                     const Eigen::MatrixXd& unscaled_covariance, std::vector<double> residuals) {
+                     const Eigen::MatrixXd& unscaled_covariance, std::vector<double> residuals)
+{
   FitResult fit;
   fit.names = std::move(names);
   fit.points = static_cast<int>(residuals.size());
@@ -35,11 +40,14 @@ FitResult fit_result(std::vector<std::string> names, const std::vector<double>& 
   return fit;
 }
 
-FitResult fit_linear(const Eigen::MatrixXd& design, const std::vector<double>& y, std::vector<std::string> names) {
+FitResult fit_linear(const Eigen::MatrixXd& design, const std::vector<double>& y, std::vector<std::string> names)
+{
   use_gsl_error_codes();
   const size_t n = static_cast<size_t>(design.rows()), p = static_cast<size_t>(design.cols());
   if (n != y.size() || p != names.size()) throw AnalysisError("fit_linear: inconsistent sizes");
-  if (n < p) throw AnalysisError("a fit of " + std::to_string(p) + " parameters needs at least as many points, got " + std::to_string(n));
+  if (n < p)
+    throw AnalysisError("a fit of " + std::to_string(p) + " parameters needs at least as many points, got " +
+                        std::to_string(n));
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> x = design;
   std::vector<double> y_copy = y;
   gsl_matrix_view x_view = gsl_matrix_view_array(x.data(), n, p);
@@ -57,7 +65,8 @@ FitResult fit_linear(const Eigen::MatrixXd& design, const std::vector<double>& y
   gsl_multifit_linear_free(work);
   gsl_matrix_free(cov);
   gsl_vector_free(c);
-  if (status != GSL_SUCCESS || rank < p) throw AnalysisError("linear fit is degenerate (the data do not determine every parameter)");
+  if (status != GSL_SUCCESS || rank < p)
+    throw AnalysisError("linear fit is degenerate (the data do not determine every parameter)");
   const int dof = static_cast<int>(n - p);
   // gsl returns the covariance already scaled by chi2/dof when dof > 0; undo it for fit_result.
   if (dof > 0 && chi2 > 0) covariance *= dof / chi2;
@@ -67,7 +76,8 @@ FitResult fit_linear(const Eigen::MatrixXd& design, const std::vector<double>& y
   return fit_result(std::move(names), parameters, covariance, std::move(residuals));
 }
 
-PowerLaw fit_power_law(const std::vector<double>& x, const std::vector<double>& y) {
+PowerLaw fit_power_law(const std::vector<double>& x, const std::vector<double>& y)
+{
   if (x.size() != y.size() || x.size() < 2) throw AnalysisError("a power law needs at least 2 points");
   Eigen::MatrixXd design(x.size(), 2);
   std::vector<double> log_y;

@@ -18,7 +18,7 @@ struct FitResult {
   std::vector<Estimate> parameters;
   Eigen::MatrixXd covariance;     // of the parameters, scaled like their errors; empty when dof == 0
   std::vector<double> residuals;  // observed − fitted, one per point in the order given
-  double chi2 = 0;  // sum of squared residuals, in squared data units
+  double chi2 = 0;                // sum of squared residuals, in squared data units
   int points = 0;
   int dof = 0;
   const Estimate& operator[](const std::string& name) const;

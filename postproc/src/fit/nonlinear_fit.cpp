@@ -14,7 +14,8 @@ struct Problem {
   const PointModel* model;
 };
 
-int residuals(const gsl_vector* x, void* data, gsl_vector* f) {
+int residuals(const gsl_vector* x, void* data, gsl_vector* f)
+{
   const auto& problem = *static_cast<Problem*>(data);
   std::vector<double> parameters(x->data, x->data + x->size);
   for (size_t i = 0; i < problem.observed->size(); ++i) {
@@ -33,10 +34,13 @@ struct Workspace {
 }  // namespace
 
 FitResult fit_nonlinear(const std::vector<double>& observed, const PointModel& model,
-                        const std::vector<double>& initial, std::vector<std::string> names) {
+                        const std::vector<double>& initial, std::vector<std::string> names)
+{
   use_gsl_error_codes();
   const size_t n = observed.size(), p = initial.size();
-  if (n < p) throw AnalysisError("a fit of " + std::to_string(p) + " parameters needs at least as many points, got " + std::to_string(n));
+  if (n < p)
+    throw AnalysisError("a fit of " + std::to_string(p) + " parameters needs at least as many points, got " +
+                        std::to_string(n));
   Problem problem{&observed, &model};
   gsl_multifit_nlinear_fdf fdf{};
   fdf.f = residuals;
@@ -52,7 +56,8 @@ FitResult fit_nonlinear(const std::vector<double>& observed, const PointModel& m
     throw AnalysisError("nonlinear fit: the model cannot be evaluated at the initial guess");
   int info = 0;
   int status = gsl_multifit_nlinear_driver(500, 1e-10, 1e-10, 0.0, nullptr, nullptr, &info, work.w);
-  if (status != GSL_SUCCESS) throw AnalysisError(std::string("nonlinear fit did not converge (") + gsl_strerror(status) + ")");
+  if (status != GSL_SUCCESS)
+    throw AnalysisError(std::string("nonlinear fit did not converge (") + gsl_strerror(status) + ")");
 
   gsl_vector* x = gsl_multifit_nlinear_position(work.w);
   std::vector<double> parameters(x->data, x->data + p);

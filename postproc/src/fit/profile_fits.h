@@ -34,7 +34,7 @@ CreepFit fit_creep(const std::vector<double>& z, const std::vector<double>& u, d
 struct ExponentialFit {
   Estimate inverse_length;  // 1/lambda, 1/d
   Estimate y0;
-  FitResult raw;            // of ln y: residuals are logarithmic
+  FitResult raw;  // of ln y: residuals are logarithmic
 };
 ExponentialFit fit_exponential(const std::vector<double>& z, const std::vector<double>& y);
 // lambda = 1/slope with its propagated error; the slope must be positive.

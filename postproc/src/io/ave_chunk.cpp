@@ -9,14 +9,16 @@
 
 namespace cdpost {
 
-size_t ChunkSeries::column_index(const std::string& name) const {
+size_t ChunkSeries::column_index(const std::string& name) const
+{
   auto found = std::find(names.begin(), names.end(), name);
   if (found == names.end())
     throw InputError(source, 0, "no column '" + name + "' (columns: " + join_names(names) + ")");
   return static_cast<size_t>(found - names.begin());
 }
 
-bool ChunkSeries::has(const std::string& name) const {
+bool ChunkSeries::has(const std::string& name) const
+{
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
@@ -24,7 +26,8 @@ namespace {
 
 // Reads the '#' lines; returns the value column names from the "# Chunk ..." line and
 // leaves `line` holding the first data line.
-std::vector<std::string> read_header(LineSource& source, std::string& line) {
+std::vector<std::string> read_header(LineSource& source, std::string& line)
+{
   std::vector<std::string> names;
   while (source.next(line)) {
     if (is_blank(line)) continue;
@@ -38,26 +41,27 @@ std::vector<std::string> read_header(LineSource& source, std::string& line) {
   return names;
 }
 
-void read_block_rows(LineSource& source, ChunkSeries& series, long timestep) {
+void read_block_rows(LineSource& source, ChunkSeries& series, long timestep)
+{
   std::string line;
   const size_t width = series.names.size() + 1;
   for (size_t chunk = 0; chunk < series.chunks; ++chunk) {
     if (!source.next(line))
-      source.fail("file ends inside the block of timestep " + std::to_string(timestep) + " (" +
-                  std::to_string(chunk) + " of " + std::to_string(series.chunks) + " chunk rows)");
+      source.fail("file ends inside the block of timestep " + std::to_string(timestep) + " (" + std::to_string(chunk) +
+                  " of " + std::to_string(series.chunks) + " chunk rows)");
     auto tokens = split_whitespace(line);
     if (tokens.size() != width)
-      source.fail("expected " + std::to_string(width) + " values (Chunk, " +
-                  join_names(series.names) + "), found " + std::to_string(tokens.size()));
+      source.fail("expected " + std::to_string(width) + " values (Chunk, " + join_names(series.names) + "), found " +
+                  std::to_string(tokens.size()));
     if (parse_integer(tokens[0], source, "Chunk") != static_cast<long>(chunk + 1))
-      source.fail("expected chunk " + std::to_string(chunk + 1) + ", found '" +
-                  std::string(tokens[0]) + "'");
+      source.fail("expected chunk " + std::to_string(chunk + 1) + ", found '" + std::string(tokens[0]) + "'");
     for (size_t c = 1; c < width; ++c)
       series.values.push_back(parse_number(tokens[c], source, "column " + series.names[c - 1]));
   }
 }
 
-void read_block(LineSource& source, const std::string& line, ChunkSeries& series) {
+void read_block(LineSource& source, const std::string& line, ChunkSeries& series)
+{
   auto tokens = split_whitespace(line);
   if (tokens.size() != 3)
     source.fail("expected a block header 'Timestep Number-of-chunks Total-count', found " +
@@ -68,8 +72,8 @@ void read_block(LineSource& source, const std::string& line, ChunkSeries& series
   if (chunks <= 0) source.fail("Number-of-chunks must be positive");
   if (series.blocks() == 0) series.chunks = static_cast<size_t>(chunks);
   if (static_cast<size_t>(chunks) != series.chunks)
-    source.fail("number of chunks changed from " + std::to_string(series.chunks) + " to " +
-                std::to_string(chunks) + " (fix the bin bounds in the deck)");
+    source.fail("number of chunks changed from " + std::to_string(series.chunks) + " to " + std::to_string(chunks) +
+                " (fix the bin bounds in the deck)");
   if (series.blocks() > 0 && timestep <= series.timesteps.back())
     source.fail("Timestep " + std::to_string(timestep) + " does not increase");
   series.timesteps.push_back(static_cast<double>(timestep));
@@ -77,8 +81,8 @@ void read_block(LineSource& source, const std::string& line, ChunkSeries& series
   read_block_rows(source, series, timestep);
 }
 
-void check_repeated_header(const LineSource& source, const std::string& line,
-                           const ChunkSeries& series) {
+void check_repeated_header(const LineSource& source, const std::string& line, const ChunkSeries& series)
+{
   auto names = header_names(line.substr(line.find('#')));
   if (names.empty() || names.front() != "Chunk") return;
   names.erase(names.begin());
@@ -87,7 +91,8 @@ void check_repeated_header(const LineSource& source, const std::string& line,
 
 }  // namespace
 
-ChunkSeries read_ave_chunk(const std::string& path) {
+ChunkSeries read_ave_chunk(const std::string& path)
+{
   LineSource source(path);
   ChunkSeries series;
   series.source = path;
@@ -99,10 +104,8 @@ ChunkSeries read_ave_chunk(const std::string& path) {
   do {
     progress.update(source.fraction_read());
     if (is_blank(line)) continue;
-    if (is_comment(line))
-      check_repeated_header(source, line, series);
-    else
-      read_block(source, line, series);
+    if (is_comment(line)) check_repeated_header(source, line, series);
+    else read_block(source, line, series);
   } while (source.next(line));
   return series;
 }

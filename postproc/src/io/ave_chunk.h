@@ -20,7 +20,8 @@ struct ChunkSeries {
   // Index of the column called `name`; fails naming the file and the available columns.
   size_t column_index(const std::string& name) const;
   bool has(const std::string& name) const;
-  double value(size_t block, size_t chunk, size_t column) const {
+  double value(size_t block, size_t chunk, size_t column) const
+  {
     return values[(block * chunks + chunk) * names.size() + column];
   }
 };

@@ -8,25 +8,28 @@
 
 namespace cdpost {
 
-bool ColumnTable::has(const std::string& name) const {
+bool ColumnTable::has(const std::string& name) const
+{
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-const std::vector<double>& ColumnTable::column(const std::string& name) const {
+const std::vector<double>& ColumnTable::column(const std::string& name) const
+{
   auto found = std::find(names.begin(), names.end(), name);
   if (found == names.end())
     throw InputError(source, 0, "no column '" + name + "' (columns: " + join_names(names) + ")");
   return columns[static_cast<size_t>(found - names.begin())];
 }
 
-std::vector<std::string> header_names(const std::string& comment_line) {
+std::vector<std::string> header_names(const std::string& comment_line)
+{
   std::vector<std::string> names;
-  for (auto token : split_whitespace(std::string_view(comment_line).substr(1)))
-    names.emplace_back(token);
+  for (auto token : split_whitespace(std::string_view(comment_line).substr(1))) names.emplace_back(token);
   return names;
 }
 
-std::string join_names(const std::vector<std::string>& names) {
+std::string join_names(const std::vector<std::string>& names)
+{
   std::string joined;
   for (const auto& name : names) joined += (joined.empty() ? "" : ", ") + name;
   return joined;
@@ -34,18 +37,19 @@ std::string join_names(const std::vector<std::string>& names) {
 
 namespace {
 
-void append_row(ColumnTable& table, const std::string& line, const LineSource& source) {
+void append_row(ColumnTable& table, const std::string& line, const LineSource& source)
+{
   auto tokens = split_whitespace(line);
   if (tokens.size() != table.names.size())
-    source.fail("expected " + std::to_string(table.names.size()) + " values (" +
-                join_names(table.names) + "), found " + std::to_string(tokens.size()));
+    source.fail("expected " + std::to_string(table.names.size()) + " values (" + join_names(table.names) + "), found " +
+                std::to_string(tokens.size()));
   for (size_t c = 0; c < tokens.size(); ++c)
     table.columns[c].push_back(parse_number(tokens[c], source, "column " + table.names[c]));
   table.row_lines.push_back(source.line_number());
 }
 
-void accept_header(ColumnTable& table, const std::vector<std::string>& names,
-                   const LineSource& source) {
+void accept_header(ColumnTable& table, const std::vector<std::string>& names, const LineSource& source)
+{
   if (table.names.empty()) {
     table.names = names;
     table.columns.assign(names.size(), {});
@@ -54,7 +58,8 @@ void accept_header(ColumnTable& table, const std::vector<std::string>& names,
   }
 }
 
-void check_timesteps_increase(const ColumnTable& table) {
+void check_timesteps_increase(const ColumnTable& table)
+{
   if (!table.has("TimeStep")) return;
   const auto& steps = table.column("TimeStep");
   for (size_t row = 1; row < steps.size(); ++row)
@@ -66,7 +71,8 @@ void check_timesteps_increase(const ColumnTable& table) {
 
 }  // namespace
 
-ColumnTable read_ave_time(const std::string& path) {
+ColumnTable read_ave_time(const std::string& path)
+{
   LineSource source(path);
   ColumnTable table;
   table.source = path;
@@ -83,8 +89,7 @@ ColumnTable read_ave_time(const std::string& path) {
       continue;
     }
     if (expecting_header) {
-      if (last_comment_names.empty())
-        source.fail("data before any '#' header line naming the columns");
+      if (last_comment_names.empty()) source.fail("data before any '#' header line naming the columns");
       accept_header(table, last_comment_names, source);
       expecting_header = false;
     }

@@ -8,7 +8,8 @@
 namespace cdpost {
 
 namespace {
-bool starts_with(const std::string& text, const std::string& prefix) {
+bool starts_with(const std::string& text, const std::string& prefix)
+{
   return text.compare(0, prefix.size(), prefix) == 0;
 }
 const std::string item_prefix = "ITEM: ";
@@ -16,20 +17,23 @@ const std::string item_prefix = "ITEM: ";
 
 DumpReader::DumpReader(const std::string& path) : source_(path) {}
 
-std::string DumpReader::require_line(const std::string& what) {
+std::string DumpReader::require_line(const std::string& what)
+{
   std::string line;
   if (!source_.next(line)) source_.fail("file ends where " + what + " was expected (truncated dump?)");
   return line;
 }
 
-size_t DumpFrame::column_index(const std::string& name) const {
+size_t DumpFrame::column_index(const std::string& name) const
+{
   auto found = std::find(columns.begin(), columns.end(), name);
   if (found == columns.end())
     throw InputError(source, line, "no per-atom column '" + name + "' (columns: " + join_names(columns) + ")");
   return static_cast<size_t>(found - columns.begin());
 }
 
-void DumpReader::read_box(DumpFrame& frame) {
+void DumpReader::read_box(DumpFrame& frame)
+{
   double* bounds[2][2] = {{&frame.xlo, &frame.xhi}, {&frame.ylo, &frame.yhi}};
   for (int dim = 0; dim < 3; ++dim) {
     auto line = require_line("a box bounds line");
@@ -45,11 +49,11 @@ void DumpReader::read_box(DumpFrame& frame) {
   }
 }
 
-void DumpReader::read_atoms(DumpFrame& frame, const std::string& item) {
+void DumpReader::read_atoms(DumpFrame& frame, const std::string& item)
+{
   frame.columns.clear();
   const std::string names = item.substr(std::string("ATOMS").size());
-  for (auto token : split_whitespace(names))
-    frame.columns.emplace_back(token);
+  for (auto token : split_whitespace(names)) frame.columns.emplace_back(token);
   if (frame.columns.empty()) source_.fail("'ITEM: ATOMS' names no columns");
   frame.values.clear();
   frame.values.reserve(frame.atoms * frame.columns.size());
@@ -57,14 +61,15 @@ void DumpReader::read_atoms(DumpFrame& frame, const std::string& item) {
     auto line = require_line("atom " + std::to_string(atom + 1) + " of " + std::to_string(frame.atoms));
     auto tokens = split_whitespace(line);
     if (tokens.size() != frame.columns.size())
-      source_.fail("expected " + std::to_string(frame.columns.size()) + " values (" +
-                   join_names(frame.columns) + "), found " + std::to_string(tokens.size()));
+      source_.fail("expected " + std::to_string(frame.columns.size()) + " values (" + join_names(frame.columns) +
+                   "), found " + std::to_string(tokens.size()));
     for (size_t c = 0; c < tokens.size(); ++c)
       frame.values.push_back(parse_number(tokens[c], source_, frame.columns[c]));
   }
 }
 
-bool DumpReader::next(DumpFrame& frame) {
+bool DumpReader::next(DumpFrame& frame)
+{
   std::string line;
   do {
     if (!source_.next(line)) return false;

@@ -7,16 +7,23 @@
 namespace cdpost {
 
 namespace {
-std::string position(const std::string& file, long line) {
+std::string position(const std::string& file, long line)
+{
   return line > 0 ? file + ":" + std::to_string(line) + ": " : file + ": ";
 }
-gzFile as_gz(void* file) { return static_cast<gzFile>(file); }
+gzFile as_gz(void* file)
+{
+  return static_cast<gzFile>(file);
+}
 }  // namespace
 
 InputError::InputError(const std::string& file, long line, const std::string& problem)
-    : std::runtime_error(position(file, line) + problem) {}
+    : std::runtime_error(position(file, line) + problem)
+{
+}
 
-LineSource::LineSource(const std::string& path) : path_(path) {
+LineSource::LineSource(const std::string& path) : path_(path)
+{
   struct stat info {};
   if (stat(path.c_str(), &info) != 0) throw InputError(path, 0, "cannot open (no such file)");
   if (S_ISDIR(info.st_mode)) throw InputError(path, 0, "is a directory, not a file");
@@ -26,11 +33,13 @@ LineSource::LineSource(const std::string& path) : path_(path) {
   gzbuffer(as_gz(file_), 1 << 18);
 }
 
-LineSource::~LineSource() {
+LineSource::~LineSource()
+{
   if (file_) gzclose(as_gz(file_));
 }
 
-bool LineSource::next(std::string& line) {
+bool LineSource::next(std::string& line)
+{
   line.clear();
   char buffer[4096];
   bool got_any = false;
@@ -47,7 +56,8 @@ bool LineSource::next(std::string& line) {
   return true;
 }
 
-void LineSource::check_stream() const {
+void LineSource::check_stream() const
+{
   int code = Z_OK;
   gzgetc(as_gz(file_));  // forces the decompressor to the end, where truncation shows
   const char* message = gzerror(as_gz(file_), &code);
@@ -55,12 +65,14 @@ void LineSource::check_stream() const {
     throw InputError(path_, line_number_ + 1, std::string("corrupt or truncated compressed data (") + message + ")");
 }
 
-double LineSource::fraction_read() const {
+double LineSource::fraction_read() const
+{
   if (file_size_bytes_ <= 0) return 1.0;
   return static_cast<double>(gzoffset(as_gz(file_))) / file_size_bytes_;
 }
 
-void LineSource::fail(const std::string& problem) const {
+void LineSource::fail(const std::string& problem) const
+{
   throw InputError(path_, line_number_, problem);
 }
 

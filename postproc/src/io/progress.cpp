@@ -7,13 +7,17 @@
 namespace cdpost {
 
 Progress::Progress(std::string label, bool enabled, bool force)
-    : label_(std::move(label)), shown_(enabled && (force || isatty(STDERR_FILENO))) {}
+    : label_(std::move(label)), shown_(enabled && (force || isatty(STDERR_FILENO)))
+{
+}
 
-Progress::~Progress() {
+Progress::~Progress()
+{
   if (printed_) std::fprintf(stderr, "\n");
 }
 
-void Progress::update(double fraction, const std::string& detail) {
+void Progress::update(double fraction, const std::string& detail)
+{
   if (!shown_) return;
   auto now = std::chrono::steady_clock::now();
   if (now - start_ < std::chrono::seconds(1)) return;

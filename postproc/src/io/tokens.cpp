@@ -8,7 +8,8 @@
 
 namespace cdpost {
 
-std::vector<std::string_view> split_whitespace(std::string_view line) {
+std::vector<std::string_view> split_whitespace(std::string_view line)
+{
   std::vector<std::string_view> tokens;
   size_t pos = 0;
   while (pos < line.size()) {
@@ -21,24 +22,31 @@ std::vector<std::string_view> split_whitespace(std::string_view line) {
   return tokens;
 }
 
-bool is_blank(std::string_view line) { return line.find_first_not_of(" \t") == std::string_view::npos; }
+bool is_blank(std::string_view line)
+{
+  return line.find_first_not_of(" \t") == std::string_view::npos;
+}
 
-bool is_comment(std::string_view line) {
+bool is_comment(std::string_view line)
+{
   auto first = line.find_first_not_of(" \t");
   return first != std::string_view::npos && line[first] == '#';
 }
 
 void require_same_columns(const LineSource& source, const std::vector<std::string>& first,
-                          const std::vector<std::string>& repeated) {
+                          const std::vector<std::string>& repeated)
+{
   auto joined = [](const std::vector<std::string>& names) {
     std::string text;
     for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
     return text;
   };
-  if (repeated != first) source.fail("column header changed from (" + joined(first) + ") to (" + joined(repeated) + ")");
+  if (repeated != first)
+    source.fail("column header changed from (" + joined(first) + ") to (" + joined(repeated) + ")");
 }
 
-double parse_number(std::string_view token, const LineSource& source, const std::string& what) {
+double parse_number(std::string_view token, const LineSource& source, const std::string& what)
+{
   double value = 0;
   const char* first = token.data();
   const char* last = token.data() + token.size();
@@ -46,12 +54,12 @@ double parse_number(std::string_view token, const LineSource& source, const std:
   auto [end, error] = std::from_chars(first, last, value);
   if (error != std::errc() || end != last || token.empty())
     source.fail("bad number '" + std::string(token) + "' for " + what);
-  if (!std::isfinite(value))
-    source.fail("non-finite value '" + std::string(token) + "' for " + what);
+  if (!std::isfinite(value)) source.fail("non-finite value '" + std::string(token) + "' for " + what);
   return value;
 }
 
-long parse_integer(std::string_view token, const LineSource& source, const std::string& what) {
+long parse_integer(std::string_view token, const LineSource& source, const std::string& what)
+{
   long value = 0;
   auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
   if (error != std::errc() || end != token.data() + token.size() || token.empty())

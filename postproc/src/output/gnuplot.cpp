@@ -11,17 +11,20 @@ namespace cdpost {
 
 namespace {
 
-std::string quoted(const std::string& text) {
+std::string quoted(const std::string& text)
+{
   std::string out = "'";
   for (char c : text) out += (c == '\'') ? std::string("''") : std::string(1, c);
   return out + "'";
 }
 
-std::string block_name(size_t panel, size_t curve) {
+std::string block_name(size_t panel, size_t curve)
+{
   return "$p" + std::to_string(panel) + "c" + std::to_string(curve);
 }
 
-void write_data_block(std::ostream& out, const std::string& name, const Curve& curve) {
+void write_data_block(std::ostream& out, const std::string& name, const Curve& curve)
+{
   out << name << " << EOD\n";
   for (size_t i = 0; i < curve.x.size(); ++i) {
     if (std::isnan(curve.x[i])) {  // a blank line breaks a line plot
@@ -37,7 +40,8 @@ void write_data_block(std::ostream& out, const std::string& name, const Curve& c
   out << "EOD\n";
 }
 
-std::string plot_clause(const Curve& curve, const std::string& block) {
+std::string plot_clause(const Curve& curve, const std::string& block)
+{
   std::string with;
   switch (curve.style) {
     case CurveStyle::Points: with = "using 1:2 with points pt 7 ps 1"; break;
@@ -45,25 +49,32 @@ std::string plot_clause(const Curve& curve, const std::string& block) {
     case CurveStyle::LinesPoints: with = "using 1:2 with linespoints pt 7 lw 1.5"; break;
     case CurveStyle::ErrorBars: with = "using 1:2:3 with yerrorbars pt 7"; break;
     case CurveStyle::Circles: with = "using 1:2:3:4 with circles lc palette fs solid 1.0 noborder"; break;
-    case CurveStyle::ShadedCircles: with = "using 1:2:3:4 with circles lc palette fs transparent solid 0.3 noborder"; break;
+    case CurveStyle::ShadedCircles:
+      with = "using 1:2:3:4 with circles lc palette fs transparent solid 0.3 noborder";
+      break;
     case CurveStyle::Walls: with = "using 1:2 with lines lw 3 lc rgb 'black'"; break;
   }
   return block + " " + with + (curve.title.empty() ? " notitle" : " title " + quoted(curve.title));
 }
 
-void write_range(std::ostream& out, const char* axis, const std::optional<std::pair<double, double>>& range) {
+void write_range(std::ostream& out, const char* axis, const std::optional<std::pair<double, double>>& range)
+{
   if (range) out << "set " << axis << "range [" << range->first << ":" << range->second << "]\n";
 }
 
-void write_panel(std::ostream& out, const Panel& panel, size_t index, bool multiplot) {
+void write_panel(std::ostream& out, const Panel& panel, size_t index, bool multiplot)
+{
   out << "reset\nset termoption noenhanced\nset grid\n";
-  if (multiplot) out << "set origin " << panel.origin_x << "," << panel.origin_y << "\nset size " << panel.width << "," << panel.height << "\n";
+  if (multiplot)
+    out << "set origin " << panel.origin_x << "," << panel.origin_y << "\nset size " << panel.width << ","
+        << panel.height << "\n";
   out << "set title " << quoted(panel.title) << "\nset xlabel " << quoted(panel.x_label) << "\nset ylabel "
       << quoted(panel.y_label) << "\nset key " << panel.key << "\n";
   if (panel.log_x) out << "set logscale x\n";
   if (panel.log_y) out << "set logscale y\n";
   if (panel.equal_axes) out << "set size ratio -1\n";
-  if (!panel.colour_label.empty()) out << "set palette rgb 33,13,10\nset cblabel " << quoted(panel.colour_label) << "\n";
+  if (!panel.colour_label.empty())
+    out << "set palette rgb 33,13,10\nset cblabel " << quoted(panel.colour_label) << "\n";
   write_range(out, "x", panel.x_range);
   write_range(out, "y", panel.y_range);
   if (panel.x_band)
@@ -75,7 +86,8 @@ void write_panel(std::ostream& out, const Panel& panel, size_t index, bool multi
   out << "\n";
 }
 
-void write_body(std::ostream& out, const Figure& figure) {
+void write_body(std::ostream& out, const Figure& figure)
+{
   bool multiplot = figure.panels.size() > 1;
   if (multiplot) out << "set multiplot\n";
   for (size_t p = 0; p < figure.panels.size(); ++p) write_panel(out, figure.panels[p], p, multiplot);
@@ -84,7 +96,8 @@ void write_body(std::ostream& out, const Figure& figure) {
 
 }  // namespace
 
-std::string gnuplot_script(const Figure& figure) {
+std::string gnuplot_script(const Figure& figure)
+{
   std::ostringstream out;
   out.precision(8);
   out << "# " << figure.caption << "\n# Written by cdpost; run `gnuplot " << figure.name << ".gp`.\n";
@@ -94,17 +107,20 @@ std::string gnuplot_script(const Figure& figure) {
   const std::string size = std::to_string(figure.width_px) + "," + std::to_string(figure.height_px);
   out << "set terminal pngcairo size " << size << " font ',10'\nset output '" << figure.name << ".png'\n";
   write_body(out, figure);
-  out << "set terminal svg size " << size << " font ',10' background '#ffffff'\nset output '" << figure.name << ".svg'\n";
+  out << "set terminal svg size " << size << " font ',10' background '#ffffff'\nset output '" << figure.name
+      << ".svg'\n";
   write_body(out, figure);
   out << "unset output\n";
   return out.str();
 }
 
-std::optional<std::string> render_figure(const Figure& figure, const std::string& directory) {
+std::optional<std::string> render_figure(const Figure& figure, const std::string& directory)
+{
   const std::string script = directory + "/" + figure.name + ".gp";
   open_output(script) << gnuplot_script(figure);
   static const bool have_gnuplot = std::system("command -v gnuplot >/dev/null 2>&1") == 0;
-  if (!have_gnuplot) return "gnuplot not found (install gnuplot-nox): " + figure.name + " not drawn, script kept in " + script;
+  if (!have_gnuplot)
+    return "gnuplot not found (install gnuplot-nox): " + figure.name + " not drawn, script kept in " + script;
   const std::string log = directory + "/" + figure.name + ".log";
   std::string command = "cd '" + directory + "' && gnuplot '" + figure.name + ".gp' >'" + figure.name + ".log' 2>&1";
   if (std::system(command.c_str()) != 0) return "gnuplot failed on " + script + " (see " + log + ")";

@@ -9,20 +9,23 @@ namespace cdpost {
 
 namespace {
 
-std::string number(double value, int digits = 10) {
+std::string number(double value, int digits = 10)
+{
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   return buffer;
 }
 
-std::string csv_field(const std::string& text) {
+std::string csv_field(const std::string& text)
+{
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
   std::string quoted = "\"";
   for (char c : text) quoted += (c == '"') ? std::string("\"\"") : std::string(1, c);
   return quoted + "\"";
 }
 
-std::string json_string(const std::string& text) {
+std::string json_string(const std::string& text)
+{
   std::string out = "\"";
   for (char c : text) {
     if (c == '"' || c == '\\') out += '\\';
@@ -37,37 +40,43 @@ std::string json_string(const std::string& text) {
 
 }  // namespace
 
-std::ofstream open_output(const std::string& path) {
+std::ofstream open_output(const std::string& path)
+{
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot open for writing");
   return out;
 }
 
 void ResultTable::add(const std::string& name, const Estimate& estimate, const std::string& unit,
-                      const std::string& description) {
+                      const std::string& description)
+{
   if (!std::isfinite(estimate.value) || (estimate.error && !std::isfinite(*estimate.error)))
     throw AnalysisError("the result '" + name + "' is not a finite number");
   rows_.push_back({name, estimate.value, estimate.error, unit, description});
 }
 
-void ResultTable::add(const std::string& name, double value, const std::string& unit, const std::string& description) {
+void ResultTable::add(const std::string& name, double value, const std::string& unit, const std::string& description)
+{
   add(name, Estimate{value, std::nullopt}, unit, description);
 }
 
-void ResultTable::append(const ResultTable& other, const std::string& prefix) {
+void ResultTable::append(const ResultTable& other, const std::string& prefix)
+{
   for (auto row : other.rows_) {
     row.name = prefix + row.name;
     rows_.push_back(row);
   }
 }
 
-const ResultRow* ResultTable::find(const std::string& name) const {
+const ResultRow* ResultTable::find(const std::string& name) const
+{
   for (const auto& row : rows_)
     if (row.name == name) return &row;
   return nullptr;
 }
 
-void ResultTable::write_csv(const std::string& path) const {
+void ResultTable::write_csv(const std::string& path) const
+{
   auto out = open_output(path);
   out << "name,value,error,unit,description\n";
   for (const auto& row : rows_)
@@ -75,7 +84,8 @@ void ResultTable::write_csv(const std::string& path) const {
         << csv_field(row.unit) << ',' << csv_field(row.description) << '\n';
 }
 
-void ResultTable::write_json(const std::string& path, const std::vector<std::string>& warnings) const {
+void ResultTable::write_json(const std::string& path, const std::vector<std::string>& warnings) const
+{
   auto out = open_output(path);
   out << "{\n  \"results\": [\n";
   for (size_t i = 0; i < rows_.size(); ++i) {
@@ -89,19 +99,19 @@ void ResultTable::write_json(const std::string& path, const std::vector<std::str
   out << "]\n}\n";
 }
 
-std::string format_estimate(double value, const std::optional<double>& error) {
+std::string format_estimate(double value, const std::optional<double>& error)
+{
   if (!error || *error <= 0) return number(value, 5);
   // Two significant digits of the error, the value to the same decimal place.
   int decimals = std::max(0, 1 - static_cast<int>(std::floor(std::log10(*error))));
   char buffer[96];
-  if (decimals > 8 || std::abs(value) >= 1e6)
-    std::snprintf(buffer, sizeof buffer, "%.4g ± %.2g", value, *error);
-  else
-    std::snprintf(buffer, sizeof buffer, "%.*f ± %.*f", decimals, value, decimals, *error);
+  if (decimals > 8 || std::abs(value) >= 1e6) std::snprintf(buffer, sizeof buffer, "%.4g ± %.2g", value, *error);
+  else std::snprintf(buffer, sizeof buffer, "%.*f ± %.*f", decimals, value, decimals, *error);
   return buffer;
 }
 
-std::string ResultTable::markdown() const {
+std::string ResultTable::markdown() const
+{
   std::ostringstream out;
   out << "| quantity | value | unit | meaning |\n|---|---|---|---|\n";
   for (const auto& row : rows_)
@@ -110,7 +120,8 @@ std::string ResultTable::markdown() const {
   return out.str();
 }
 
-std::string ResultTable::text() const {
+std::string ResultTable::text() const
+{
   size_t width = 0;
   for (const auto& row : rows_) width = std::max(width, row.name.size());
   std::ostringstream out;
@@ -121,7 +132,8 @@ std::string ResultTable::text() const {
 }
 
 void write_columns_csv(const std::string& path, const std::vector<std::string>& names,
-                       const std::vector<std::vector<double>>& columns) {
+                       const std::vector<std::vector<double>>& columns)
+{
   auto out = open_output(path);
   for (size_t c = 0; c < names.size(); ++c) out << (c ? "," : "") << names[c];
   out << '\n';

@@ -28,7 +28,9 @@ class RealTransform {
       : n_(n),
         input_(fftw_alloc_real(n)),
         output_(fftw_alloc_complex(n / 2 + 1)),
-        plan_(fftw_plan_dft_r2c_1d(static_cast<int>(n), input_.get(), output_.get(), FFTW_ESTIMATE)) {}
+        plan_(fftw_plan_dft_r2c_1d(static_cast<int>(n), input_.get(), output_.get(), FFTW_ESTIMATE))
+  {
+  }
   double* input() { return input_.get(); }
   void execute() { fftw_execute(plan_.get()); }
   double magnitude(size_t k) const { return std::hypot(output_.get()[k][0], output_.get()[k][1]); }
@@ -41,31 +43,35 @@ class RealTransform {
   std::unique_ptr<fftw_plan_s, PlanDestroy> plan_;
 };
 
-std::vector<double> hann_window(size_t n) {
+std::vector<double> hann_window(size_t n)
+{
   std::vector<double> w(n);
   for (size_t i = 0; i < n; ++i) w[i] = 0.5 * (1.0 - std::cos(2.0 * M_PI * i / n));
   return w;
 }
 
 // Copies segment[start, start+n) into `out` with its fitted line removed, times the window.
-void prepare_segment(const double* segment, const std::vector<double>& window,
-                     const std::vector<double>& sample_index, double* out) {
+void prepare_segment(const double* segment, const std::vector<double>& window, const std::vector<double>& sample_index,
+                     double* out)
+{
   const size_t n = window.size();
   double intercept, slope, cov00, cov01, cov11, sumsq;
   gsl_fit_linear(sample_index.data(), 1, segment, 1, n, &intercept, &slope, &cov00, &cov01, &cov11, &sumsq);
   for (size_t i = 0; i < n; ++i) out[i] = window[i] * (segment[i] - intercept - slope * sample_index[i]);
 }
 
-size_t segment_length(size_t samples, double sample_interval_s, const SpectrumOptions& options) {
+size_t segment_length(size_t samples, double sample_interval_s, const SpectrumOptions& options)
+{
   auto wanted = static_cast<size_t>(std::lround(options.segment_duration_s / sample_interval_s));
   return std::min(samples, std::max<size_t>(wanted, 8));
 }
 
 }  // namespace
 
-Spectrum amplitude_spectrum(const std::vector<double>& signal, double sample_interval_s,
-                            const SpectrumOptions& options) {
-  if (signal.size() < 16) throw AnalysisError("a spectrum needs at least 16 samples, got " + std::to_string(signal.size()));
+Spectrum amplitude_spectrum(const std::vector<double>& signal, double sample_interval_s, const SpectrumOptions& options)
+{
+  if (signal.size() < 16)
+    throw AnalysisError("a spectrum needs at least 16 samples, got " + std::to_string(signal.size()));
   if (!(sample_interval_s > 0)) throw AnalysisError("the sample interval must be positive");
   if (!(options.overlap >= 0 && options.overlap < 1)) throw AnalysisError("the segment overlap must be in [0, 1)");
   const size_t n = segment_length(signal.size(), sample_interval_s, options);
@@ -104,7 +110,8 @@ namespace {
 
 // Frequency where the amplitude first falls below `level` walking from `peak` by `direction`,
 // interpolated between bins; the band edge if it never does.
-double crossing(const Spectrum& s, size_t peak, int direction, double level, size_t lo, size_t hi) {
+double crossing(const Spectrum& s, size_t peak, int direction, double level, size_t lo, size_t hi)
+{
   size_t k = peak;
   while (true) {
     size_t next = direction > 0 ? k + 1 : k - 1;
@@ -117,35 +124,38 @@ double crossing(const Spectrum& s, size_t peak, int direction, double level, siz
   }
 }
 
-double parabolic_offset(double left, double centre, double right) {
+double parabolic_offset(double left, double centre, double right)
+{
   double curvature = left - 2 * centre + right;
   return curvature < 0 ? 0.5 * (left - right) / curvature : 0.0;
 }
 
 }  // namespace
 
-SpectralPeak find_peak(const Spectrum& spectrum, double fmin_hz, double fmax_hz) {
+SpectralPeak find_peak(const Spectrum& spectrum, double fmin_hz, double fmax_hz)
+{
   const auto& f = spectrum.frequency_hz;
   size_t lo = static_cast<size_t>(std::lower_bound(f.begin(), f.end(), std::max(fmin_hz, 1e-300)) - f.begin());
   size_t hi = static_cast<size_t>(std::upper_bound(f.begin(), f.end(), fmax_hz) - f.begin());
   if (hi <= lo)
-    throw AnalysisError("no spectral bin between " + std::to_string(fmin_hz) + " and " +
-                        std::to_string(fmax_hz) + " Hz (resolution " +
-                        std::to_string(spectrum.resolution_hz) + " Hz)");
+    throw AnalysisError("no spectral bin between " + std::to_string(fmin_hz) + " and " + std::to_string(fmax_hz) +
+                        " Hz (resolution " + std::to_string(spectrum.resolution_hz) + " Hz)");
   --hi;  // last bin inside the band
   const auto& a = spectrum.amplitude;
   size_t k = static_cast<size_t>(std::max_element(a.begin() + lo, a.begin() + hi + 1) - a.begin());
   SpectralPeak peak;
   peak.amplitude = a[k];
   peak.frequency_hz = f[k];
-  if (k > 0 && k + 1 < a.size()) peak.frequency_hz += parabolic_offset(a[k - 1], a[k], a[k + 1]) * spectrum.resolution_hz;
+  if (k > 0 && k + 1 < a.size())
+    peak.frequency_hz += parabolic_offset(a[k - 1], a[k], a[k + 1]) * spectrum.resolution_hz;
   const double half_power = a[k] / std::sqrt(2.0);
   double width = crossing(spectrum, k, +1, half_power, lo, hi) - crossing(spectrum, k, -1, half_power, lo, hi);
   peak.frequency_error_hz = std::max(0.5 * width, 0.5 * spectrum.resolution_hz);
   return peak;
 }
 
-double mean_amplitude_above(const Spectrum& spectrum, double fmin_hz) {
+double mean_amplitude_above(const Spectrum& spectrum, double fmin_hz)
+{
   double sum = 0;
   int count = 0;
   for (size_t k = 0; k < spectrum.frequency_hz.size(); ++k)
@@ -155,12 +165,13 @@ double mean_amplitude_above(const Spectrum& spectrum, double fmin_hz) {
     }
   if (count == 0)
     throw AnalysisError("no spectral bin at or above " + std::to_string(fmin_hz) +
-                        " Hz: sample v(t) more finely (Nyquist " +
-                        std::to_string(spectrum.frequency_hz.back()) + " Hz)");
+                        " Hz: sample v(t) more finely (Nyquist " + std::to_string(spectrum.frequency_hz.back()) +
+                        " Hz)");
   return sum / count;
 }
 
-double amplitude_at(const Spectrum& spectrum, double frequency_hz) {
+double amplitude_at(const Spectrum& spectrum, double frequency_hz)
+{
   auto k = static_cast<size_t>(std::lround(frequency_hz / spectrum.resolution_hz));
   return spectrum.amplitude[std::min(k, spectrum.amplitude.size() - 1)];
 }

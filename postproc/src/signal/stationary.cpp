@@ -11,20 +11,20 @@
 
 namespace cdpost {
 
-double relative_drift(const std::vector<double>& time, const std::vector<double>& signal,
-                      const Window& window) {
+double relative_drift(const std::vector<double>& time, const std::vector<double>& signal, const Window& window)
+{
   const double* t = time.data() + window.begin;
   const double* s = signal.data() + window.begin;
   double intercept, slope, cov00, cov01, cov11, sumsq;
   gsl_fit_linear(t, 1, s, 1, window.size(), &intercept, &slope, &cov00, &cov01, &cov11, &sumsq);
   double drift = std::abs(slope) * (time[window.end - 1] - time[window.begin]);
-  double scale = std::max(std::abs(gsl_stats_mean(s, 1, window.size())),
-                          gsl_stats_sd(s, 1, window.size()));
+  double scale = std::max(std::abs(gsl_stats_mean(s, 1, window.size())), gsl_stats_sd(s, 1, window.size()));
   return scale > 0 ? drift / scale : 0.0;
 }
 
 Window detect_stationary(const std::vector<double>& time, const std::vector<double>& signal,
-                         const StationaryCriterion& criterion) {
+                         const StationaryCriterion& criterion)
+{
   const size_t n = signal.size();
   if (n < 20 || time.size() != n) throw AnalysisError("too few samples to detect a stationary regime");
   const size_t min_length = std::max<size_t>(10, static_cast<size_t>(criterion.min_window_fraction * n));
@@ -39,13 +39,13 @@ Window detect_stationary(const std::vector<double>& time, const std::vector<doub
   }
   std::ostringstream message;
   message << "no stationary regime: the smallest relative drift over windows of at least "
-          << criterion.min_window_fraction * 100 << "% of the run is " << best_drift
-          << " (limit " << criterion.max_relative_drift
-          << "); run longer, or override with --t-start/--max-drift";
+          << criterion.min_window_fraction * 100 << "% of the run is " << best_drift << " (limit "
+          << criterion.max_relative_drift << "); run longer, or override with --t-start/--max-drift";
   throw AnalysisError(message.str());
 }
 
-Window window_between(const std::vector<double>& time, double t_start, double t_end) {
+Window window_between(const std::vector<double>& time, double t_start, double t_end)
+{
   Window window;
   window.begin = static_cast<size_t>(std::lower_bound(time.begin(), time.end(), t_start) - time.begin());
   window.end = static_cast<size_t>(std::upper_bound(time.begin(), time.end(), t_end) - time.begin());

@@ -31,8 +31,7 @@ Window detect_stationary(const std::vector<double>& time, const std::vector<doub
                          const StationaryCriterion& criterion);
 
 // Drift of the fitted line across [begin, end) relative to the signal's scale.
-double relative_drift(const std::vector<double>& time, const std::vector<double>& signal,
-                      const Window& window);
+double relative_drift(const std::vector<double>& time, const std::vector<double>& signal, const Window& window);
 
 // Samples with t_start <= t <= t_end (an explicit override of the detection).
 Window window_between(const std::vector<double>& time, double t_start, double t_end);

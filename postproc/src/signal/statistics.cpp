@@ -9,12 +9,13 @@
 
 namespace cdpost {
 
-Estimate block_mean(const std::vector<double>& x, size_t begin, size_t end, int blocks) {
+Estimate block_mean(const std::vector<double>& x, size_t begin, size_t end, int blocks)
+{
   if (end > x.size() || begin >= end) throw AnalysisError("block_mean: empty sample range");
   const size_t count = end - begin;
   if (blocks < 2 || count < 2 * static_cast<size_t>(blocks))
-    throw AnalysisError("too few samples (" + std::to_string(count) + ") for " +
-                        std::to_string(blocks) + " averaging blocks");
+    throw AnalysisError("too few samples (" + std::to_string(count) + ") for " + std::to_string(blocks) +
+                        " averaging blocks");
   const size_t block_length = count / static_cast<size_t>(blocks);
   std::vector<double> block_means;
   for (int b = 0; b < blocks; ++b)
@@ -25,15 +26,18 @@ Estimate block_mean(const std::vector<double>& x, size_t begin, size_t end, int 
   return estimate;
 }
 
-double correlation(const std::vector<double>& x, const std::vector<double>& y) {
-  if (x.size() != y.size() || x.size() < 3)
-    throw AnalysisError("correlation needs two series of at least 3 points");
-  auto constant = [](const std::vector<double>& v) { return std::all_of(v.begin(), v.end(), [&](double e) { return e == v[0]; }); };
+double correlation(const std::vector<double>& x, const std::vector<double>& y)
+{
+  if (x.size() != y.size() || x.size() < 3) throw AnalysisError("correlation needs two series of at least 3 points");
+  auto constant = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [&](double e) { return e == v[0]; });
+  };
   if (constant(x) || constant(y)) throw AnalysisError("correlation is undefined: one of the series is constant");
   return gsl_stats_correlation(x.data(), 1, y.data(), 1, x.size());
 }
 
-double correlation_p_value(double r, int n) {
+double correlation_p_value(double r, int n)
+{
   if (n < 3) throw AnalysisError("a p-value of a correlation needs at least 3 points");
   if (!(std::abs(r) < 1)) return 0;  // a perfect correlation (or rounding past it)
   const double dof = n - 2;
@@ -41,7 +45,8 @@ double correlation_p_value(double r, int n) {
   return 2 * gsl_cdf_tdist_Q(t, dof);
 }
 
-CorrelationTest test_correlation(const std::vector<double>& x, const std::vector<double>& y) {
+CorrelationTest test_correlation(const std::vector<double>& x, const std::vector<double>& y)
+{
   CorrelationTest test;
   test.r = correlation(x, y);
   test.n = static_cast<int>(x.size());
