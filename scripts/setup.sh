@@ -11,7 +11,7 @@ packages=(build-essential cmake dpkg-dev pkg-config
           lammps liblammps-dev libopenmpi-dev openmpi-bin
           libgtest-dev libgmock-dev libbenchmark-dev libsiconos-numerics-dev
           libfftw3-dev libgsl-dev libeigen3-dev zlib1g-dev gnuplot-nox hyperfine
-          liggghts)
+          liggghts clang-format flake8)
 
 need_install=()
 for p in "${packages[@]}"; do

@@ -429,7 +429,7 @@ def case_start_mismatch(args):
         variables = dict(CELL, stage="flow", start=start, duration="0.01")
         variables[name] = value
         status, output = run_lmp(args.lmp, folder, variables, expect_ok=False)
-        errors = [l for l in output.splitlines() if l.startswith("ERROR")]
+        errors = [line for line in output.splitlines() if line.startswith("ERROR")]
         if status == 0 or len(errors) != 1 or f"-var {name} {value}" not in errors[0] or "Setting up" in output:
             problems.append(f"-var {name} {value}: status {status}, errors {errors}")
     check(not problems, "; ".join(problems))

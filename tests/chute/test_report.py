@@ -121,7 +121,7 @@ def write_run(campaign, name, theta, seed_shift, frequency):
         open(os.path.join(folder, restart), "w").write("a restart the report must not copy\n")
     shutil.copy(os.path.join(folder, "flow.time"), leg)
     with open(os.path.join(leg, "log.lammps"), "w") as out:
-        out.write(f"Loop time of 400 on 1 procs for 40000 steps with 3967 atoms\n\n100.0% CPU use with 1 MPI tasks\n")
+        out.write("Loop time of 400 on 1 procs for 40000 steps with 3967 atoms\n\n100.0% CPU use with 1 MPI tasks\n")
     with open(os.path.join(leg, "command.sh"), "w") as out:
         out.write(f"#!/bin/sh\n# synthetic leg of {name}\n")
     open(os.path.join(folder, "DONE"), "w").close()
@@ -183,7 +183,7 @@ def main():
         check("![U_vs_theta](series/flow_rules/figures/U_vs_theta.png)" in readme, "the flow-rule figure is not shown")
 
         # The replica pair differs by REPLICA_SHIFT in U (each run's own noise is ~1e-3 of it).
-        line = next((l for l in readme.splitlines() if l.startswith("| U |")), None)
+        line = next((row for row in readme.splitlines() if row.startswith("| U |")), None)
         check(line is not None, "no replica scatter of U in the README")
         scatter = float(line.split("|")[2])
         expected = REPLICA_SHIFT / math.sqrt(2)

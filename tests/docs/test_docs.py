@@ -87,7 +87,7 @@ def markdown_blocks(page, lines):
             start = i
             while i < len(lines) and (lines[i].startswith("    ") or not lines[i].strip()):
                 i += 1
-            blocks.append(Block(page, start + 1, "unmarked", "\n".join(l[4:] for l in lines[start:i])))
+            blocks.append(Block(page, start + 1, "unmarked", "\n".join(line[4:] for line in lines[start:i])))
             continue
         i += 1
     return blocks
@@ -112,8 +112,8 @@ def rest_blocks(page, lines):
         while i < len(lines) and (not lines[i].strip() or len(lines[i]) - len(lines[i].lstrip()) > indent):
             body.append(lines[i])
             i += 1
-        width = min((len(l) - len(l.lstrip()) for l in body if l.strip()), default=0)
-        blocks.append(Block(page, start + 1, kind, "\n".join(l[width:] for l in body).strip("\n")))
+        width = min((len(line) - len(line.lstrip()) for line in body if line.strip()), default=0)
+        blocks.append(Block(page, start + 1, kind, "\n".join(line[width:] for line in body).strip("\n")))
     return blocks
 
 
@@ -214,7 +214,8 @@ def substituted(tokens, where):
     if os.path.basename(program) == "lmp_cd":
         deck = os.path.basename(check_lmp_command(tokens, where))
         if deck in DEFAULT_DURATION:
-            shown = [tokens[k + 2] for k in range(len(tokens) - 2) if tokens[k] == "-var" and tokens[k + 1] == "duration"]
+            shown = [tokens[k + 2] for k in range(len(tokens) - 2)
+                     if tokens[k] == "-var" and tokens[k + 1] == "duration"]
             extra = (SMALL_CELL if deck == "in.chute" else []) + \
                 ["-var", "duration", scaled_time(shown[0] if shown else DEFAULT_DURATION[deck])]
             return tokens[:at + 1] + extra + tokens[at + 1:]
@@ -341,13 +342,13 @@ def case_long_commands(args):
 def case_unmarked(args):
     blocks = [b for b in all_blocks() if b.kind == "unmarked"]
     for block in blocks:
-        lines = [l.strip() for l in block.text.split("\n")]
+        lines = [line.strip() for line in block.text.split("\n")]
         for line in lines:
             if line.startswith(COMMAND_STARTS) and not line.startswith("ERROR"):
                 raise Failure(f"{block.where()}: a command in a block that is not run or checked "
                               f"(mark it ```sh or ```sh long): {line}")
-        if any(re.match(r"^fix\s+\S+\s+\S+\s+contact/dynamics", l) for l in lines) and \
-                any(re.match(r"^run\s", l) for l in lines):
+        if any(re.match(r"^fix\s+\S+\s+\S+\s+contact/dynamics", line) for line in lines) and \
+                any(re.match(r"^run\s", line) for line in lines):
             raise Failure(f"{block.where()}: a deck in a block that is not run (mark it ```lammps)")
     print(f"{len(blocks)} unmarked blocks hold no command and no deck")
 
