@@ -220,11 +220,13 @@ def section_snapshots(records, destination):
         return ""
     chosen = {max(analysed, key=lambda r: r.get("U")[0]).name: "fastest",
               min(analysed, key=lambda r: r.get("U")[0]).name: "slowest"}
-    text = "## Snapshots\n\nGrains coloured by their x-velocity; periodic images shaded.\n\n"
+    text = ("## Snapshots\n\nGrains coloured by their x-velocity, the walls drawn, periodic images shaded above "
+            "the wall tops; beside each, the run's u(z) with its Bagnold and creep fits.\n\n")
     for r in analysed:
         if r.name not in chosen:
             continue
-        figures = ("figures/snapshot.png", "figures/snapshot.svg", "figures/profile.png", "figures/profile.svg")
+        # The snapshot's SVG (a circle per grain and image, megabytes at 45 d) stays in the run folder.
+        figures = ("figures/snapshot.png", "figures/profile.png", "figures/profile.svg")
         copied = copy_matching(os.path.join(r.folder, "post"), figures, os.path.join(destination, "runs", r.name))
         for figure in (f for f in copied if f.endswith(".png")):
             text += f"![{chosen[r.name]} run, {r.name}](runs/{r.name}/{figure}) "
@@ -279,12 +281,12 @@ def write_report(records, series_folders, comparisons, destination, command):
         section_quantities("Flow", "Means over each run's stationary window (block standard errors).",
                            records, FLOW_COLUMNS),
         section_fits("Flow rules and packing", flow_rules, ("pouliquen", "muI", "phi_"),
-                     ("U_vs_theta", "phi_vs_U"), destination),
+                     ("U_vs_theta", "pouliquen_beta_free", "phi_vs_U"), destination),
         section_quantities("Oscillation of the flowing layer", "f: spectral peak of v(t) (error: half width at "
                            "half power); A its amplitude; A_mean the mean amplitude at f ≥ 100 Hz.",
                            records, OSCILLATION_COLUMNS),
         section_fits("Frequency laws and correlations", flow_rules, ("f_vs", "correlation", "depth"),
-                     ("f_vs_scale", "f_vs_shear_rate", "A_vs_U", "A_vs_phi", "depth_amplitude"), destination),
+                     ("f_vs_scale", "f_vs_shear_rate", "A_vs_U", "A_vs_phi", "amplitude_vs_depth"), destination),
         section_quantities("Velocity profiles", "Bagnold fit u = slip + a (h^1.5 − (h − z)^1.5) over the layer; "
                            "creep length λ of u ∝ exp(z/λ) below the wall tops.", records, PROFILE_COLUMNS),
         section_fits("Cell length", length, ("correlation",), ("L_series",), destination),
