@@ -137,7 +137,7 @@ struct SeriesFitter {
     for (const auto& run : series.runs) {
       if (!run.estimate("I")) continue;
       FlowPoint p;
-      p.run = run.entry.directory;
+      p.run = run.entry.name;
       p.mu = run.entry.mu;
       p.theta_deg = run.entry.theta_deg;
       p.inertial_number = run.value("I");
@@ -152,7 +152,7 @@ struct SeriesFitter {
   {
     std::vector<StopPoint> points;
     for (const auto& entry : series.stopped)
-      if (entry.mu == mu) points.push_back({entry.directory, entry.mu, entry.theta_deg, *entry.h_stop_d});
+      if (entry.mu == mu) points.push_back({entry.name, entry.mu, entry.theta_deg, *entry.h_stop_d});
     return points;
   }
 
@@ -167,13 +167,13 @@ struct SeriesFitter {
     }
   }
 
-  const ManifestEntry& entry_of(const std::string& directory) const
+  const ManifestEntry& entry_of(const std::string& name) const
   {
     for (const auto& run : series.runs)
-      if (run.entry.directory == directory) return run.entry;
+      if (run.entry.name == name) return run.entry;
     // Every residual names a run of the manifest, flowing or stopped.
     return *std::find_if(series.stopped.begin(), series.stopped.end(),
-                         [&](const ManifestEntry& e) { return e.directory == directory; });
+                         [&](const ManifestEntry& e) { return e.name == name; });
   }
 
   // The rms residual as a fit result, and every residual in series.residuals.

@@ -274,15 +274,19 @@ void write_runs_table(const SeriesAnalysis& series, const std::string& path)
   const std::vector<std::string> names = {"U",       "phi", "h", "I",      "shear_rate",
                                           "f_scale", "f",   "A", "A_mean", "creep_lambda"};
   auto out = open_output(path);
+  out.precision(10);
   out << "run,mu,theta_deg,L_d";
   for (const auto& n : names) out << ',' << n << ',' << n << "_error";
   out << '\n';
   for (const auto& run : series.runs) {
-    out << run.entry.directory << ',' << run.entry.mu << ',' << run.entry.theta_deg << ',';
+    out << run.entry.name << ',' << run.entry.mu << ',' << run.entry.theta_deg << ',';
     if (run.entry.length_d) out << *run.entry.length_d;
     for (const auto& n : names) {
       auto e = run.estimate(n);
-      out << ',' << (e ? std::to_string(e->value) : "") << ',' << (e && e->error ? std::to_string(*e->error) : "");
+      out << ',';
+      if (e) out << e->value;
+      out << ',';
+      if (e && e->error) out << *e->error;
     }
     out << '\n';
   }
@@ -306,7 +310,7 @@ void write_layer_amplitudes(const SeriesAnalysis& series, const std::string& pat
   out << "run,mu,theta_deg,z_d,amplitude_at_f\n";
   for (const auto& run : series.runs)
     for (const auto& layer : run.analysis.layers)
-      out << run.entry.directory << ',' << run.entry.mu << ',' << run.entry.theta_deg << ',' << layer.z_d << ','
+      out << run.entry.name << ',' << run.entry.mu << ',' << run.entry.theta_deg << ',' << layer.z_d << ','
           << layer.amplitude_at_f << '\n';
 }
 
@@ -318,8 +322,8 @@ void write_depth_decay(const SeriesAnalysis& series, const std::string& path)
   out << "run,mu,theta_deg,decay_length_d,decay_length_error_d,layers,log_rms_residual\n";
   for (const auto& run : series.runs)
     if (const auto& decay = run.depth_decay)
-      out << run.entry.directory << ',' << run.entry.mu << ',' << run.entry.theta_deg << ',' << decay->lambda.value
-          << ',' << *decay->lambda.error << ',' << decay->layers << ',' << decay->log_rms_residual << '\n';
+      out << run.entry.name << ',' << run.entry.mu << ',' << run.entry.theta_deg << ',' << decay->lambda.value << ','
+          << *decay->lambda.error << ',' << decay->layers << ',' << decay->log_rms_residual << '\n';
 }
 
 // Per run (flowing, then stopped), the residual of each flow-rule fit; empty where a fit left the run out.
@@ -337,7 +341,7 @@ void residual_table(MarkdownReport& report, const SeriesAnalysis& series)
     std::vector<std::string> row{run_label(*entry) + (entry->stopped ? ", stopped" : "")};
     for (const auto& fit : fits) {
       auto found = std::find_if(series.residuals.begin(), series.residuals.end(),
-                                [&](const SeriesResidual& r) { return r.run == entry->directory && r.fit == fit; });
+                                [&](const SeriesResidual& r) { return r.run == entry->name && r.fit == fit; });
       row.push_back(found == series.residuals.end() ? "" : format_estimate(found->value, std::nullopt));
     }
     rows.push_back(row);
