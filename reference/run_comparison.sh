@@ -27,6 +27,8 @@ usage: reference/run_comparison.sh [options] OUT
   --rigid-skin N       rigid neighbour skin in d (default 0.3; a grain may move half of it in a step)
   --rigid-parts N      run each rigid flow as N restarted parts of flow/N (default 1): keeps
                        each lmp_cd process short; the parts' outputs are appended
+  --soft-parts N       the same for the LAMMPS GRANULAR flows (default 1): a campaign cut
+                       between parts continues at the next one
   --deposit S          deposition time of the shared packing (default 0.2)
   --deposit-overlap A  stiffness of that deposition, as a target overlap (default 1e-4: the
                        rigid runs inherit its overlaps)
@@ -47,7 +49,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 top=$(cd "$here/.." && pwd)
 build=${BUILD_DIR:-$top/build}
 mu=0.5 theta=24 cells=16 grains=320 bed_walls=10
-overlaps="1e-2 1e-3 1e-4" codes="granular liggghts" hertz="1e-3" rigid_tolerances="1e-3" rigid_dt=1e-5 rigid_skin=0.3 rigid_parts=1
+overlaps="1e-2 1e-3 1e-4" codes="granular liggghts" hertz="1e-3" rigid_tolerances="1e-3" rigid_dt=1e-5 rigid_skin=0.3 rigid_parts=1 soft_parts=1
 deposit=0.2 deposit_overlap=1e-4 settle=0.05 flow=1.0 sample=1e-4 segment=0.25 read_only=0 compare_args=""
 lmp=lmp liggghts=liggghts lmp_cd=$build/lmp_cd cdref=""
 out=""
@@ -65,6 +67,7 @@ while [ $# -gt 0 ]; do
     --rigid-dt) rigid_dt=$2; shift 2 ;;
     --rigid-skin) rigid_skin=$2; shift 2 ;;
     --rigid-parts) rigid_parts=$2; shift 2 ;;
+    --soft-parts) soft_parts=$2; shift 2 ;;
     --deposit) deposit=$2; shift 2 ;;
     --deposit-overlap) deposit_overlap=$2; shift 2 ;;
     --settle) settle=$2; shift 2 ;;
@@ -119,7 +122,8 @@ run() {
 append_part() {
   local dir=$1 part=$2 last
   last=$(awk '!/^#/ && NF { step = $1 } END { print step }' "$dir/flow.time")
-  for f in flow.time solver.time; do
+  for f in flow.time solver.time; do      # solver.time: the rigid runs only
+    [ -f "$dir/$part/$f" ] || continue
     awk -v last="$last" '!/^#/ && NF && $1 > last' "$dir/$part/$f" >> "$dir/$f"
   done
   for f in profile.chunk layers.chunk; do
@@ -148,17 +152,15 @@ fi
 echo "lmp -in reference/in.rain -var out rain.data -var cells $cells -var grains $grains -var bed_walls $bed_walls" >> "$commands"
 echo "cd deposition && lmp -in reference/in.chute_granular -var data ../rain.data -var bed_walls $bed_walls -var overlap $deposit_overlap -var settle $deposit -var flow 0" >> "$commands"
 
-dirs=()
-packing=(-var data ../../packing.data -var settle "$settle")
-rigid_flow=$(awk -v f="$flow" -v n="$rigid_parts" 'BEGIN { print f / n }')
-for tolerance in $rigid_tolerances; do
-  name="rigid-tol$tolerance"
-  rigid=(-var mu "$mu" -var theta "$theta" -var bed_walls "$bed_walls" -var flow "$rigid_flow" -var sample_max "$sample"
-         -var tolerance "$tolerance" -var dt "$rigid_dt" -var skin "$rigid_skin")
-  run "$name" "$lmp_cd" "$here/in.chute_rigid" log.lammps "${packing[@]}" "${rigid[@]}"
-  for ((p = 2; p <= rigid_parts; p++)); do
+# run_parts NAME PARTS EXECUTABLE DECK [ARGS...]: the flow of NAME as PARTS restarted parts
+# (ARGS give each part's share of the flow): part 1 from the packing, part p in NAME/partp
+# from the previous part's flow.restart, its outputs appended to NAME's once.
+run_parts() {
+  local name=$1 parts=$2 exe=$3 deck=$4 previous; shift 4
+  run "$name" "$exe" "$deck" log.lammps "${packing[@]}" "$@"
+  for ((p = 2; p <= parts; p++)); do
     previous=..; [ "$p" -eq 2 ] || previous=../part$((p - 1))
-    run "$name/part$p" "$lmp_cd" "$here/in.chute_rigid" log.lammps -var part "$p" -var restart_in "$previous/flow.restart" "${rigid[@]}"
+    run "$name/part$p" "$exe" "$deck" log.lammps -var part "$p" -var restart_in "$previous/flow.restart" "$@"
     if [ ! -f "$out/runs/$name/part$p/appended" ]; then
       append_part "$out/runs/$name" "part$p"
       touch "$out/runs/$name/part$p/appended"
@@ -166,14 +168,24 @@ for tolerance in $rigid_tolerances; do
     echo "(append the outputs of runs/$name/part$p to runs/$name: run_comparison.sh's append_part)" >> "$commands"
   done
   dirs+=("$out/runs/$name")
+}
+
+dirs=()
+packing=(-var data ../../packing.data -var settle "$settle")
+rigid_flow=$(awk -v f="$flow" -v n="$rigid_parts" 'BEGIN { print f / n }')
+soft_flow=$(awk -v f="$flow" -v n="$soft_parts" 'BEGIN { print f / n }')
+soft=(-var mu "$mu" -var theta "$theta" -var bed_walls "$bed_walls" -var flow "$soft_flow" -var sample_max "$sample")
+for tolerance in $rigid_tolerances; do
+  run_parts "rigid-tol$tolerance" "$rigid_parts" "$lmp_cd" "$here/in.chute_rigid" \
+    -var mu "$mu" -var theta "$theta" -var bed_walls "$bed_walls" -var flow "$rigid_flow" -var sample_max "$sample" \
+    -var tolerance "$tolerance" -var dt "$rigid_dt" -var skin "$rigid_skin"
 done
 for overlap in $overlaps; do
   for code in $codes; do
     case "$code" in
       granular)
-        run "granular-hooke-$overlap" "$lmp" "$here/in.chute_granular" log.lammps "${packing[@]}" "${common[@]}" \
-          -var model hooke -var overlap "$overlap"
-        dirs+=("$out/runs/granular-hooke-$overlap") ;;
+        run_parts "granular-hooke-$overlap" "$soft_parts" "$lmp" "$here/in.chute_granular" "${soft[@]}" \
+          -var model hooke -var overlap "$overlap" ;;
       liggghts)
         name="liggghts-hooke-$overlap"
         run "$name" "$liggghts" "$here/in.chute_liggghts" log.liggghts "${packing[@]}" "${common[@]}" -var overlap "$overlap"
@@ -189,9 +201,8 @@ for overlap in $overlaps; do
   done
 done
 for overlap in $hertz; do
-  run "granular-hertz-$overlap" "$lmp" "$here/in.chute_granular" log.lammps "${packing[@]}" "${common[@]}" \
+  run_parts "granular-hertz-$overlap" "$soft_parts" "$lmp" "$here/in.chute_granular" "${soft[@]}" \
     -var model hertz -var overlap "$overlap"
-  dirs+=("$out/runs/granular-hertz-$overlap")
 done
 
 echo "cdref compare runs/* --out comparison --segment $segment $compare_args --commands commands.txt" >> "$commands"

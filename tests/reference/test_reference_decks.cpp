@@ -4,6 +4,7 @@
 // `cdref compare` on those runs. The runs are made once, in SetUpTestSuite.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <map>
 
@@ -139,6 +140,34 @@ TEST_F(ReferenceDecks, LammpsGranularHookeChute)
   REQUIRE_RUN("granular-hooke");
   check_chute_outputs(root / "granular-hooke", "lammps-granular");
   EXPECT_NO_THROW(cdpost::read_ave_chunk((root / "granular-hooke" / "profile.chunk").string()));
+}
+
+// A flow continued in a second part from the first part's flow.restart (run_comparison.sh
+// --soft-parts): the samples go on one interval after the first part's last, from the same
+// state (the layer's velocity changes little in one interval), with no warning.
+TEST_F(ReferenceDecks, LammpsGranularFlowContinuesInParts)
+{
+  REQUIRE_RUN("granular-hooke");
+  const fs::path part = root / "granular-hooke" / "part2";
+  ASSERT_EQ(run_in(part, lmp + " -in " + reference_dir +
+                             "/in.chute_granular -log log.lammps -var part 2 -var restart_in ../flow.restart"
+                             " -var bed_walls 3 -var flow 0.05 -var sample_max 2e-4 -var dump_every 0.02"
+                             " -var model hooke -var overlap 1e-2"),
+            0)
+      << read_file(part / "screen.txt");
+  EXPECT_EQ(read_file(part / "screen.txt").find("WARNING"), std::string::npos);
+  const auto first = cdpost::read_ave_time((root / "granular-hooke" / "flow.time").string());
+  const auto second = cdpost::read_ave_time((part / "flow.time").string());
+  ASSERT_GT(first.rows(), 2u);
+  ASSERT_GT(second.rows(), 2u);
+  const auto& t1 = first.column("v_time");
+  const auto& t2 = second.column("v_time");
+  const double interval = t1[t1.size() - 1] - t1[t1.size() - 2];
+  EXPECT_NEAR(t2[0] - t1.back(), interval, 1e-3 * interval);
+  EXPECT_NEAR(t2.back() - t1.back(), 0.05, 2 * interval);
+  const auto& u1 = first.column("v_u_flow");
+  const auto& u2 = second.column("v_u_flow");
+  EXPECT_NEAR(u2[0], u1.back(), 0.05 * std::abs(u1.back()) + 1e-4);
 }
 
 TEST_F(ReferenceDecks, LammpsGranularHertzChute)
