@@ -33,6 +33,7 @@ THETA1, THETA2, I0 = 20.0, 32.0, 0.3    # the mu(I) rule the flows follow
 PHI_C, K = 0.82, 0.002                  # phi = PHI_C - K U/sqrt(g d)
 SAMPLE_RATE, DURATION, DT = 1000, 4.0, 1.0e-4
 REPLICA_SHIFT = 0.2                     # U of the replica run minus the original (sqrt(g d))
+STOPPED_U, H_STOP = 0.02, 30.0          # a layer that stopped (it creeps), and its thickness (d)
 SERIES_ARGS = ["--series", "mu0.5", "--series", "replicas", "--only", "mu0.5_*"]
 
 
@@ -52,8 +53,8 @@ def flow_velocity(theta):
     return inertial * H ** 1.5
 
 
-def write_flow_time(folder, u, frequency, rng):
-    amplitude = 0.002 * u * SQRT_GD
+def write_flow_time(folder, u, frequency, rng, h):
+    amplitude = 0.002 * max(u, 1.0) * SQRT_GD
     with open(os.path.join(folder, "flow.time"), "w") as out:
         out.write("# synthetic chute flow\n# TimeStep v_time v_u_all v_u_flow v_v_flow v_phi_flow v_h v_n_flow\n")
         for k in range(int(DURATION * SAMPLE_RATE) + 1):
@@ -62,7 +63,7 @@ def write_flow_time(folder, u, frequency, rng):
             v = amplitude * math.sin(2 * math.pi * frequency * t) + 0.1 * amplitude * rng.gauss(0, 1)
             phi = PHI_C - K * u + 1e-4 * rng.gauss(0, 1)
             out.write(f"{int(round(t / DT))} {t:.10g} {0.6 * u_flow:.8g} {u_flow:.8g} {v:.8g} {phi:.8g} "
-                      f"{H * D:.8g} 2500\n")
+                      f"{h * D:.8g} 2500\n")
 
 
 def write_profile(folder, u):
@@ -106,14 +107,15 @@ def write_dump(folder):
             out.write(f"{n + 1} 1 {(n + 0.5) * 2.2 * D:.6g} {Y_TOP + D:.6g} 0.1 0 {D / 2} 0\n")
 
 
-def write_run(campaign, name, theta, seed_shift, frequency):
-    """A finished run folder as the runner leaves it, with one leg and its timers."""
+def write_run(campaign, name, theta, seed_shift, frequency, u=None, h=H):
+    """A finished run folder as the runner leaves it, with one leg and its timers; the layer
+    flows by the mu(I) rule unless u (sqrt(g d)) is given."""
     folder = os.path.join(campaign, "runs", name)
     leg = os.path.join(folder, "legs", "00")
     os.makedirs(leg)
     rng = random.Random(name)
-    u = flow_velocity(theta) + seed_shift
-    write_flow_time(folder, u, frequency, rng)
+    u = flow_velocity(theta) + seed_shift if u is None else u
+    write_flow_time(folder, u, frequency, rng, h)
     write_profile(folder, u)
     write_layers(folder, frequency)
     write_dump(folder)
@@ -128,7 +130,9 @@ def write_run(campaign, name, theta, seed_shift, frequency):
 
 
 def write_campaign(campaign):
-    for theta in range(22, 28):             # theta 28 is left unstarted
+    # theta 22: the layer stopped (it creeps); theta 28 is left unstarted.
+    write_run(campaign, "mu0.5_theta22_L45", 22, 0.0, 15.0, u=STOPPED_U, h=H_STOP)
+    for theta in range(23, 28):
         write_run(campaign, f"mu0.5_theta{theta}_L45", theta, 0.0, 15.0 + theta - 22)
     write_run(campaign, "mu0.5_theta24_L45_seed20261123", 24, REPLICA_SHIFT, 17.0)
 
@@ -174,6 +178,10 @@ def main():
                if "restart" in f or f.startswith("dump") or os.path.getsize(os.path.join(d, f)) > 2_000_000]
         check(not big, f"results/ holds restarts, dumps or large files: {big}")
 
+        manifest = open(os.path.join(results, "series", "flow_rules", "manifest.csv")).read()
+        check(f"/mu0.5_theta22_L45,0.5,22,1,{H_STOP:g}\n" in manifest,
+              "the stopped run is not a stopped row with its h_stop:\n" + manifest)
+        check(manifest.count(",0,\n") == 5, "the five flowing runs are not flowing rows:\n" + manifest)
         fits = read_csv(os.path.join(results, "series", "flow_rules", "fits.csv"))
         check_within(fits, "muI_I0", I0)
         check_within(fits, "muI_theta1_mu0.5", THETA1)

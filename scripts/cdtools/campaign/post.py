@@ -4,7 +4,13 @@ import os
 import shlex
 import subprocess
 
+from ..cdpost import read_results
 from .plan import ANALYSES
+
+# A run whose flowing layer moves slower than this (sqrt(g d)) has stopped: it enters the
+# series as a stopped row, its h the h_stop of its tilt (the flow rules' beta-free fit), not as a
+# flowing point with I ~ 0. Flowing layers of the scene move at several sqrt(g d) or more.
+STOPPED_U = 0.1
 
 
 def wall_top(variables):
@@ -32,17 +38,27 @@ def analysed(job):
     return job.kind == "run" and job.done and os.path.exists(os.path.join(job.folder, "post", "results.csv"))
 
 
+def stopped_thickness(job):
+    """h (in d) of a run whose layer stopped (U < STOPPED_U), else None."""
+    results = read_results(os.path.join(job.folder, "post", "results.csv"))
+    u, h = results.get("U"), results.get("h")
+    return h[0] if u and h and abs(u[0]) < STOPPED_U else None
+
+
 def write_manifest(folder, analysis, runs):
     """series/<analysis>/manifest.csv: the runs' folders relative to it, mu, theta (and L where
-    it varies: cdpost correlates the results with L when it is given)."""
+    it varies: cdpost correlates the results with L when it is given), and whether the layer
+    stopped, with its thickness then."""
     with_length = len({j.vars["L"] for j in runs}) > 1
     manifest = os.path.join(folder, "manifest.csv")
     with open(manifest, "w") as out:
         out.write(f"# {analysis}: run folders relative to this file\n")
-        out.write("run,mu,theta" + (",L" if with_length else "") + "\n")
+        out.write("run,mu,theta" + (",L" if with_length else "") + ",stopped,h_stop\n")
         for j in runs:
-            rel = os.path.relpath(j.folder, folder)
-            out.write(f"{rel},{j.vars['mu']},{j.vars['theta']}" + (f",{j.vars['L']}" if with_length else "") + "\n")
+            h_stop = stopped_thickness(j)
+            out.write(f"{os.path.relpath(j.folder, folder)},{j.vars['mu']},{j.vars['theta']}"
+                      + (f",{j.vars['L']}" if with_length else "")
+                      + (f",1,{h_stop:.6g}" if h_stop is not None else ",0,") + "\n")
     return manifest
 
 
