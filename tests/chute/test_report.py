@@ -14,6 +14,7 @@ hand-written discussion when it is made again. Standard library only.
 import argparse
 import csv
 import gzip
+import json
 import math
 import os
 import random
@@ -196,6 +197,15 @@ def main():
         scatter = float(line.split("|")[2])
         expected = REPLICA_SHIFT / math.sqrt(2)
         check(abs(scatter - expected) < 0.05 * expected, f"replica scatter of U {scatter}, expected {expected:.3g}")
+
+        # A stationary window shorter than --min-window reopens the run, longer by --extend.
+        cmd = [sys.executable, RUNNER, "--out", campaign, "--cdpost", "none", "--lmp", "/bin/false",
+               "--min-window", "5", "--max-duration", "12"] + SERIES_ARGS
+        rerun = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+        check("mu0.5_theta24_L45: stationary window 4.00 s, extended to 12 s" in rerun.stdout,
+              "a run with a 4 s window was not extended:\n" + rerun.stdout + rerun.stderr)
+        params = json.load(open(os.path.join(campaign, "runs", "mu0.5_theta24_L45", "params.json")))
+        check(params["vars"]["duration"] == "12", f"duration after the extension: {params['vars']['duration']}")
 
         path = os.path.join(results, "README.md")
         text = readme.replace("(no discussion yet)", "The flows follow the rule they were made with.")

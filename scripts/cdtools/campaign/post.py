@@ -1,5 +1,6 @@
 """cdpost on the campaign: each finished run, and the series analyses over the analysed runs."""
 
+import math
 import os
 import shlex
 import subprocess
@@ -32,6 +33,15 @@ def postprocess_run(job, cdpost, args):
     cmd = [cdpost, "run", job.folder, "--d", job.vars["d"], "--g", job.vars["g"],
            "--z0", repr(wall_top(job.vars)), "--dump", os.path.join(job.folder, "dump.chute.gz")]
     return run_logged(cmd + args.cdpost_option, os.path.join(job.folder, "cdpost.log"))
+
+
+def window_seconds(job):
+    """Length (s) of the stationary window cdpost found in an analysed run, or None."""
+    results = read_results(os.path.join(job.folder, "post", "results.csv"))
+    start, end = results.get("t_start"), results.get("t_end")
+    if not start or not end:
+        return None
+    return (end[0] - start[0]) * math.sqrt(float(job.vars["d"]) / float(job.vars["g"]))
 
 
 def analysed(job):

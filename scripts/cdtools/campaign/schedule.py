@@ -17,7 +17,7 @@ from ..text import duration, parameter
 from .jobs import read_json
 from .legs import finish_deposition, finish_run, leg_error
 from .plan import check_recorded_params, record_params, recorded_duration
-from .post import postprocess_run, postprocess_series
+from .post import analysed, postprocess_run, postprocess_series, window_seconds
 
 
 def list_jobs(jobs):
@@ -42,11 +42,25 @@ def parameter_problem(jobs):
     return None
 
 
-def reopen_extended_runs(jobs):
-    """Runs whose duration was raised since they finished are continued."""
+def reopen_extended_runs(jobs, args):
+    """Runs whose duration was raised since they finished are continued, and so are analysed
+    runs whose stationary window is shorter than --min-window (while --max-duration allows)."""
     for job in jobs:
         if job.kind == "run" and job.done and float(job.vars["duration"]) > recorded_duration(job) + 1e-12:
             os.remove(os.path.join(job.folder, "DONE"))
+        elif not args.dry_run and job.kind == "run" and analysed(job) and short_window(job, args) \
+                and can_extend(job, args):
+            print(f"{job.name}: stationary window {window_seconds(job):.2f} s, extended to {extend(job, args)} s",
+                  flush=True)
+
+
+def short_window(job, args):
+    window = window_seconds(job)
+    return window is not None and window < args.min_window
+
+
+def can_extend(job, args):
+    return args.max_duration > float(job.vars["duration"]) + 1e-9
 
 
 def jobs_to_run(jobs):
@@ -77,7 +91,8 @@ def print_commands(pending, args):
 
 
 def after_run(job, args, cdpost, pending):
-    """Report a finished run, postprocess it, and extend it when it is not stationary."""
+    """Report a finished run, postprocess it, and extend it when it is not stationary or its
+    stationary window is shorter than --min-window."""
     line = f"done run {job.name}"
     cost = read_json(os.path.join(job.folder, "cost.json"), {})
     if cost.get("cpu_per_physical_second"):
@@ -86,8 +101,11 @@ def after_run(job, args, cdpost, pending):
     if cdpost:
         ok, message = postprocess_run(job, cdpost, args)
         line += "; cdpost " + ("done" if ok else "failed: " + message)
-        if not ok and "stationary" in message and args.max_duration > float(job.vars["duration"]) + 1e-9:
+        if not ok and "stationary" in message and can_extend(job, args):
             line += "; extended to " + extend(job, args) + " s"
+            pending.insert(0, job)
+        elif ok and short_window(job, args) and can_extend(job, args):
+            line += f"; stationary window {window_seconds(job):.2f} s, extended to " + extend(job, args) + " s"
             pending.insert(0, job)
     print(line, flush=True)
 
@@ -281,7 +299,7 @@ def run_campaign(jobs, args):
         print(problem, file=sys.stderr)
         return 2
     cdpost = campaign_cdpost(args)
-    reopen_extended_runs(jobs)
+    reopen_extended_runs(jobs, args)
     pending = jobs_to_run(jobs)
     print_plan(jobs, pending, args)
     if args.dry_run:
