@@ -35,13 +35,20 @@ def postprocess_run(job, cdpost, args):
     return run_logged(cmd + args.cdpost_option, os.path.join(job.folder, "cdpost.log"))
 
 
-def window_seconds(job):
-    """Length (s) of the stationary window cdpost found in an analysed run, or None."""
-    results = read_results(os.path.join(job.folder, "post", "results.csv"))
+def window_bounds(results, variables):
+    """(start, end) in s of the stationary window in cdpost's results (given in sqrt(d/g)),
+    or None."""
     start, end = results.get("t_start"), results.get("t_end")
     if not start or not end:
         return None
-    return (end[0] - start[0]) * math.sqrt(float(job.vars["d"]) / float(job.vars["g"]))
+    unit = math.sqrt(float(variables["d"]) / float(variables["g"]))
+    return start[0] * unit, end[0] * unit
+
+
+def window_seconds(job):
+    """Length (s) of the stationary window cdpost found in an analysed run, or None."""
+    bounds = window_bounds(read_results(os.path.join(job.folder, "post", "results.csv")), job.vars)
+    return bounds[1] - bounds[0] if bounds else None
 
 
 def analysed(job):

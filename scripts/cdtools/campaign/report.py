@@ -10,17 +10,17 @@ the DISCUSSION markers of an existing README.md is kept; everything else is rege
 import csv
 import glob
 import json
-import math
 import os
 import shlex
 import shutil
 import sys
 
 from ..cdpost import read_results
+from ..stats import pooled_sd
 from ..text import markdown_table, number, with_error
 from .legs import run_cost
 from .plan import ANALYSES, build_jobs
-from .post import postprocess_run, postprocess_series
+from .post import postprocess_run, postprocess_series, window_bounds
 from .schedule import campaign_cdpost
 
 DISCUSSION_BEGIN = "<!-- discussion: kept when the report is regenerated -->"
@@ -84,13 +84,10 @@ class RunRecord:
     def get(self, name):
         return self.results.get(name) if self.results else None
 
-    def window_seconds(self):
-        """The stationary window in s ('–' before the analysis): cdpost gives it in sqrt(d/g)."""
-        start, end = self.get("t_start"), self.get("t_end")
-        if not start or not end:
-            return "–"
-        unit = math.sqrt(float(self.vars["d"]) / float(self.vars["g"]))
-        return f"{start[0] * unit:.2f}–{end[0] * unit:.2f}"
+    def window_text(self):
+        """The stationary window in s, '–' before the analysis."""
+        bounds = window_bounds(self.results, self.vars) if self.results else None
+        return f"{bounds[0]:.2f}–{bounds[1]:.2f}" if bounds else "–"
 
 
 def write_run(record, destination):
@@ -127,13 +124,13 @@ def replica_pairs(records):
 
 
 def replica_scatter(pairs):
-    """Per quantity: the standard deviation of one run estimated from the replica pairs,
-    s = sqrt(sum d^2 / (2 n)), and the number of pairs."""
+    """Per quantity: the standard deviation of one run pooled over the replica pairs,
+    s = sqrt(sum d^2 / (2 n)) for n pairs differing by d, and n."""
     scatter = {}
     for name in REPLICA_QUANTITIES:
-        differences = [a.get(name)[0] - b.get(name)[0] for a, b in pairs if a.get(name) and b.get(name)]
-        if differences:
-            scatter[name] = (math.sqrt(sum(d * d for d in differences) / (2 * len(differences))), len(differences))
+        groups = [(a.get(name)[0], b.get(name)[0]) for a, b in pairs if a.get(name) and b.get(name)]
+        if groups:
+            scatter[name] = (pooled_sd(groups), len(groups))
     return scatter
 
 
@@ -142,7 +139,7 @@ def section_runs(records):
     for r in records:
         cost = r.cost.get("cpu_per_physical_second")
         rows.append([r.name, r.vars["mu"], r.vars["theta"], r.vars["L"], r.vars["seed"], r.vars["duration"],
-                     r.window_seconds(), number(cost, 3) if cost else "–", r.state])
+                     r.window_text(), number(cost, 3) if cost else "–", r.state])
     return ("## The runs\n\nEach run rains its packing (seed), tilts gravity and flows for the chute time "
             "given; cdpost finds the stationary window of each. CPU s per physical s from LAMMPS's own "
             "timers over the chute time the runs covered.\n\n"
