@@ -505,6 +505,14 @@ void FixContactDynamics::init_step_grid()
 {
   step_grid.travel = travel_fraction * neighbor->skin;
   if (!step_state_known) {
+    // Without the level and position a restart on this grid left, the grid starts afresh here:
+    // only at a whole period, or the level changes would miss the sample times.
+    const double time = current_time();
+    if (!step_grid.on_alignment(time))
+      error->all(FLERR,
+                 "Fix contact/dynamics: the step grid cannot start at time {:.10g} s, not a whole number of "
+                 "alignment periods ({:.4g} s); continue from a restart written with the same dt_max and dt_align",
+                 time, step_grid.period());
     steps_into_period = 0;
     choose_step_level();
     step_state_known = true;
@@ -1154,9 +1162,7 @@ void FixContactDynamics::write_restart(FILE* fp)
 {
   if (comm->me != 0) return;
   const bool known = adaptive_step && step_state_known;
-  const double elapsed = update->ntimestep == 0
-                             ? 0.0
-                             : update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
+  const double elapsed = current_time();
   const double record[9] = {
       restart_version, total_iterations,          total_unconverged_steps,
       total_steps,     known ? step_level : -1.0, known ? static_cast<double>(steps_into_period) : -1.0,
@@ -1185,6 +1191,12 @@ void FixContactDynamics::restart(char* buf)
   step_level = static_cast<int>(totals[3]);
   steps_into_period = static_cast<long long>(totals[4]);
   step_state_known = true;
+}
+
+double FixContactDynamics::current_time() const
+{
+  if (update->ntimestep == 0) return 0.0;
+  return update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
 }
 
 void FixContactDynamics::set_clock(double time)

@@ -190,7 +190,8 @@ class FixContactDynamics : public Fix {
   void init_step_grid();
   void choose_step_level();
   void set_timestep(double dt);
-  void set_clock(double time);  // LAMMPS's time now (s)
+  double current_time() const;  // LAMMPS's time now (s)
+  void set_clock(double time);  // sets it
   void fill_local_output();
 };
 

@@ -21,4 +21,15 @@ int StepGrid::level_for(double max_speed) const
   return -1;
 }
 
+double StepGrid::period() const
+{
+  return dt_max * steps_per_align;
+}
+
+bool StepGrid::on_alignment(double time) const
+{
+  const double periods = time / period();
+  return std::abs(periods - std::round(periods)) < 1e-9;
+}
+
 }  // namespace cd

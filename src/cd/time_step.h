@@ -18,6 +18,8 @@ struct StepGrid {
   long long steps_per_period(int level) const;  // steps in one alignment period at that step
   // Smallest level whose step keeps max_speed (m/s) * step <= travel; -1 if none up to max_level.
   int level_for(double max_speed) const;
+  double period() const;                 // s: the alignment period
+  bool on_alignment(double time) const;  // time (s) a whole number of periods, to 1e-9 of one
 };
 
 }  // namespace cd

@@ -472,6 +472,50 @@ def case_bad_var(args):
     print(f"bad -var: {len(BAD_VARS)} values stopped with one ERROR line naming the variable")
 
 
+def case_restart_between_samples(args):
+    """With the step that follows the flow, a periodic restart may be written between two samples
+    (at a refined level, 0.25 ms steps against 1 ms samples); continued from there, the run keeps
+    the level and its position in the period: it starts from the state the straight run had at
+    that step, takes the same steps at the same chute times up to the end of the period, and
+    samples every whole millisecond after it. Small skin and dt 1e-4 s, so that the 0.3 s flow
+    refines the step. (Later values are not compared: rebuilt neighbour lists may reorder the
+    contacts, and the flow amplifies differences within the solver's tolerance.)"""
+    work = os.path.join(args.work, "restart_between_samples")
+    shutil.rmtree(work, ignore_errors=True)
+    start = os.path.join(args.work, "deposition", "deposition.restart")
+    duration = 0.3
+    settings = dict(CELL, stage="flow", theta=24, duration=duration, dt="1e-4", skin="0.03", restart_interval="0.01",
+                    profile_interval="0.01")
+    straight = os.path.join(work, "straight")
+    run_lmp(args.lmp, straight, dict(settings, start=start))
+    rows_straight = {r["TimeStep"]: r for r in read_time_file(os.path.join(straight, "flow.time"))}
+
+    def whole_ms(t):
+        return abs(t * 1000 - round(t * 1000)) < 1e-6
+
+    between = []
+    for name in ("restart.a", "restart.b"):
+        folder = os.path.join(work, "from_" + name)
+        run_lmp(args.lmp, folder, dict(settings, start=os.path.join(straight, name)))
+        rows = read_time_file(os.path.join(folder, "flow.time"))
+        first = rows[0]
+        if not whole_ms(first["v_time"]):
+            between.append(f"{name} at {first['v_time']} s")
+        twin = rows_straight.get(first["TimeStep"])
+        check(twin is not None and twin == first,
+              f"from {name}: the first sample {first} is not the straight run's at that step {twin}")
+        period_end = next(k for k, r in enumerate(rows) if whole_ms(r["v_time"]) and k > 0)
+        for row in rows[:period_end + 1]:
+            twin = rows_straight.get(row["TimeStep"])
+            check(twin is not None and abs(twin["v_time"] - row["v_time"]) < 1e-12,
+                  f"from {name}: step {row['TimeStep']:.0f} at {row['v_time']} s, straight on: {twin}")
+        sampled = {round(r["v_time"] * 1000) for r in rows[period_end:] if whole_ms(r["v_time"])}
+        expected = set(range(round(rows[period_end]["v_time"] * 1000), round(duration * 1000) + 1))
+        check(sampled == expected, f"from {name}: whole milliseconds {sorted(expected - sampled)} not sampled")
+    check(between, "neither restart sits between samples: the flow no longer refines the step; lower the skin")
+    print(f"restarts between samples continued the straight run's steps and times: {', '.join(between)}")
+
+
 def case_runner_resume(args):
     """The runner, killed in the middle of a run, continues it from its restart when started
     again; the spliced outputs are continuous; a finished run is not run again."""
@@ -535,6 +579,7 @@ CASES = {
     "bad_var": case_bad_var,
     "start_mismatch": case_start_mismatch,
     "runner_resume": case_runner_resume,
+    "restart_between_samples": case_restart_between_samples,
 }
 
 

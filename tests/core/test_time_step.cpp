@@ -26,4 +26,14 @@ TEST(StepGrid, EveryLevelFillsTheAlignmentPeriodExactly)
   }
 }
 
+TEST(StepGrid, AlignmentTimesAreWholePeriods)
+{
+  EXPECT_DOUBLE_EQ(grid.period(), 1e-3);
+  EXPECT_TRUE(grid.on_alignment(0.0));
+  EXPECT_TRUE(grid.on_alignment(4.404));  // 4404 periods, not exactly representable
+  EXPECT_TRUE(grid.on_alignment(123.0));
+  EXPECT_FALSE(grid.on_alignment(4.4045));  // half a period: a restart at level 1
+  EXPECT_FALSE(grid.on_alignment(5e-5));
+}
+
 }  // namespace

@@ -98,6 +98,10 @@ const BadCase bad_cases[] = {
     {"align_without_dt_max", with_fix("0.5 0.5 dt_align 1e-3"), "dt_align needs dt_max (the adaptive step)"},
     {"align_not_a_multiple", with_fix("0.5 0.5 dt_max 1e-4 dt_align 1.5e-4"),
      "dt_align 0.00015 must be a whole multiple of dt_max 0.0001"},
+    // 5 steps of 1e-5 s: the grid of 1e-3 s periods would start between two of them.
+    {"step_grid_between_periods",
+     preamble + "run 5\nfix cd all contact/dynamics 0.5 0.5 dt_max 1e-4 dt_align 1e-3\nrun 10\n",
+     "the step grid cannot start at time 5e-05 s, not a whole number of alignment periods (0.001 s)"},
     {"travel_beyond_half_skin", with_fix("0.5 0.5 dt_max 1e-4 travel 0.6"),
      "travel must be in (0,0.5] (a fraction of the neighbour skin), got 0.6"},
     // The preamble's skin is 1e-4 m: at 2000 m/s even dt_max/2^12 moves a grain 4.9e-5 m > 0.4 skin.
