@@ -27,8 +27,8 @@ usage: reference/run_comparison.sh [options] OUT
   --rigid-skin N       rigid neighbour skin in d (default 0.3; a grain may move half of it in a step)
   --rigid-parts N      run each rigid flow as N restarted parts of flow/N (default 1): keeps
                        each lmp_cd process short; the parts' outputs are appended
-  --soft-parts N       the same for the LAMMPS GRANULAR flows (default 1): a campaign cut
-                       between parts continues at the next one
+  --soft-parts N       the same for the soft flows, LAMMPS GRANULAR and LIGGGHTS (default 1):
+                       a campaign cut between parts continues at the next one
   --deposit S          deposition time of the shared packing (default 0.2)
   --deposit-overlap A  stiffness of that deposition, as a target overlap (default 1e-4: the
                        rigid runs inherit its overlaps)
@@ -96,7 +96,6 @@ fi
 mkdir -p "$out/runs"
 out=$(cd "$out" && pwd)
 commands=$out/commands.txt
-common=(-var mu "$mu" -var theta "$theta" -var bed_walls "$bed_walls" -var flow "$flow" -var sample_max "$sample")
 TIMEFORMAT='%R %U %S'
 
 # run NAME EXECUTABLE DECK LOG [ARGS...]: runs DECK in OUT/runs/NAME unless it finished before;
@@ -152,15 +151,28 @@ fi
 echo "lmp -in reference/in.rain -var out rain.data -var cells $cells -var grains $grains -var bed_walls $bed_walls" >> "$commands"
 echo "cd deposition && lmp -in reference/in.chute_granular -var data ../rain.data -var bed_walls $bed_walls -var overlap $deposit_overlap -var settle $deposit -var flow 0" >> "$commands"
 
-# run_parts NAME PARTS EXECUTABLE DECK [ARGS...]: the flow of NAME as PARTS restarted parts
+# chunk_files DIR: LIGGGHTS writes fix ave/spatial files; cdpost and append_part read the
+# fix ave/chunk form (cdref spatial-to-chunk). Nothing to do for LAMMPS's runs.
+chunk_files() {
+  local dir=$1 f
+  for f in profile layers; do
+    if [ ! -f "$dir/$f.chunk" ] && [ -f "$dir/$f.spatial" ]; then
+      "$cdref" spatial-to-chunk "$dir/$f.spatial" "$dir/$f.chunk" > /dev/null
+    fi
+  done
+}
+
+# run_parts NAME PARTS EXECUTABLE DECK LOG [ARGS...]: the flow of NAME as PARTS restarted parts
 # (ARGS give each part's share of the flow): part 1 from the packing, part p in NAME/partp
 # from the previous part's flow.restart, its outputs appended to NAME's once.
 run_parts() {
-  local name=$1 parts=$2 exe=$3 deck=$4 previous; shift 4
-  run "$name" "$exe" "$deck" log.lammps "${packing[@]}" "$@"
+  local name=$1 parts=$2 exe=$3 deck=$4 log=$5 previous; shift 5
+  run "$name" "$exe" "$deck" "$log" "${packing[@]}" "$@"
+  chunk_files "$out/runs/$name"
   for ((p = 2; p <= parts; p++)); do
     previous=..; [ "$p" -eq 2 ] || previous=../part$((p - 1))
-    run "$name/part$p" "$exe" "$deck" log.lammps -var part "$p" -var restart_in "$previous/flow.restart" "$@"
+    run "$name/part$p" "$exe" "$deck" "$log" -var part "$p" -var restart_in "$previous/flow.restart" "$@"
+    chunk_files "$out/runs/$name/part$p"
     if [ ! -f "$out/runs/$name/part$p/appended" ]; then
       append_part "$out/runs/$name" "part$p"
       touch "$out/runs/$name/part$p/appended"
@@ -176,7 +188,7 @@ rigid_flow=$(awk -v f="$flow" -v n="$rigid_parts" 'BEGIN { print f / n }')
 soft_flow=$(awk -v f="$flow" -v n="$soft_parts" 'BEGIN { print f / n }')
 soft=(-var mu "$mu" -var theta "$theta" -var bed_walls "$bed_walls" -var flow "$soft_flow" -var sample_max "$sample")
 for tolerance in $rigid_tolerances; do
-  run_parts "rigid-tol$tolerance" "$rigid_parts" "$lmp_cd" "$here/in.chute_rigid" \
+  run_parts "rigid-tol$tolerance" "$rigid_parts" "$lmp_cd" "$here/in.chute_rigid" log.lammps \
     -var mu "$mu" -var theta "$theta" -var bed_walls "$bed_walls" -var flow "$rigid_flow" -var sample_max "$sample" \
     -var tolerance "$tolerance" -var dt "$rigid_dt" -var skin "$rigid_skin"
 done
@@ -184,24 +196,18 @@ for overlap in $overlaps; do
   for code in $codes; do
     case "$code" in
       granular)
-        run_parts "granular-hooke-$overlap" "$soft_parts" "$lmp" "$here/in.chute_granular" "${soft[@]}" \
+        run_parts "granular-hooke-$overlap" "$soft_parts" "$lmp" "$here/in.chute_granular" log.lammps "${soft[@]}" \
           -var model hooke -var overlap "$overlap" ;;
       liggghts)
-        name="liggghts-hooke-$overlap"
-        run "$name" "$liggghts" "$here/in.chute_liggghts" log.liggghts "${packing[@]}" "${common[@]}" -var overlap "$overlap"
-        for f in profile layers; do
-          if [ ! -f "$out/runs/$name/$f.chunk" ] && [ -f "$out/runs/$name/$f.spatial" ]; then
-            "$cdref" spatial-to-chunk "$out/runs/$name/$f.spatial" "$out/runs/$name/$f.chunk" > /dev/null
-          fi
-        done
-        echo "cdref spatial-to-chunk profile.spatial profile.chunk; cdref spatial-to-chunk layers.spatial layers.chunk" >> "$commands"
-        dirs+=("$out/runs/$name") ;;
+        run_parts "liggghts-hooke-$overlap" "$soft_parts" "$liggghts" "$here/in.chute_liggghts" log.liggghts "${soft[@]}" \
+          -var overlap "$overlap"
+        echo "(each part: cdref spatial-to-chunk profile.spatial profile.chunk; cdref spatial-to-chunk layers.spatial layers.chunk)" >> "$commands" ;;
       *) echo "run_comparison.sh: unknown code '$code' (granular, liggghts)" >&2; exit 2 ;;
     esac
   done
 done
 for overlap in $hertz; do
-  run_parts "granular-hertz-$overlap" "$soft_parts" "$lmp" "$here/in.chute_granular" "${soft[@]}" \
+  run_parts "granular-hertz-$overlap" "$soft_parts" "$lmp" "$here/in.chute_granular" log.lammps "${soft[@]}" \
     -var model hertz -var overlap "$overlap"
 done
 

@@ -170,6 +170,34 @@ TEST_F(ReferenceDecks, LammpsGranularFlowContinuesInParts)
   EXPECT_NEAR(u2[0], u1.back(), 0.05 * std::abs(u1.back()) + 1e-4);
 }
 
+// The same for LIGGGHTS (flow.time has no time column: TimeStep x dt). The warnings of fix
+// check/timestep/gran, which compares the step with Hertz and Rayleigh times, are the first
+// part's as well.
+TEST_F(ReferenceDecks, LiggghtsFlowContinuesInParts)
+{
+  REQUIRE_RUN("liggghts");
+  const fs::path part = root / "liggghts" / "part2";
+  ASSERT_EQ(run_in(part, "stdbuf -o0 " + liggghts + " -in " + reference_dir +
+                             "/in.chute_liggghts -log log.liggghts -var part 2 -var restart_in ../flow.restart"
+                             " -var bed_walls 3 -var flow 0.05 -var sample_max 2e-4 -var dump_every 0.02"
+                             " -var overlap 1e-2"),
+            0)
+      << read_file(part / "screen.txt");
+  const auto first = cdpost::read_ave_time((root / "liggghts" / "flow.time").string());
+  const auto second = cdpost::read_ave_time((part / "flow.time").string());
+  ASSERT_GT(first.rows(), 2u);
+  ASSERT_GT(second.rows(), 2u);
+  const auto& s1 = first.column("TimeStep");
+  const auto& s2 = second.column("TimeStep");
+  const double interval = s1[s1.size() - 1] - s1[s1.size() - 2];
+  EXPECT_EQ(s2[0] - s1.back(), interval);
+  const double dt = *cdref::read_run_info((root / "liggghts" / "run.info").string()).number("dt");
+  EXPECT_NEAR((s2.back() - s1.back()) * dt, 0.05, 2 * interval * dt);
+  const auto& u1 = first.column("v_u_flow");
+  const auto& u2 = second.column("v_u_flow");
+  EXPECT_NEAR(u2[0], u1.back(), 0.05 * std::abs(u1.back()) + 1e-4);
+}
+
 TEST_F(ReferenceDecks, LammpsGranularHertzChute)
 {
   REQUIRE_RUN("granular-hertz");
