@@ -250,13 +250,16 @@ void BM_Prepare(benchmark::State& state)
 }
 BENCHMARK(BM_Prepare)->Unit(benchmark::kMicrosecond);
 
-// (b) A whole step of the core: prepare, order, warm start, Gauss–Seidel to 1e-4.
-// Counters: sweeps per step, and the contact updates per second of the whole step.
-void time_whole_steps(benchmark::State& state, const Scene& s, bool warm, Order order, bool frictionless_shortcut)
+// (b) A whole step of the core: prepare, order, warm start, Gauss–Seidel to 1e-4, plain or
+// with conjugate acceleration. Counters: sweeps per step, and the contact updates per second
+// of the whole step.
+void time_whole_steps(benchmark::State& state, const Scene& s, bool warm, Order order, bool frictionless_shortcut,
+                      cd::Acceleration acceleration = cd::Acceleration::none)
 {
   const int body_count = static_cast<int>(s.frozen.bodies.velocity.size());
   cd::SolverSettings settings = s.bed.spec().solver;
   settings.frictionless_shortcut = frictionless_shortcut;
+  settings.acceleration = acceleration;
   std::vector<cd::Contact> contacts;
   std::vector<cd::BodyVelocity> velocity;
   std::mt19937_64 rng(shuffle_seed);
@@ -281,14 +284,17 @@ void time_whole_steps(benchmark::State& state, const Scene& s, bool warm, Order 
 
 void BM_WholeStep(benchmark::State& state)
 {
-  time_whole_steps(state, scene(), state.range(0) != 0, static_cast<Order>(state.range(1)), true);
+  const auto acceleration = state.range(2) != 0 ? cd::Acceleration::conjugate : cd::Acceleration::none;
+  time_whole_steps(state, scene(), state.range(0) != 0, static_cast<Order>(state.range(1)), true, acceleration);
 }
 BENCHMARK(BM_WholeStep)
-    ->ArgNames({"warm", "order"})
-    ->Args({1, fixed_order})
-    ->Args({1, shuffled_order})
-    ->Args({1, interleaved_order})
-    ->Args({0, fixed_order})
+    ->ArgNames({"warm", "order", "conjugate"})
+    ->Args({1, fixed_order, 0})
+    ->Args({1, shuffled_order, 0})
+    ->Args({1, interleaved_order, 0})
+    ->Args({1, interleaved_order, 1})
+    ->Args({0, fixed_order, 0})
+    ->Args({0, interleaved_order, 1})
     ->Unit(benchmark::kMillisecond);
 
 // "Model only what a scene requires": each feature a scene can do without, timed with and

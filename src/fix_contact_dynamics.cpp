@@ -212,6 +212,11 @@ void FixContactDynamics::parse_arguments(int narg, char** arg)
       if (norm == "quadratic") solver_settings.norm = cd::ConvergenceNorm::quadratic;
       else if (norm == "maximum") solver_settings.norm = cd::ConvergenceNorm::maximum;
       else error->all(FLERR, "Fix contact/dynamics: norm must be quadratic or maximum, got '{}'", norm);
+    } else if (keyword == "acceleration") {
+      const std::string acceleration = value;
+      if (acceleration == "none") solver_settings.acceleration = cd::Acceleration::none;
+      else if (acceleration == "conjugate") solver_settings.acceleration = cd::Acceleration::conjugate;
+      else error->all(FLERR, "Fix contact/dynamics: acceleration must be none or conjugate, got '{}'", acceleration);
     } else if (keyword == "warm_start") {
       warm_start = yes_or_no("warm_start", value, error);
     } else if (keyword == "pair_forces") {

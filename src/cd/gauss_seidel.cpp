@@ -55,37 +55,52 @@ inline Local2 relaxed(Local2 p, Local2 previous, double relaxation)
   return {relaxation * p.n + (1.0 - relaxation) * previous.n, relaxation * p.t + (1.0 - relaxation) * previous.t};
 }
 
+// Conjugate acceleration of one contact's new impulse p: p + beta d back on the cone, and that
+// step's change becomes the direction of the next sweep.
+template <bool conjugate>
+inline Local2 accelerated(Contact& c, Local2 p, double beta)
+{
+  if constexpr (!conjugate) return p;
+  const Local2 pushed = solve_coulomb_disk({p.n + beta * c.direction.n, p.t + beta * c.direction.t}, c.mu);
+  c.direction = {pushed.n - c.impulse.n, pushed.t - c.impulse.t};
+  return pushed;
+}
+
 // Exact local solve of one contact with every other impulse frozen, in the accumulated-impulse
 // form: the impulse that would stop the contact is the current one minus W^-1 (u + b), with u
-// the relative velocity that already includes the contact's own impulse.
-template <ConvergenceNorm norm>
-inline void update_frictional(Contact& c, BodyVelocity* velocity, double relaxation, SweepChange& change)
+// the relative velocity that already includes the contact's own impulse. The norm records the
+// local solve's change, before any acceleration.
+template <ConvergenceNorm norm, bool conjugate>
+inline void update_frictional(Contact& c, BodyVelocity* velocity, double relaxation, double beta, SweepChange& change)
 {
   BodyVelocity& a = velocity[c.body_a];
   BodyVelocity& b = velocity[c.body_b];
   const Local2 u = relative_velocity(c, a, b);
   const Local2 stick{c.impulse.n - c.delassus.inverse_nn * (u.n + c.velocity_bias),
                      c.impulse.t - c.delassus.inverse_tt * u.t};
-  const Local2 p = relaxed(solve_coulomb_disk(stick, c.mu), c.impulse, relaxation);
+  const Local2 solved = relaxed(solve_coulomb_disk(stick, c.mu), c.impulse, relaxation);
+  record_change<norm>(change, c.delassus.times({solved.n - c.impulse.n, solved.t - c.impulse.t}),
+                      c.delassus.times(solved));
+  const Local2 p = accelerated<conjugate>(c, solved, beta);
   const Local2 dp{p.n - c.impulse.n, p.t - c.impulse.t};
   c.impulse = p;
   apply_impulse(c, dp, a, b);
-  record_change<norm>(change, c.delassus.times(dp), c.delassus.times(p));
 }
 
 // update_frictional for mu = 0, where p_t stays 0 (warm_start drops a carried one): the
 // normal velocity and the normal impulse; no tangential solve, no spin.
-template <ConvergenceNorm norm>
-inline void update_frictionless(Contact& c, BodyVelocity* velocity, double relaxation, SweepChange& change)
+template <ConvergenceNorm norm, bool conjugate>
+inline void update_frictionless(Contact& c, BodyVelocity* velocity, double relaxation, double beta, SweepChange& change)
 {
   BodyVelocity& a = velocity[c.body_a];
   BodyVelocity& b = velocity[c.body_b];
   const double stick_n = c.impulse.n - c.delassus.inverse_nn * (relative_velocity(c, a, b).n + c.velocity_bias);
-  const double p_n = relaxed({std::max(stick_n, 0.0), 0.0}, c.impulse, relaxation).n;
+  const double solved_n = relaxed({std::max(stick_n, 0.0), 0.0}, c.impulse, relaxation).n;
+  record_change<norm>(change, {c.delassus.nn * (solved_n - c.impulse.n), 0.0}, {c.delassus.nn * solved_n, 0.0});
+  const double p_n = accelerated<conjugate>(c, {solved_n, 0.0}, beta).n;
   const double dp_n = p_n - c.impulse.n;
   c.impulse.n = p_n;
   apply_normal_impulse(c, dp_n, a, b);
-  record_change<norm>(change, {c.delassus.nn * dp_n, 0.0}, {c.delassus.nn * p_n, 0.0});
 }
 
 }  // namespace
@@ -175,32 +190,62 @@ void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVeloci
 
 namespace {
 
-template <ConvergenceNorm norm>
-SweepChange sweep_range(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings)
+template <ConvergenceNorm norm, bool conjugate>
+SweepChange sweep_range(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings,
+                        double beta)
 {
   SweepChange change;
   const bool shortcut = settings.frictionless_shortcut;
+  const double w = settings.relaxation;
   // A branch per contact rather than one sweep per kind: it serves scenes that mix mu = 0
   // with friction (mu/types, rough walls).
   for (Contact* c = first; c != last; ++c) {
-    if (shortcut && c->mu == 0.0) update_frictionless<norm>(*c, velocity, settings.relaxation, change);
-    else update_frictional<norm>(*c, velocity, settings.relaxation, change);
+    if (shortcut && c->mu == 0.0) update_frictionless<norm, conjugate>(*c, velocity, w, beta, change);
+    else update_frictional<norm, conjugate>(*c, velocity, w, beta, change);
   }
   return change;
 }
 
+// The beta of conjugate acceleration, sweep after sweep of one solve. beta = |W r_k|^2 /
+// |W r_(k-1)|^2, summed over the contacts of every rank, and 0 (a restart) after the first
+// sweep or when the change grew. Where pushes keep failing (a nearly converged solve, whose
+// slow plain progress the pushes only disturb), or when half the cap is spent, the solve goes
+// on with plain sweeps: three pushed sweeps in a row that raised the change switch it off.
+class ConjugateBeta {
+ public:
+  double next(double change_sq, int iterations, int max_iterations)
+  {
+    if (beta_ > 0.0) failures_ = change_sq > previous_sq_ ? failures_ + 1 : 0;
+    const bool restart = !(previous_sq_ > 0.0) || change_sq > previous_sq_;
+    const bool give_up = failures_ >= max_failures || iterations >= max_iterations / 2;
+    beta_ = restart || give_up ? 0.0 : change_sq / previous_sq_;
+    previous_sq_ = change_sq;
+    return beta_;
+  }
+
+ private:
+  static constexpr int max_failures = 3;
+  double beta_ = 0.0;
+  double previous_sq_ = 0.0;
+  int failures_ = 0;
+};
+
 }  // namespace
 
-SweepChange sweep(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings)
+SweepChange sweep(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings, double beta)
 {
-  if (settings.norm == ConvergenceNorm::quadratic)
-    return sweep_range<ConvergenceNorm::quadratic>(first, last, velocity, settings);
-  return sweep_range<ConvergenceNorm::maximum>(first, last, velocity, settings);
+  const bool quadratic = settings.norm == ConvergenceNorm::quadratic;
+  if (settings.acceleration == Acceleration::conjugate)
+    return quadratic ? sweep_range<ConvergenceNorm::quadratic, true>(first, last, velocity, settings, beta)
+                     : sweep_range<ConvergenceNorm::maximum, true>(first, last, velocity, settings, beta);
+  return quadratic ? sweep_range<ConvergenceNorm::quadratic, false>(first, last, velocity, settings, 0.0)
+                   : sweep_range<ConvergenceNorm::maximum, false>(first, last, velocity, settings, 0.0);
 }
 
-SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const SolverSettings& settings)
+SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const SolverSettings& settings,
+                  double beta)
 {
-  return sweep(contacts.data(), contacts.data() + contacts.size(), velocity.data(), settings);
+  return sweep(contacts.data(), contacts.data() + contacts.size(), velocity.data(), settings, beta);
 }
 
 SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
@@ -210,12 +255,16 @@ SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyV
   // Without an exchange there is nothing to do; with one, every rank takes part in every
   // sweep's exchange, contacts or not.
   if (contacts.empty() && !exchange) return report;
+  ConjugateBeta conjugate;
+  double beta = 0.0;
   while (report.iterations < settings.max_iterations) {
-    SweepChange change = sweep(contacts, velocity, settings);
+    SweepChange change = sweep(contacts, velocity, settings, beta);
     if (exchange) exchange->after_sweep(change);
     ++report.iterations;
     report.residual = change.residual(settings.norm);
     if (report.residual <= settings.tolerance) return report;
+    if (settings.acceleration == Acceleration::conjugate)
+      beta = conjugate.next(change.sum_change_sq, report.iterations, settings.max_iterations);
   }
   report.converged = report.residual <= settings.tolerance;
   return report;

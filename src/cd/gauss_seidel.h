@@ -51,6 +51,7 @@ struct Contact {
   double velocity_bias = 0.0;  // b (m/s): the normal law acts on u_n + b (prepare_mechanics)
   double gap = 0.0;            // at the predicted configuration (m)
   Local2 impulse;              // accumulated over the step (N s)
+  Local2 direction;            // its change in the last sweep (conjugate acceleration only)
 };
 
 // Relative velocity of a with respect to b at the contact point, in the local frame.
@@ -95,6 +96,13 @@ void warm_start(Contact& contact, Local2 carried);
 // Adds the contacts' impulses (e.g. the warm start) to the body velocities.
 void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity);
 
+// How the sweeps are accelerated. conjugate: nonsmooth nonlinear conjugate gradients (Silcowitz,
+// Niebe, Erleben 2010) with the sweep as the gradient step. After its local solve, each contact
+// adds beta times its change of the previous sweep and is put back on its cone:
+// beta = |W r_k|^2 / |W r_(k-1)|^2 over the contacts (r: the local solves' changes), and 0
+// (a restart) when that ratio exceeds 1. The solution and the norms are those of the plain sweep.
+enum class Acceleration { none, conjugate };
+
 struct SolverSettings {
   double tolerance = 1.0e-4;
   int max_iterations = 1000;
@@ -104,6 +112,7 @@ struct SolverSettings {
   // the same result as the Coulomb solver to round-off at about half the cost. false sends them
   // through the Coulomb solver: the reference the shortcut is tested and measured against.
   bool frictionless_shortcut = true;
+  Acceleration acceleration = Acceleration::none;
 };
 
 struct SolveReport {
@@ -123,10 +132,14 @@ class SweepExchange {
 };
 
 // One sweep over the contacts [first, last) in their stored order, accumulating what
-// `settings.norm` needs. Frictionless contacts (mu = 0) take the shortcut of
-// SolverSettings::frictionless_shortcut unless it is false.
-SweepChange sweep(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings);
-SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const SolverSettings& settings);
+// `settings.norm` needs (of the local solves' changes). Frictionless contacts (mu = 0) take the
+// shortcut of SolverSettings::frictionless_shortcut unless it is false. With conjugate
+// acceleration each contact then adds `beta` times its direction (0: a plain sweep that records
+// the directions).
+SweepChange sweep(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings,
+                  double beta = 0.0);
+SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const SolverSettings& settings,
+                  double beta = 0.0);
 
 // Sweeps until the norm falls to the tolerance or the iteration cap is reached. The contacts'
 // impulses must already be applied to `velocity` (apply_impulses).

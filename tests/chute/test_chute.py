@@ -455,6 +455,7 @@ BAD_VARS = [
     ("warm_start", "1", "-var warm_start 1"),
     ("norm", "2", "-var norm 2"),
     ("order", "random", "-var order random"),
+    ("acceleration", "anderson", "-var acceleration anderson"),
 ]
 
 

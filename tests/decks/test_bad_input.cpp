@@ -93,6 +93,8 @@ const BadCase bad_cases[] = {
     {"relaxation_out_of_range", with_fix("0.5 0.5 relaxation 1.5"), "relaxation must be in (0,1], got 1.5"},
     {"unknown_norm", with_fix("0.5 0.5 norm l2"), "norm must be quadratic or maximum, got 'l2'"},
     {"unknown_order", with_fix("0.5 0.5 order random"), "order must be fixed or shuffle, got 'random'"},
+    {"unknown_acceleration", with_fix("0.5 0.5 acceleration anderson"),
+     "acceleration must be none or conjugate, got 'anderson'"},
     {"missing_value", with_fix("0.5 0.5 tolerance"), "tolerance needs 1 value(s)"},
     {"zero_dt_max", with_fix("0.5 0.5 dt_max 0"), "dt_max must be > 0, got 0"},
     {"align_without_dt_max", with_fix("0.5 0.5 dt_align 1e-3"), "dt_align needs dt_max (the adaptive step)"},

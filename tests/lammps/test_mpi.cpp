@@ -142,6 +142,17 @@ TEST_F(SeveralRanks, SameConfigurationGivesSameContactsAndVelocities)
   EXPECT_LT(largest_difference(on_many.vy, on_one.vy), 1e-9);
 }
 
+// Conjugate acceleration on several ranks (each takes beta from the change summed over all
+// ranks) reaches the 1-rank solution of the same step.
+TEST_F(SeveralRanks, ConjugateAccelerationGivesTheSameVelocities)
+{
+  run_both(std::string(tight_solve) + " acceleration conjugate", "run 1");
+  if (world_rank() != 0) return;
+  EXPECT_GE(on_one.loaded, 15);
+  EXPECT_LT(largest_difference(on_many.vx, on_one.vx), 1e-9);
+  EXPECT_LT(largest_difference(on_many.vy, on_one.vy), 1e-9);
+}
+
 // Over 100 steps of landing grains, collisions amplify the solver differences by a few
 // orders; a wrong interface impulse would show at ~1e-3 d. The solve is tight (tight_solve) because
 // the impact test of the normal law is a switch: at 1e-10 one pair (step 97 of the balance

@@ -518,13 +518,14 @@ struct CoreRun {
   std::vector<double> body_velocity;  // u from the bodies' final velocities (m/s)
 };
 
-CoreRun run_core(Scene scene, double tolerance, int max_sweeps)
+CoreRun run_core(Scene scene, double tolerance, int max_sweeps, cd::Acceleration acceleration = cd::Acceleration::none)
 {
   std::vector<cd::BodyVelocity> velocity = scene.bodies.velocity;
   cd::apply_impulses(scene.contacts, velocity);  // the (zero) warm start
   cd::SolverSettings settings;
   settings.tolerance = tolerance;
   settings.max_iterations = max_sweeps;
+  settings.acceleration = acceleration;
   CoreRun run;
   run.report = cd::solve_gauss_seidel(scene.contacts, velocity, settings);
   for (const cd::Contact& c : scene.contacts) {
@@ -659,7 +660,7 @@ TEST(SiconosScene, UniqueProblemsGiveTheSameImpulsesInBothCodes)
   std::mt19937_64 rng(1234567);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const int scenes = 12;
-  int lemke_rejected = 0;
+  int lemke_rejected = 0, plain_sweeps = 0, conjugate_sweeps = 0;
   double worst_gap = 0.0;
   for (int k = 0; k < scenes; ++k) {
     const int disk_count = 5 + static_cast<int>(36 * unit(rng));
@@ -721,10 +722,24 @@ TEST(SiconosScene, UniqueProblemsGiveTheSameImpulsesInBothCodes)
       EXPECT_LE(distance(u_ours, p.velocity(theirs->reaction)), s.delassus.max * impulse_tol) << name << " scene " << k;
       worst_gap = std::max(worst_gap, gap / s.impulse);
     }
+
+    // Conjugate acceleration stops on another iterate (its last step adds a push): its
+    // residual is held to the plain iteration's bound, and the uniqueness bound then holds as
+    // above with that residual.
+    const CoreRun conjugate = run_core(scene, gauss_seidel_tolerance, max_sweeps, cd::Acceleration::conjugate);
+    ASSERT_TRUE(conjugate.report.converged) << "scene " << k;
+    const double r_conjugate = core_error(p, conjugate.reaction);
+    EXPECT_LE(r_conjugate, core_residual_bound(s, mu)) << "scene " << k;
+    const double rounding = 1e3 * eps * (1.0 + mu) * (s.impulse + s.velocity);
+    EXPECT_LE(distance(ours.reaction, conjugate.reaction), amplification * (r_ours + r_conjugate + 2.0 * rounding))
+        << "conjugate, scene " << k << " mu " << mu;
+    conjugate_sweeps += conjugate.report.iterations;
+    plain_sweeps += ours.report.iterations;
   }
   // Lemke's failures are Siconos's; on these well-posed problems they stay rare.
   EXPECT_LE(lemke_rejected, scenes / 4);
-  std::printf("unique scenes: %d, Lemke rejected %d, worst impulse gap / P %.2g\n", scenes, lemke_rejected, worst_gap);
+  std::printf("unique scenes: %d, Lemke rejected %d, worst impulse gap / P %.2g; sweeps plain %d, conjugate %d\n",
+              scenes, lemke_rejected, worst_gap, plain_sweeps, conjugate_sweeps);
 }
 
 // Hyperstatic piles (nests close loops: mostly 2m > 3N, W singular) with large friction: the
@@ -739,7 +754,7 @@ TEST(SiconosScene, HyperstaticPilesFollowTheSameIterationAsSiconosNsgs)
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double mus[] = {0.05, 0.5, 2.0};
   const int scenes_per_mu = 5;
-  int converged = 0, lemke_accepted_count = 0, lemke_same = 0;
+  int converged = 0, conjugate_converged = 0, lemke_accepted_count = 0, lemke_same = 0;
   for (double mu : mus) {
     for (int k = 0; k < scenes_per_mu; ++k) {
       const int disk_count = 5 + static_cast<int>(36 * unit(rng));
@@ -754,6 +769,13 @@ TEST(SiconosScene, HyperstaticPilesFollowTheSameIterationAsSiconosNsgs)
         ++converged;
         EXPECT_LE(core_error(p, ours.reaction), core_residual_bound(s, mu)) << "mu " << mu << " scene " << k;
         expect_same_measure(p, ours.reaction, s, mu, "core solution");
+      }
+      // Conjugate acceleration: another iteration, held to the same law and the same bound.
+      const CoreRun conjugate = run_core(scene, gauss_seidel_tolerance, max_sweeps, cd::Acceleration::conjugate);
+      if (conjugate.report.converged) {
+        ++conjugate_converged;
+        EXPECT_LE(core_error(p, conjugate.reaction), core_residual_bound(s, mu))
+            << "conjugate mu " << mu << " scene " << k;
       }
 
       const SiconosSolution nsgs = solve_with_siconos(p, SICONOS_FRICTION_2D_NSGS, gauss_seidel_tolerance, max_sweeps);
@@ -784,10 +806,11 @@ TEST(SiconosScene, HyperstaticPilesFollowTheSameIterationAsSiconosNsgs)
     }
   }
   EXPECT_GE(converged, 10);
+  EXPECT_GE(conjugate_converged, converged);
   std::printf(
-      "hyperstatic scenes: %d, core converged %d; Lemke accepted %d, of which %d equal "
+      "hyperstatic scenes: %d, core converged %d (conjugate %d); Lemke accepted %d, of which %d equal "
       "to the core's impulses within 1e-8 P\n",
-      3 * scenes_per_mu, converged, lemke_accepted_count, lemke_same);
+      3 * scenes_per_mu, converged, conjugate_converged, lemke_accepted_count, lemke_same);
 }
 
 }  // namespace
