@@ -8,7 +8,8 @@ its line, the head and tail of a file still being written; fix ave/chunk blocks,
 by a kill dropped from the records and refused by the row reader; dump frames, plain and
 gzip, a gzip stream cut by a kill read up to its last complete frame. The log parsers: summary
 lines, the last one of a log, loop timers. The statistics and the text of numbers on
-hand-computed cases. The -var arguments. Standard library only.
+hand-computed cases. The -var arguments. The campaign's rule for a run started before a deck
+variable existed. Standard library only.
 """
 
 import gzip
@@ -18,7 +19,11 @@ import sys
 import tempfile
 import zlib
 
+import argparse
+import json
+
 from cdtools import lammps_files, logs, run, stats, text
+from cdtools.campaign import plan
 
 
 def check(condition, message):
@@ -168,8 +173,31 @@ def check_arguments():
               "-var", "dt", "0.0001"], "lmp_cd command line")
 
 
+def check_runs_older_than_a_variable(work):
+    """A run whose params.json lacks a deck variable (added to the deck after it started) goes
+    on without it, so its parameters still match; one that --var sets is a change."""
+    defaults = plan.deck_defaults()
+    folder = os.path.join(work, "runs", "mu0.5_theta24_L45")
+    os.makedirs(folder)
+    older = dict(defaults, mu="0.5", theta="24", L="45")
+    added = "acceleration"    # added to the deck during the first campaign
+    del older[added]
+    with open(os.path.join(folder, "params.json"), "w") as out:
+        json.dump({"vars": older}, out)
+    for given, differs in (({}, False), ({added: defaults[added]}, True)):
+        args = argparse.Namespace(out=work, var=given)
+        variables = dict(older)
+        variables[added] = defaults[added]
+        variables.update(given)
+        job = plan.new_run(args, "mu0.5_theta24_L45", "mu0.5", variables, None)
+        problem = plan.check_recorded_params(job)
+        check((problem is not None) == differs and (added in job.vars) == differs,
+              f"--var {given}: vars keep '{added}': {added in job.vars}, problem: {problem}")
+
+
 def main():
     with tempfile.TemporaryDirectory() as work:
+        check_runs_older_than_a_variable(work)
         check_time_files(work)
         check_chunk_files(work)
         check_dumps(work)
@@ -178,7 +206,7 @@ def main():
     check_text()
     check_arguments()
     print("cdtools: ave/time, ave/chunk and dump readers (cut files included), logs, statistics, text, "
-          "-var arguments")
+          "-var arguments, runs older than a deck variable")
 
 
 if __name__ == "__main__":

@@ -95,9 +95,15 @@ def deposition_of(args, variables, depositions):
 
 def new_run(args, name, series, variables, deposition):
     folder = os.path.join(args.out, "runs", name)
-    recorded = read_json(os.path.join(folder, "params.json"), {}).get("vars", {})
-    if float(recorded.get("duration", 0)) > float(variables["duration"]):
-        variables["duration"] = recorded["duration"]    # an extended run stays extended
+    recorded = read_json(os.path.join(folder, "params.json"))
+    if recorded is not None:
+        old = recorded.get("vars", {})
+        if float(old.get("duration", 0)) > float(variables["duration"]):
+            variables["duration"] = old["duration"]    # an extended run stays extended
+        # A deck variable added after the run started is not the run's: it goes on with its own
+        # copy of the deck, which has that variable's old behaviour (unless --var sets it).
+        for key in set(variables) - set(old) - set(args.var):
+            del variables[key]
     return Job("run", name, folder, variables, deposition, series)
 
 
