@@ -15,6 +15,7 @@ import argparse
 import csv
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -98,12 +99,23 @@ def group(values, name):
     return mean, error    # one window: a value without an error
 
 
+def user_seconds(text):
+    """The user time of /usr/bin/time's output: `-v` ("User time (seconds): X") or the
+    "wall user sys" line of `-f "%e %U %S"`; None if the run stopped before it was timed."""
+    verbose = re.search(r"User time \(seconds\): ([0-9.]+)", text)
+    if verbose:
+        return float(verbose.group(1))
+    fields = text.split()
+    if len(fields) < 3 or not fields[-3].replace(".", "").isdigit():
+        return None
+    return float(fields[-3])
+
+
 def cost(folder):
     """CPU s per physical s of the run (user time over the chute time it covered)."""
-    fields = open(os.path.join(folder, "time.txt")).read().split()
-    if len(fields) < 3 or not fields[-3].replace(".", "").isdigit():
+    user = user_seconds(open(os.path.join(folder, "time.txt")).read())
+    if user is None:
         return float("nan")    # a run stopped before it finished: no time of its own
-    user = float(fields[-3])
     flow = read_time_file(os.path.join(folder, "flow.time"))
     return user / (flow[-1]["v_time"] - flow[0]["v_time"])
 

@@ -30,7 +30,7 @@ G = 9.81
 SQRT_GD = math.sqrt(G * D)
 # The tiny cell at the solver settings its assertions were measured at (the deck's defaults
 # before they followed the 45 d study: doc/accuracy.md).
-CELL = dict(L="10", grains="200", wall_height="8", dt="2e-5", tolerance="1e-3", skin="0.6")
+CELL = dict(L="10", grains="200", wall_height="8", dt="2e-5", tolerance="1e-3", skin="0.6", acceleration="none")
 WALL_TOP = 8 * D
 
 
@@ -266,42 +266,55 @@ def solver_summary(folder):
     return {**summary(text, "SOLVER"), **summary(text, "CHUTE")}
 
 
-def case_flow_two_ranks(args):
-    """The flow of flow_run, domain-decomposed along x on 2 ranks (--ranks). The decompositions
-    order the sweep differently and a frictional packing's impulses are not unique, so the runs
-    part after a few ms (a grain is 3.5e-3 d away after 4 ms, 0.07 d after 20 ms): they are two
-    realisations of one flow. U, phi and h over the last 0.4 s must therefore agree within 4
-    standard deviations of the difference of two realisations from one start (REALISATION_SD;
-    this cell's U scatters by 16 %, so that check only catches gross errors). The sharper checks
-    are the solver's: the deepest interpenetration (1.2-1.8e-3 d in 19 runs on 1, 2 and 4 ranks)
-    stays below twice the 1-rank run's, and at most 5 % of the steps hit the iteration cap.
-    Independent starts on 1, 2 and 4 ranks: bench/rank_replicas.py."""
-    launcher = mpi_launcher(args.mpirun, args.ranks)
-    folder, output = chute(args, f"flow_np{args.ranks}", FLOW_THETA, FLOW_DURATION, launcher=launcher)
-    check(f"{args.ranks} by 1 by 1 MPI processor grid" in output,
-          f"lmp_cd did not split the cell along x on {args.ranks} ranks")
+def compare_realisations(args, other, label):
+    """flow_run against another realisation of the same flow (folder `other`): U, phi and h over
+    the last 0.4 s within 4 standard deviations of the difference of two realisations from one
+    start (REALISATION_SD; this cell's U scatters by 16 %, so that check only catches gross
+    errors); the solver's sharper checks: the deepest interpenetration stays below twice
+    flow_run's, and at most 5 % of the steps hit the iteration cap."""
     one = os.path.join(args.work, "flow")
     report = []
 
     def late(rows):
         return [r for r in rows if r["v_time"] >= FLOW_DURATION - 0.4]
     rows_one = late(read_time_file(os.path.join(one, "flow.time")))
-    rows_many = late(read_time_file(os.path.join(folder, "flow.time")))
+    rows_other = late(read_time_file(os.path.join(other, "flow.time")))
     for column, scale, name in (("v_u_flow", SQRT_GD, "U"), ("v_phi_flow", 1.0, "phi"), ("v_h", D, "h")):
         m1 = mean(r[column] / scale for r in rows_one)
-        m2 = mean(r[column] / scale for r in rows_many)
+        m2 = mean(r[column] / scale for r in rows_other)
         bound = 4 * math.sqrt(2) * REALISATION_SD[name]
-        check(abs(m1 - m2) < bound, f"{name} = {m1:.4f} on 1 rank, {m2:.4f} on {args.ranks} ranks (bound {bound:.3g})")
+        check(abs(m1 - m2) < bound, f"{name} = {m1:.4f} in flow_run, {m2:.4f} {label} (bound {bound:.3g})")
         report.append(f"{name} {m1:.4f} / {m2:.4f} ({abs(m1 - m2) / bound:.2f} of the bound)")
-    solver_one, solver_many = solver_summary(one), solver_summary(folder)
-    deepest_one, deepest_many = solver_one["max_interpenetration_d"], solver_many["max_interpenetration_d"]
-    check(deepest_many < 2 * deepest_one,
-          f"deepest interpenetration {deepest_many:.3g} d on {args.ranks} ranks, {deepest_one:.3g} d on 1")
-    capped = solver_many["steps_capped"] / solver_many["steps_solved"]
-    check(capped < 0.05, f"{capped:.1%} of the steps on {args.ranks} ranks hit the iteration cap")
-    print(f"{args.ranks} ranks vs 1: " + "; ".join(report) + f"; deepest interpenetration "
-          f"{deepest_one:.3g} / {deepest_many:.3g} d; {capped:.2%} capped steps")
+    solver_one, solver_other = solver_summary(one), solver_summary(other)
+    deepest_one, deepest_other = solver_one["max_interpenetration_d"], solver_other["max_interpenetration_d"]
+    check(deepest_other < 2 * deepest_one, f"deepest interpenetration {deepest_other:.3g} d {label}, {deepest_one:.3g} d "
+          "in flow_run")
+    capped = solver_other["steps_capped"] / solver_other["steps_solved"]
+    check(capped < 0.05, f"{capped:.1%} of the steps {label} hit the iteration cap")
+    return "; ".join(report) + f"; deepest interpenetration {deepest_one:.3g} / {deepest_other:.3g} d; " \
+        f"{capped:.2%} capped steps"
 
+
+def case_flow_two_ranks(args):
+    """The flow of flow_run, domain-decomposed along x on 2 ranks (--ranks). The decompositions
+    order the sweep differently and a frictional packing's impulses are not unique, so the runs
+    part after a few ms (a grain is 3.5e-3 d away after 4 ms, 0.07 d after 20 ms): they are two
+    realisations of one flow, compared as compare_realisations says (the interpenetration was
+    1.2-1.8e-3 d in 19 runs on 1, 2 and 4 ranks). Independent starts on 1, 2 and 4 ranks:
+    bench/rank_replicas.py."""
+    launcher = mpi_launcher(args.mpirun, args.ranks)
+    folder, output = chute(args, f"flow_np{args.ranks}", FLOW_THETA, FLOW_DURATION, launcher=launcher)
+    check(f"{args.ranks} by 1 by 1 MPI processor grid" in output,
+          f"lmp_cd did not split the cell along x on {args.ranks} ranks")
+    print(f"{args.ranks} ranks vs 1: " + compare_realisations(args, folder, f"on {args.ranks} ranks"))
+
+
+def case_conjugate_flow(args):
+    """The flow of flow_run with conjugate acceleration of the sweeps (the deck's default; the
+    other cases run plain sweeps, at which their numbers were measured): another realisation of
+    the same flow, compared as compare_realisations says."""
+    folder, _ = chute(args, "flow_conjugate", FLOW_THETA, FLOW_DURATION, acceleration="conjugate")
+    print("conjugate vs plain: " + compare_realisations(args, folder, "with conjugate acceleration"))
 
 def case_solve_two_ranks(args):
     """One step from two snapshots of flow_run (1.1 and 1.2 s), solved at tolerance 1e-9 on 1
@@ -479,16 +492,17 @@ def case_restart_between_samples(args):
     the level and its position in the period: it starts from the state the straight run had at
     that step, takes the same steps at the same chute times up to the end of the period, and
     samples every whole millisecond after it. Small skin and dt 1e-4 s, so that the 0.3 s flow
-    refines the step. (Later values are not compared: rebuilt neighbour lists may reorder the
+    refines the step; a restart every 2 ms, so that the last two restarts fall within a few ms
+    of the end. (Later values are not compared: rebuilt neighbour lists may reorder the
     contacts, and the flow amplifies differences within the solver's tolerance.)"""
     work = os.path.join(args.work, "restart_between_samples")
     shutil.rmtree(work, ignore_errors=True)
     start = os.path.join(args.work, "deposition", "deposition.restart")
     duration = 0.3
-    settings = dict(CELL, stage="flow", theta=24, duration=duration, dt="1e-4", skin="0.03", restart_interval="0.01",
-                    profile_interval="0.01")
+    settings = dict(CELL, stage="flow", theta=24, dt="1e-4", skin="0.03", restart_interval="0.002",
+                    profile_interval="0.002", solver_interval="0.001")
     straight = os.path.join(work, "straight")
-    run_lmp(args.lmp, straight, dict(settings, start=start))
+    run_lmp(args.lmp, straight, dict(settings, start=start, duration=duration))
     rows_straight = {r["TimeStep"]: r for r in read_time_file(os.path.join(straight, "flow.time"))}
 
     def whole_ms(t):
@@ -497,15 +511,15 @@ def case_restart_between_samples(args):
     between = []
     for name in ("restart.a", "restart.b"):
         folder = os.path.join(work, "from_" + name)
-        run_lmp(args.lmp, folder, dict(settings, start=os.path.join(straight, name)))
-        rows = read_time_file(os.path.join(folder, "flow.time"))
+        run_lmp(args.lmp, folder, dict(settings, start=os.path.join(straight, name), duration=duration + 0.01))
+        rows = [r for r in read_time_file(os.path.join(folder, "flow.time")) if r["v_time"] <= duration + 1e-9]
         first = rows[0]
         if not whole_ms(first["v_time"]):
             between.append(f"{name} at {first['v_time']} s")
         twin = rows_straight.get(first["TimeStep"])
         check(twin is not None and twin == first,
               f"from {name}: the first sample {first} is not the straight run's at that step {twin}")
-        period_end = next(k for k, r in enumerate(rows) if whole_ms(r["v_time"]) and k > 0)
+        period_end = next((k for k, r in enumerate(rows) if whole_ms(r["v_time"]) and k > 0), len(rows) - 1)
         for row in rows[:period_end + 1]:
             twin = rows_straight.get(row["TimeStep"])
             check(twin is not None and abs(twin["v_time"] - row["v_time"]) < 1e-12,
@@ -515,7 +529,6 @@ def case_restart_between_samples(args):
         check(sampled == expected, f"from {name}: whole milliseconds {sorted(expected - sampled)} not sampled")
     check(between, "neither restart sits between samples: the flow no longer refines the step; lower the skin")
     print(f"restarts between samples continued the straight run's steps and times: {', '.join(between)}")
-
 
 def case_runner_resume(args):
     """The runner, killed in the middle of a run, continues it from its restart when started
@@ -573,6 +586,7 @@ CASES = {
     "walls_trap": case_walls_trap,
     "steady_flow": case_steady_flow,
     "flow_two_ranks": case_flow_two_ranks,
+    "conjugate_flow": case_conjugate_flow,
     "solve_two_ranks": case_solve_two_ranks,
     "static": case_static,
     "static_tilt": case_static_tilt,
