@@ -316,6 +316,7 @@ def case_conjugate_flow(args):
     folder, _ = chute(args, "flow_conjugate", FLOW_THETA, FLOW_DURATION, acceleration="conjugate")
     print("conjugate vs plain: " + compare_realisations(args, folder, "with conjugate acceleration"))
 
+
 def case_solve_two_ranks(args):
     """One step from two snapshots of flow_run (1.1 and 1.2 s), solved at tolerance 1e-9 on 1
     and on 2 ranks (bench/rank_solutions.py): the decomposed Gauss-Seidel must reach the 1-rank
@@ -529,6 +530,7 @@ def case_restart_between_samples(args):
         check(sampled == expected, f"from {name}: whole milliseconds {sorted(expected - sampled)} not sampled")
     check(between, "neither restart sits between samples: the flow no longer refines the step; lower the skin")
     print(f"restarts between samples continued the straight run's steps and times: {', '.join(between)}")
+
 
 def case_runner_resume(args):
     """The runner, killed in the middle of a run, continues it from its restart when started
