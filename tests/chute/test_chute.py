@@ -287,8 +287,8 @@ def compare_realisations(args, other, label):
         report.append(f"{name} {m1:.4f} / {m2:.4f} ({abs(m1 - m2) / bound:.2f} of the bound)")
     solver_one, solver_other = solver_summary(one), solver_summary(other)
     deepest_one, deepest_other = solver_one["max_interpenetration_d"], solver_other["max_interpenetration_d"]
-    check(deepest_other < 2 * deepest_one, f"deepest interpenetration {deepest_other:.3g} d {label}, {deepest_one:.3g} d "
-          "in flow_run")
+    check(deepest_other < 2 * deepest_one,
+          f"deepest interpenetration {deepest_other:.3g} d {label}, {deepest_one:.3g} d in flow_run")
     capped = solver_other["steps_capped"] / solver_other["steps_solved"]
     check(capped < 0.05, f"{capped:.1%} of the steps {label} hit the iteration cap")
     return "; ".join(report) + f"; deepest interpenetration {deepest_one:.3g} / {deepest_other:.3g} d; " \
