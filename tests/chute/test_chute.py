@@ -191,8 +191,9 @@ def case_dt_change(args):
     check(all(abs(s * 1e-5 - t) < 1e-9 for s, t in zip(steps, times)), "steps are not chute time / 1e-5 s")
     with open(os.path.join(folder, "log.lammps")) as f:
         fix_lines = [line for line in f if line.startswith("fix cd all contact/dynamics")]
-    check(any("norm maximum warm_start no order shuffle" in line for line in fix_lines),
-          f"the chute's fix line lacks the solver -vars: {fix_lines[-1:]}")
+    solver_vars = ("norm maximum", "warm_start no", "acceleration none", "order shuffle")
+    check(any(all(v in line for v in solver_vars) for line in fix_lines),
+          f"the chute's fix line lacks the solver -vars {solver_vars}: {fix_lines[-1:]}")
     extremes = summary(output, "SOLVER")
     check(1 <= extremes["max_sweeps_per_step"] <= 200, f"largest sweeps per step {extremes['max_sweeps_per_step']}")
     print(f"dt change: 1.2 s restart continued at dt 1e-5 s to {times[-1]} s (steps {steps[0]:.0f}..{steps[-1]:.0f}); "
