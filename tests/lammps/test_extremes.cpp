@@ -29,18 +29,19 @@ bool all_velocities_finite(const LammpsSession& s)
   return true;
 }
 
-class FrictionAndRestitution : public ::testing::TestWithParam<std::tuple<double, double>> {};
+class FrictionAndRestitution : public ::testing::TestWithParam<std::tuple<double, double, bool>> {};
 
 // Grains raining and piling up (30 ms) for every friction and restitution of the stability
-// matrix. Overlap comes only from steps stopped by the iteration cap (1000 sweeps at
-// tolerance 1e-4), which high friction reaches most: it stays below 5e-3 d (1.3e-3 d seen at
-// mu = 10, e = 0; under 1e-3 d at mu = 0.5).
+// matrix, in plain sweeps and with conjugate acceleration. Overlap comes only from steps
+// stopped by the iteration cap (1000 sweeps at tolerance 1e-4), which high friction reaches
+// most: it stays below 5e-3 d (1.3e-3 d seen at mu = 10, e = 0; under 1e-3 d at mu = 0.5).
 TEST_P(FrictionAndRestitution, DepositionStaysBoundedAndFinite)
 {
-  const auto [mu, e] = GetParam();
+  const auto [mu, e, conjugate] = GetParam();
   LammpsSession s;
   s.commands(cdtest::disk_preamble);
-  s.commands(cdtest::small_deposition(77, "tolerance 1e-4", mu, e));
+  s.commands(
+      cdtest::small_deposition(77, conjugate ? "tolerance 1e-4 acceleration conjugate" : "tolerance 1e-4", mu, e));
   s.commands("run 3000");
   EXPECT_TRUE(all_velocities_finite(s));
   EXPECT_LT(max_overlap(s), 5e-3);
@@ -48,7 +49,7 @@ TEST_P(FrictionAndRestitution, DepositionStaysBoundedAndFinite)
 
 INSTANTIATE_TEST_SUITE_P(Matrix, FrictionAndRestitution,
                          ::testing::Combine(::testing::Values(0.0, 0.05, 0.5, 2.0, 10.0, 1e6),
-                                            ::testing::Values(0.0, 0.5, 1.0)));
+                                            ::testing::Values(0.0, 0.5, 1.0), ::testing::Bool()));
 
 // Grains thrown down at 1 m/s with dt = 1e-4 s move 0.2 d per step (the skin allows it).
 TEST(Extremes, LargeTimeStepKeepsCollisionsAnticipated)
