@@ -7,8 +7,8 @@ The campaign folder is written here as the runner leaves it (run folders with th
 outputs and legs, DONE), for the mu = 0.5 series and its replica, with flows that follow a
 known mu(I) rule, phi(U) law and oscillation; one run of the series is left unstarted. The
 report must analyse every finished run with cdpost, recover the laws from the series fit,
-measure the replica scatter, list the unstarted run, hold no dump or restart, and keep a
-hand-written discussion when it is made again. Standard library only.
+measure the replica scatter, list the unstarted run, hold no dump or restart, keep a
+hand-written discussion when it is made again, and show a rigid/soft comparison's table. Standard library only.
 """
 
 import argparse
@@ -143,8 +143,20 @@ def read_csv(path):
         return {row["name"]: row for row in csv.DictReader(src)}
 
 
-def report(cdpost, campaign, results):
-    cmd = [sys.executable, RUNNER, "--out", campaign, "--cdpost", cdpost, "--report", results] + SERIES_ARGS
+def write_comparison(folder):
+    """A rigid/soft comparison as reference/run_comparison.sh leaves it: cdref's table.csv, each
+    value column followed by its error column."""
+    os.makedirs(os.path.join(folder, "comparison"))
+    with open(os.path.join(folder, "comparison", "table.csv"), "w") as out:
+        out.write("run,label,code,overlap_target_d,error,U_sqrt(g d),error,phi,error,f_Hz,error,"
+                  "cpu_per_physical_s_s/s,error\n")
+        out.write("runs/rigid,rigid tol 1e-3,lmp_cd,,,24.67146,0.04768,0.75299,0.00046,21.64,4.39,184.06,\n")
+        out.write("runs/soft,granular hooke 1e-3,lammps-granular,0.001,,27.8237,0.0513,0.74780,0.00039,19.07,4.14,"
+                  "364.8,\n")
+
+
+def report(cdpost, campaign, results, *more):
+    cmd = [sys.executable, RUNNER, "--out", campaign, "--cdpost", cdpost, "--report", results, *more] + SERIES_ARGS
     done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     check(done.returncode == 0, "--report failed:\n" + done.stdout + done.stderr)
     return open(os.path.join(results, "README.md")).read()
@@ -210,12 +222,19 @@ def main():
         path = os.path.join(results, "README.md")
         text = readme.replace("(no discussion yet)", "The flows follow the rule they were made with.")
         open(path, "w").write(text)
-        again = report(os.path.abspath(args.cdpost), campaign, results)
+        comparison = os.path.join(work, "mu0.5-theta24")
+        write_comparison(comparison)
+        again = report(os.path.abspath(args.cdpost), campaign, results, "--comparison", comparison)
         check("The flows follow the rule they were made with." in again, "the discussion was lost on regeneration")
+        # The comparison's chosen columns, values with their errors, a column it lacks as '–'.
+        check("| rigid tol 1e-3 | – | – | 24.671 ± 0.048 | 0.75299 ± 0.00046 | – | 21.6 ± 4.4 |" in again
+              and "| granular hooke 1e-3 | 0.001 |" in again,
+              "the rigid/soft table is not in the README:\n" + again[again.find("## Rigid against soft"):][:800])
     except Failure as failure:
         print(f"FAILED report: {failure}")
         return 1
-    print("report: 7 runs analysed, mu(I) and phi(U) recovered, replica scatter measured, discussion kept")
+    print("report: 7 runs analysed, mu(I) and phi(U) recovered, replica scatter measured, discussion kept, "
+          "rigid/soft table shown")
     return 0
 
 

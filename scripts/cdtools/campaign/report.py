@@ -187,6 +187,36 @@ def section_replicas(pairs, scatter):
             + markdown_table(["quantity", "s (one run)", "pairs"], rows))
 
 
+# The columns of cdref's table.csv shown in the report, and their headings; each value column
+# is followed in the file by its error column ("error", empty where there is none).
+COMPARISON_COLUMNS = [("label", "run"), ("overlap_target_d", "overlap target (d)"),
+                      ("overlap_mean_d", "overlap mean (d)"), ("U_sqrt(g d)", "U (√(gd))"), ("phi", "φ"),
+                      ("h_d", "h (d)"), ("f_Hz", "f (Hz)"), ("A_sqrt(g d)", "A (√(gd))"),
+                      ("A_mean_sqrt(g d)", "A_mean (√(gd))"), ("contact_excess", "contact excess"),
+                      ("cpu_per_physical_s_s/s", "CPU s / phys s")]
+
+
+def comparison_summary(path):
+    """(headings, rows) of the chosen columns of a cdref table.csv, values with their errors."""
+    with open(path, newline="") as src:
+        reader = csv.reader(src)
+        names = next(reader)
+        rows = list(reader)
+    index = {name: k for k, name in enumerate(names) if name != "error"}
+
+    def cell(row, name):
+        k = index.get(name)
+        if k is None or k >= len(row) or row[k] == "":
+            return "–"
+        try:
+            value = float(row[k])
+        except ValueError:
+            return row[k]
+        has_error = k + 1 < len(names) and names[k + 1] == "error" and row[k + 1] != ""
+        return with_error(value, float(row[k + 1])) if has_error else number(value, 4)
+    return [heading for _, heading in COMPARISON_COLUMNS], [[cell(r, n) for n, _ in COMPARISON_COLUMNS] for r in rows]
+
+
 def section_comparisons(comparisons, destination):
     text = ""
     for source in comparisons:
@@ -197,13 +227,11 @@ def section_comparisons(comparisons, destination):
         if "table.csv" not in copied:
             text += f"## Rigid against soft: {name}\n\nno comparison table in {source}\n\n"
             continue
-        with open(os.path.join(target, "table.csv"), newline="") as src:
-            reader = csv.reader(src)
-            headings = next(reader)
-            rows = list(reader)
+        headings, rows = comparison_summary(os.path.join(target, "table.csv"))
         relative = os.path.relpath(target, destination)
         text += (f"## Rigid against soft: {name}\n\nThe same packing run by each model (reference/run_comparison.sh, "
-                 f"its commands in [{relative}/commands.txt]({relative}/commands.txt), the full report in "
+                 f"its commands in [{relative}/commands.txt]({relative}/commands.txt), every column in "
+                 f"[{relative}/table.csv]({relative}/table.csv) and the full report in "
                  f"[{relative}/report.md]({relative}/report.md)).\n\n" + markdown_table(headings, rows))
         spectra = [f for f in copied if f.startswith("figures/spectra") and f.endswith(".png")]
         text += "\n" + "".join(f"![{os.path.basename(f)}]({relative}/{f}) " for f in spectra[:2]) + "\n\n"
