@@ -142,6 +142,25 @@ TEST_F(ReferenceDecks, LammpsGranularHookeChute)
   EXPECT_NO_THROW(cdpost::read_ave_chunk((root / "granular-hooke" / "profile.chunk").string()));
 }
 
+// The samples of a flow continued in `part` go on one interval after those of `first`'s last
+// one, for 0.05 s, from the same state (the layer's velocity changes little in one interval).
+// `clock` is the flow.time column that counts time, `seconds` its unit in s.
+void expect_continued(const fs::path& first_dir, const fs::path& part, const std::string& clock, double seconds)
+{
+  const auto first = cdpost::read_ave_time((first_dir / "flow.time").string());
+  const auto second = cdpost::read_ave_time((part / "flow.time").string());
+  ASSERT_GT(first.rows(), 2u);
+  ASSERT_GT(second.rows(), 2u);
+  const auto& t1 = first.column(clock);
+  const auto& t2 = second.column(clock);
+  const double interval = t1[t1.size() - 1] - t1[t1.size() - 2];
+  EXPECT_NEAR(t2[0] - t1.back(), interval, 1e-3 * interval);
+  EXPECT_NEAR((t2.back() - t1.back()) * seconds, 0.05, 2 * interval * seconds);
+  const auto& u1 = first.column("v_u_flow");
+  const auto& u2 = second.column("v_u_flow");
+  EXPECT_NEAR(u2[0], u1.back(), 0.05 * std::abs(u1.back()) + 1e-4);
+}
+
 // A flow continued in a second part from the first part's flow.restart (run_comparison.sh
 // --soft-parts): the samples go on one interval after the first part's last, from the same
 // state (the layer's velocity changes little in one interval), with no warning.
@@ -156,18 +175,7 @@ TEST_F(ReferenceDecks, LammpsGranularFlowContinuesInParts)
             0)
       << read_file(part / "screen.txt");
   EXPECT_EQ(read_file(part / "screen.txt").find("WARNING"), std::string::npos);
-  const auto first = cdpost::read_ave_time((root / "granular-hooke" / "flow.time").string());
-  const auto second = cdpost::read_ave_time((part / "flow.time").string());
-  ASSERT_GT(first.rows(), 2u);
-  ASSERT_GT(second.rows(), 2u);
-  const auto& t1 = first.column("v_time");
-  const auto& t2 = second.column("v_time");
-  const double interval = t1[t1.size() - 1] - t1[t1.size() - 2];
-  EXPECT_NEAR(t2[0] - t1.back(), interval, 1e-3 * interval);
-  EXPECT_NEAR(t2.back() - t1.back(), 0.05, 2 * interval);
-  const auto& u1 = first.column("v_u_flow");
-  const auto& u2 = second.column("v_u_flow");
-  EXPECT_NEAR(u2[0], u1.back(), 0.05 * std::abs(u1.back()) + 1e-4);
+  expect_continued(root / "granular-hooke", part, "v_time", 1.0);
 }
 
 // The same for LIGGGHTS (flow.time has no time column: TimeStep x dt). The warnings of fix
@@ -183,19 +191,8 @@ TEST_F(ReferenceDecks, LiggghtsFlowContinuesInParts)
                              " -var overlap 1e-2"),
             0)
       << read_file(part / "screen.txt");
-  const auto first = cdpost::read_ave_time((root / "liggghts" / "flow.time").string());
-  const auto second = cdpost::read_ave_time((part / "flow.time").string());
-  ASSERT_GT(first.rows(), 2u);
-  ASSERT_GT(second.rows(), 2u);
-  const auto& s1 = first.column("TimeStep");
-  const auto& s2 = second.column("TimeStep");
-  const double interval = s1[s1.size() - 1] - s1[s1.size() - 2];
-  EXPECT_EQ(s2[0] - s1.back(), interval);
   const double dt = *cdref::read_run_info((root / "liggghts" / "run.info").string()).number("dt");
-  EXPECT_NEAR((s2.back() - s1.back()) * dt, 0.05, 2 * interval * dt);
-  const auto& u1 = first.column("v_u_flow");
-  const auto& u2 = second.column("v_u_flow");
-  EXPECT_NEAR(u2[0], u1.back(), 0.05 * std::abs(u1.back()) + 1e-4);
+  expect_continued(root / "liggghts", part, "TimeStep", dt);
 }
 
 TEST_F(ReferenceDecks, LammpsGranularHertzChute)
