@@ -542,18 +542,19 @@ def case_runner_resume(args):
            "--series", "mu0.5", "--only", "mu0.5_theta24_*", "--var", "L=8", "--var", "grains=80",
            "--var", "wall_height=4", "--var", "restart_interval=0.02", "--var", "profile_interval=0.01",
            "--var", "dt=2e-5", "--var", "tolerance=1e-3", "--var", "skin=0.6",
-           "--duration", "0.3", "--progress-interval", "2"]
+           "--duration", "0.6", "--progress-interval", "2"]
     run = os.path.join(out, "runs", "mu0.5_theta24_L8")
     runner = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     deadline = time.time() + 120
     leg0 = os.path.join(run, "legs", "00")
     while time.time() < deadline and not os.path.exists(os.path.join(leg0, "restart.b")):
-        time.sleep(0.2)
+        time.sleep(0.05)
     check(os.path.exists(os.path.join(leg0, "restart.b")), "no periodic restart within 120 s")
     runner.send_signal(signal.SIGTERM)
     first_output = runner.communicate(timeout=60)[0]
     check("interrupted" in first_output, "the runner did not report the interruption:\n" + first_output)
-    check(not os.path.exists(os.path.join(run, "DONE")), "the run finished before the interruption")
+    check(not os.path.exists(os.path.join(leg0, "chute.restart")),
+          "the run reached its end before the interruption: lengthen --duration")
 
     second = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     check(second.returncode == 0, "second invocation failed:\n" + second.stdout + second.stderr)
@@ -565,11 +566,11 @@ def case_runner_resume(args):
     rows = read_time_file(os.path.join(run, "flow.time"))
     steps = [int(r["TimeStep"]) for r in rows]
     every = steps[1] - steps[0]
-    check(steps[0] == 0 and steps[-1] == int(round(0.3 / 2e-5)),
+    check(steps[0] == 0 and steps[-1] == int(round(0.6 / 2e-5)),
           f"flow.time covers steps {steps[0]}..{steps[-1]}")
     check(all(b - a == every for a, b in zip(steps, steps[1:])), "flow.time has gaps or repeats")
     times = [r["v_time"] for r in rows]
-    check(abs(times[-1] - 0.3) < 1e-9, f"flow.time ends at {times[-1]} s")
+    check(abs(times[-1] - 0.6) < 1e-9, f"flow.time ends at {times[-1]} s")
     for name in ("params.json", "cost.json", "chute.restart", "profile.chunk", "layers.chunk",
                  "packing.chunk", "solver.time", "dump.chute.gz"):
         check(os.path.exists(os.path.join(run, name)), f"{name} missing from the run folder")
