@@ -61,7 +61,7 @@ FixContactDynamics::FixContactDynamics(LAMMPS* lmp, int narg, char** arg) : Fix(
 
   time_integrate = 1;
   vector_flag = 1;
-  size_vector = 10;
+  size_vector = 11;
   global_freq = 1;
   extvector = 0;
   local_flag = 1;
@@ -217,6 +217,11 @@ void FixContactDynamics::parse_arguments(int narg, char** arg)
       if (acceleration == "none") solver_settings.acceleration = cd::Acceleration::none;
       else if (acceleration == "conjugate") solver_settings.acceleration = cd::Acceleration::conjugate;
       else error->all(FLERR, "Fix contact/dynamics: acceleration must be none or conjugate, got '{}'", acceleration);
+    } else if (keyword == "full_sweep_every") {
+      solver_settings.full_sweep_every = integer_for("full_sweep_every", value, error);
+      if (solver_settings.full_sweep_every < 1)
+        error->all(FLERR, "Fix contact/dynamics: full_sweep_every must be >= 1, got {}",
+                   solver_settings.full_sweep_every);
     } else if (keyword == "warm_start") {
       warm_start = yes_or_no("warm_start", value, error);
     } else if (keyword == "pair_forces") {
@@ -1013,13 +1018,14 @@ void FixContactDynamics::write_back_motion()
 // The step's output vector: sums and maxima over ranks.
 void FixContactDynamics::reduce_step_outputs(const cd::OverlapSums& overlaps)
 {
-  const double local_sums[3] = {static_cast<double>(pairs.solved.size()), static_cast<double>(loaded_contacts),
-                                overlaps.total};
-  double sums[3], deepest = 0.0;
-  MPI_Allreduce(local_sums, sums, 3, MPI_DOUBLE, MPI_SUM, world);
+  const double local_sums[4] = {static_cast<double>(pairs.solved.size()), static_cast<double>(loaded_contacts),
+                                overlaps.total, last_report.contact_updates};
+  double sums[4], deepest = 0.0;
+  MPI_Allreduce(local_sums, sums, 4, MPI_DOUBLE, MPI_SUM, world);
   MPI_Allreduce(&overlaps.deepest, &deepest, 1, MPI_DOUBLE, MPI_MAX, world);
   solved_contacts_total = sums[0];
   loaded_contacts_total = sums[1];
+  full_sweep_work = sums[0] > 0.0 ? sums[3] / sums[0] : 0.0;
   max_overlap = deepest / mean_diameter;
   mean_overlap = sums[0] > 0.0 ? sums[2] / sums[0] / mean_diameter : 0.0;
 }
@@ -1147,6 +1153,7 @@ double FixContactDynamics::compute_vector(int n)
     case 7: return total_iterations;
     case 8: return total_unconverged_steps;
     case 9: return total_steps;
+    case 10: return full_sweep_work;
   }
   return 0.0;
 }

@@ -143,7 +143,8 @@ class FixContactDynamics : public Fix {
   cd::SolveReport last_report;
   double max_overlap = 0.0, mean_overlap = 0.0;                     // in units of the mean diameter, over all ranks
   double solved_contacts_total = 0.0, loaded_contacts_total = 0.0;  // over all ranks
-  int loaded_contacts = 0;                                          // on this rank
+  double full_sweep_work = 0.0;  // the step's local solves over all ranks / solved contacts
+  int loaded_contacts = 0;       // on this rank
 
   // --- running totals (kept across restarts) ---
   double total_iterations = 0.0, total_unconverged_steps = 0.0, total_steps = 0.0;

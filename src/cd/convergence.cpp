@@ -17,4 +17,15 @@ double SweepChange::residual(ConvergenceNorm norm) const
   return std::numeric_limits<double>::infinity();
 }
 
+double SweepChange::quiet_change_sq(ConvergenceNorm norm, double tolerance, double fraction) const
+{
+  if (contacts == 0.0) return 0.0;
+  const double limit = fraction * tolerance;
+  switch (norm) {
+    case ConvergenceNorm::quadratic: return limit * limit * sum_scale_sq / contacts;
+    case ConvergenceNorm::maximum: return limit * limit * (sum_scale / contacts) * (sum_scale / contacts);
+  }
+  return 0.0;
+}
+
 }  // namespace cd

@@ -55,6 +55,10 @@ struct SweepChange {
 
   // The chosen norm; 0 when nothing changed, infinite when impulses changed but all vanished.
   double residual(ConvergenceNorm norm) const;
+
+  // The square of the change |W dp| below which a contact of this sweep counts as quiet: were
+  // every contact that quiet, the norm would be at most fraction * tolerance.
+  double quiet_change_sq(ConvergenceNorm norm, double tolerance, double fraction) const;
 };
 
 }  // namespace cd

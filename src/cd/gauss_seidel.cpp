@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <limits>
 
 namespace cd {
 
@@ -71,7 +72,7 @@ inline Local2 accelerated(Contact& c, Local2 p, double beta)
 // the relative velocity that already includes the contact's own impulse. The norm records the
 // local solve's change, before any acceleration.
 template <ConvergenceNorm norm, bool conjugate>
-inline void update_frictional(Contact& c, BodyVelocity* velocity, double relaxation, double beta, SweepChange& change)
+inline double update_frictional(Contact& c, BodyVelocity* velocity, double relaxation, double beta, SweepChange& change)
 {
   BodyVelocity& a = velocity[c.body_a];
   BodyVelocity& b = velocity[c.body_b];
@@ -79,28 +80,32 @@ inline void update_frictional(Contact& c, BodyVelocity* velocity, double relaxat
   const Local2 stick{c.impulse.n - c.delassus.inverse_nn * (u.n + c.velocity_bias),
                      c.impulse.t - c.delassus.inverse_tt * u.t};
   const Local2 solved = relaxed(solve_coulomb_disk(stick, c.mu), c.impulse, relaxation);
-  record_change<norm>(change, c.delassus.times({solved.n - c.impulse.n, solved.t - c.impulse.t}),
-                      c.delassus.times(solved));
+  const Local2 velocity_change = c.delassus.times({solved.n - c.impulse.n, solved.t - c.impulse.t});
+  record_change<norm>(change, velocity_change, c.delassus.times(solved));
   const Local2 p = accelerated<conjugate>(c, solved, beta);
   const Local2 dp{p.n - c.impulse.n, p.t - c.impulse.t};
   c.impulse = p;
   apply_impulse(c, dp, a, b);
+  return velocity_change.n * velocity_change.n + velocity_change.t * velocity_change.t;
 }
 
 // update_frictional for mu = 0, where p_t stays 0 (warm_start drops a carried one): the
 // normal velocity and the normal impulse; no tangential solve, no spin.
 template <ConvergenceNorm norm, bool conjugate>
-inline void update_frictionless(Contact& c, BodyVelocity* velocity, double relaxation, double beta, SweepChange& change)
+inline double update_frictionless(Contact& c, BodyVelocity* velocity, double relaxation, double beta,
+                                  SweepChange& change)
 {
   BodyVelocity& a = velocity[c.body_a];
   BodyVelocity& b = velocity[c.body_b];
   const double stick_n = c.impulse.n - c.delassus.inverse_nn * (relative_velocity(c, a, b).n + c.velocity_bias);
   const double solved_n = relaxed({std::max(stick_n, 0.0), 0.0}, c.impulse, relaxation).n;
-  record_change<norm>(change, {c.delassus.nn * (solved_n - c.impulse.n), 0.0}, {c.delassus.nn * solved_n, 0.0});
+  const double velocity_change = c.delassus.nn * (solved_n - c.impulse.n);
+  record_change<norm>(change, {velocity_change, 0.0}, {c.delassus.nn * solved_n, 0.0});
   const double p_n = accelerated<conjugate>(c, {solved_n, 0.0}, beta).n;
   const double dp_n = p_n - c.impulse.n;
   c.impulse.n = p_n;
   apply_normal_impulse(c, dp_n, a, b);
+  return velocity_change * velocity_change;
 }
 
 }  // namespace
@@ -190,21 +195,79 @@ void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVeloci
 
 namespace {
 
+// The local solve of one contact, its kind chosen per contact: a branch per contact rather
+// than one sweep per kind serves scenes that mix mu = 0 with friction (mu/types, rough walls).
+// Returns |W dp|^2 of the local solve.
 template <ConvergenceNorm norm, bool conjugate>
-SweepChange sweep_range(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings,
-                        double beta)
+inline double update_contact(Contact& c, BodyVelocity* velocity, const SolverSettings& settings, double beta,
+                             SweepChange& change)
 {
-  SweepChange change;
-  const bool shortcut = settings.frictionless_shortcut;
-  const double w = settings.relaxation;
-  // A branch per contact rather than one sweep per kind: it serves scenes that mix mu = 0
-  // with friction (mu/types, rough walls).
-  for (Contact* c = first; c != last; ++c) {
-    if (shortcut && c->mu == 0.0) update_frictionless<norm, conjugate>(*c, velocity, w, beta, change);
-    else update_frictional<norm, conjugate>(*c, velocity, w, beta, change);
-  }
-  return change;
+  if (settings.frictionless_shortcut && c.mu == 0.0)
+    return update_frictionless<norm, conjugate>(c, velocity, settings.relaxation, beta, change);
+  return update_frictional<norm, conjugate>(c, velocity, settings.relaxation, beta, change);
 }
+
+template <ConvergenceNorm norm_, bool conjugate_>
+struct SweepKind {
+  static constexpr ConvergenceNorm norm = norm_;
+  static constexpr bool conjugate = conjugate_;
+};
+
+// Calls loop(SweepKind<norm, conjugate>{}) for the settings' norm and acceleration, so that
+// the sweep loops are compiled once per kind.
+template <class Loop>
+SweepChange for_kind(const SolverSettings& settings, Loop loop)
+{
+  const bool quadratic = settings.norm == ConvergenceNorm::quadratic;
+  if (settings.acceleration == Acceleration::conjugate)
+    return quadratic ? loop(SweepKind<ConvergenceNorm::quadratic, true>{})
+                     : loop(SweepKind<ConvergenceNorm::maximum, true>{});
+  return quadratic ? loop(SweepKind<ConvergenceNorm::quadratic, false>{})
+                   : loop(SweepKind<ConvergenceNorm::maximum, false>{});
+}
+
+// A sweep over [first, last); with `change_sq`, each contact's |W dp|^2 lands in it.
+SweepChange sweep_measuring(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings,
+                            double beta, double* change_sq)
+{
+  return for_kind(settings, [&](auto kind) {
+    using Kind = decltype(kind);
+    SweepChange change;
+    for (Contact* c = first; c != last; ++c) {
+      const double changed = update_contact<Kind::norm, Kind::conjugate>(*c, velocity, settings, beta, change);
+      if (change_sq) change_sq[c - first] = changed;
+    }
+    return change;
+  });
+}
+
+// A sweep over the listed contacts, in the list's order.
+SweepChange sweep_listed(Contact* contacts, const std::vector<int>& listed, BodyVelocity* velocity,
+                         const SolverSettings& settings, double beta)
+{
+  return for_kind(settings, [&](auto kind) {
+    using Kind = decltype(kind);
+    SweepChange change;
+    for (const int k : listed)
+      update_contact<Kind::norm, Kind::conjugate>(contacts[k], velocity, settings, beta, change);
+    return change;
+  });
+}
+
+}  // namespace
+
+SweepChange sweep(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings, double beta)
+{
+  return sweep_measuring(first, last, velocity, settings, beta, nullptr);
+}
+
+SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const SolverSettings& settings,
+                  double beta)
+{
+  return sweep(contacts.data(), contacts.data() + contacts.size(), velocity.data(), settings, beta);
+}
+
+namespace {
 
 // The beta of conjugate acceleration, sweep after sweep of one solve. beta = |W r_k|^2 /
 // |W r_(k-1)|^2, summed over the contacts of every rank, and 0 (a restart) after the first
@@ -223,51 +286,137 @@ class ConjugateBeta {
     return beta_;
   }
 
+  // Starts the directions afresh for a new cycle of SolverSettings::full_sweep_every, in
+  // which acceleration may switch itself off again; a cycle that ended no closer to the
+  // solution than the one before (its full sweep changed as much) switches it off for the rest
+  // of the solve: at a tolerance near round-off the pushes only disturb.
+  void restart(bool cycle_progressed)
+  {
+    beta_ = 0.0;
+    previous_sq_ = 0.0;
+    if (cycle_progressed && failures_ < switched_off_for_good) failures_ = 0;
+    else failures_ = switched_off_for_good;
+  }
+
  private:
   static constexpr int max_failures = 3;
+  static constexpr int switched_off_for_good = 1 << 20;
   double beta_ = 0.0;
   double previous_sq_ = 0.0;
   int failures_ = 0;
 };
 
-}  // namespace
-
-SweepChange sweep(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings, double beta)
+// Counts one sweep of `updates` local solves into the report; true if it met the tolerance.
+bool count_sweep(SolveReport& report, const SweepChange& change, std::size_t updates, const SolverSettings& settings)
 {
-  const bool quadratic = settings.norm == ConvergenceNorm::quadratic;
-  if (settings.acceleration == Acceleration::conjugate)
-    return quadratic ? sweep_range<ConvergenceNorm::quadratic, true>(first, last, velocity, settings, beta)
-                     : sweep_range<ConvergenceNorm::maximum, true>(first, last, velocity, settings, beta);
-  return quadratic ? sweep_range<ConvergenceNorm::quadratic, false>(first, last, velocity, settings, 0.0)
-                   : sweep_range<ConvergenceNorm::maximum, false>(first, last, velocity, settings, 0.0);
+  ++report.iterations;
+  report.contact_updates += static_cast<double>(updates);
+  report.residual = change.residual(settings.norm);
+  return report.residual <= settings.tolerance;
 }
 
-SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const SolverSettings& settings,
-                  double beta)
-{
-  return sweep(contacts.data(), contacts.data() + contacts.size(), velocity.data(), settings, beta);
-}
-
-SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                               const SolverSettings& settings, SweepExchange* exchange)
+// Every sweep over every contact (full_sweep_every 1).
+SolveReport solve_in_full_sweeps(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                                 const SolverSettings& settings, SweepExchange* exchange)
 {
   SolveReport report;
-  // Without an exchange there is nothing to do; with one, every rank takes part in every
-  // sweep's exchange, contacts or not.
-  if (contacts.empty() && !exchange) return report;
   ConjugateBeta conjugate;
   double beta = 0.0;
   while (report.iterations < settings.max_iterations) {
     SweepChange change = sweep(contacts, velocity, settings, beta);
     if (exchange) exchange->after_sweep(change);
-    ++report.iterations;
-    report.residual = change.residual(settings.norm);
-    if (report.residual <= settings.tolerance) return report;
+    if (count_sweep(report, change, contacts.size(), settings)) return report;
     if (settings.acceleration == Acceleration::conjugate)
       beta = conjugate.next(change.sum_change_sq, report.iterations, settings.max_iterations);
   }
-  report.converged = report.residual <= settings.tolerance;
+  report.converged = false;
   return report;
+}
+
+// The contacts a cycle's full sweep left changing, by their place in the contact list (in
+// sweep order). The quiet ones keep their impulses until the next full sweep, so their share of
+// the norm's scale is summed once.
+class ActiveContacts {
+ public:
+  void select(const std::vector<Contact>& contacts, const std::vector<double>& change_sq, double quiet_sq)
+  {
+    listed_.clear();
+    quiet_ = SweepChange{};
+    for (std::size_t k = 0; k < contacts.size(); k++) {
+      if (change_sq[k] > quiet_sq) listed_.push_back(static_cast<int>(k));
+      else quiet_.add({0.0, 0.0}, contacts[k].delassus.times(contacts[k].impulse));
+    }
+  }
+
+  // A sweep over the active contacts, its sums completed by the quiet contacts' scale.
+  SweepChange sweep(std::vector<Contact>& contacts, BodyVelocity* velocity, const SolverSettings& settings,
+                    double beta) const
+  {
+    SweepChange change = sweep_listed(contacts.data(), listed_, velocity, settings, beta);
+    change.merge(quiet_);
+    return change;
+  }
+
+  std::size_t size() const { return listed_.size(); }
+
+ private:
+  std::vector<int> listed_;
+  SweepChange quiet_;
+};
+
+// Reused from solve to solve: once the largest problem has been seen, a step allocates nothing.
+struct CycleWorkspace {
+  std::vector<double> change_sq;
+  ActiveContacts active;
+};
+
+// A contact counts as quiet when its change in the full sweep is below this fraction of the
+// tolerance (SweepChange::quiet_change_sq). Measured on the 45 d chute (doc/benchmarks.md):
+// 0.25–1 cut the local solves alike; 3 left more for the full sweeps to find.
+constexpr double quiet_fraction = 0.5;
+
+// Cycles of one full sweep and up to full_sweep_every - 1 sweeps over the active contacts. The
+// full sweep runs plain (a restart of conjugate directions) and alone decides convergence.
+SolveReport solve_in_cycles(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                            const SolverSettings& settings, SweepExchange* exchange)
+{
+  static thread_local CycleWorkspace work;
+  work.change_sq.resize(contacts.size());
+  SolveReport report;
+  ConjugateBeta conjugate;
+  double previous_full_residual = std::numeric_limits<double>::infinity();
+  while (report.iterations < settings.max_iterations) {
+    SweepChange change = sweep_measuring(contacts.data(), contacts.data() + contacts.size(), velocity.data(), settings,
+                                         0.0, work.change_sq.data());
+    if (exchange) exchange->after_sweep(change);
+    if (count_sweep(report, change, contacts.size(), settings)) return report;
+    work.active.select(contacts, work.change_sq,
+                       change.quiet_change_sq(settings.norm, settings.tolerance, quiet_fraction));
+    conjugate.restart(report.residual < previous_full_residual);
+    previous_full_residual = report.residual;
+    double beta = 0.0;
+    for (int k = 1; k < settings.full_sweep_every && report.iterations < settings.max_iterations; k++) {
+      SweepChange active_change = work.active.sweep(contacts, velocity.data(), settings, beta);
+      if (exchange) exchange->after_sweep(active_change);
+      if (count_sweep(report, active_change, work.active.size(), settings)) break;
+      if (settings.acceleration == Acceleration::conjugate)
+        beta = conjugate.next(active_change.sum_change_sq, report.iterations, settings.max_iterations);
+    }
+  }
+  report.converged = false;
+  return report;
+}
+
+}  // namespace
+
+SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                               const SolverSettings& settings, SweepExchange* exchange)
+{
+  // Without an exchange there is nothing to do; with one, every rank takes part in every
+  // sweep's exchange, contacts or not.
+  if (contacts.empty() && !exchange) return {};
+  return settings.full_sweep_every > 1 ? solve_in_cycles(contacts, velocity, settings, exchange)
+                                       : solve_in_full_sweeps(contacts, velocity, settings, exchange);
 }
 
 double end_of_step_gap(double gap, double normal_velocity, const StepParameters& step)

@@ -17,7 +17,7 @@ from ..run import DECK, lmp_command, start_detached
 # measured rate of finished and running legs as soon as there is one. Chute progress is
 # counted in chute time, not steps: the step follows the flow (adapt_dt), so steps do not
 # map to time.
-PRIOR_SECONDS_PER_GRAIN_CHUTE_SECOND = 0.03
+PRIOR_SECONDS_PER_GRAIN_CHUTE_SECOND = 0.02
 PRIOR_SECONDS_PER_GRAIN_DEPOSITION_STEP = 1.0e-6
 # Grains of the 45 d cell: a run of another length without a grain count scales them with L.
 GRAINS_PER_45_D = 3967
