@@ -199,12 +199,11 @@ namespace {
 // than one sweep per kind serves scenes that mix mu = 0 with friction (mu/types, rough walls).
 // Returns |W dp|^2 of the local solve.
 template <ConvergenceNorm norm, bool conjugate>
-inline double update_contact(Contact& c, BodyVelocity* velocity, const SolverSettings& settings, double beta,
+inline double update_contact(Contact& c, BodyVelocity* velocity, bool shortcut, double relaxation, double beta,
                              SweepChange& change)
 {
-  if (settings.frictionless_shortcut && c.mu == 0.0)
-    return update_frictionless<norm, conjugate>(c, velocity, settings.relaxation, beta, change);
-  return update_frictional<norm, conjugate>(c, velocity, settings.relaxation, beta, change);
+  if (shortcut && c.mu == 0.0) return update_frictionless<norm, conjugate>(c, velocity, relaxation, beta, change);
+  return update_frictional<norm, conjugate>(c, velocity, relaxation, beta, change);
 }
 
 template <ConvergenceNorm norm_, bool conjugate_>
@@ -214,7 +213,8 @@ struct SweepKind {
 };
 
 // Calls loop(SweepKind<norm, conjugate>{}) for the settings' norm and acceleration, so that
-// the sweep loops are compiled once per kind.
+// the sweep loops are compiled once per kind. The loops copy the settings they read into
+// locals: a store to a velocity could otherwise alias them and force a reload per contact.
 template <class Loop>
 SweepChange for_kind(const SolverSettings& settings, Loop loop)
 {
@@ -232,9 +232,11 @@ SweepChange sweep_measuring(Contact* first, Contact* last, BodyVelocity* velocit
 {
   return for_kind(settings, [&](auto kind) {
     using Kind = decltype(kind);
+    const bool shortcut = settings.frictionless_shortcut;
+    const double w = settings.relaxation;
     SweepChange change;
     for (Contact* c = first; c != last; ++c) {
-      const double changed = update_contact<Kind::norm, Kind::conjugate>(*c, velocity, settings, beta, change);
+      const double changed = update_contact<Kind::norm, Kind::conjugate>(*c, velocity, shortcut, w, beta, change);
       if (change_sq) change_sq[c - first] = changed;
     }
     return change;
@@ -247,9 +249,11 @@ SweepChange sweep_listed(Contact* contacts, const std::vector<int>& listed, Body
 {
   return for_kind(settings, [&](auto kind) {
     using Kind = decltype(kind);
+    const bool shortcut = settings.frictionless_shortcut;
+    const double w = settings.relaxation;
     SweepChange change;
     for (const int k : listed)
-      update_contact<Kind::norm, Kind::conjugate>(contacts[k], velocity, settings, beta, change);
+      update_contact<Kind::norm, Kind::conjugate>(contacts[k], velocity, shortcut, w, beta, change);
     return change;
   });
 }
@@ -280,7 +284,7 @@ class ConjugateBeta {
   {
     if (beta_ > 0.0) failures_ = change_sq > previous_sq_ ? failures_ + 1 : 0;
     const bool restart = !(previous_sq_ > 0.0) || change_sq > previous_sq_;
-    const bool give_up = failures_ >= max_failures || iterations >= max_iterations / 2;
+    const bool give_up = off_for_the_solve_ || failures_ >= max_failures || iterations >= max_iterations / 2;
     beta_ = restart || give_up ? 0.0 : change_sq / previous_sq_;
     previous_sq_ = change_sq;
     return beta_;
@@ -294,13 +298,13 @@ class ConjugateBeta {
   {
     beta_ = 0.0;
     previous_sq_ = 0.0;
-    if (cycle_progressed && failures_ < switched_off_for_good) failures_ = 0;
-    else failures_ = switched_off_for_good;
+    failures_ = 0;
+    off_for_the_solve_ = off_for_the_solve_ || !cycle_progressed;
   }
 
  private:
   static constexpr int max_failures = 3;
-  static constexpr int switched_off_for_good = 1 << 20;
+  bool off_for_the_solve_ = false;
   double beta_ = 0.0;
   double previous_sq_ = 0.0;
   int failures_ = 0;
@@ -376,18 +380,21 @@ struct CycleWorkspace {
 constexpr double quiet_fraction = 0.5;
 
 // Cycles of one full sweep and up to full_sweep_every - 1 sweeps over the active contacts. The
-// full sweep runs plain (a restart of conjugate directions) and alone decides convergence.
+// full sweep runs plain (conjugate directions restart after it) and alone decides convergence.
 SolveReport solve_in_cycles(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
                             const SolverSettings& settings, SweepExchange* exchange)
 {
   static thread_local CycleWorkspace work;
   work.change_sq.resize(contacts.size());
+  // The full sweep records no conjugate direction: the first active sweep, unpushed, does.
+  SolverSettings full_sweep = settings;
+  full_sweep.acceleration = Acceleration::none;
   SolveReport report;
   ConjugateBeta conjugate;
   double previous_full_residual = std::numeric_limits<double>::infinity();
   while (report.iterations < settings.max_iterations) {
-    SweepChange change = sweep_measuring(contacts.data(), contacts.data() + contacts.size(), velocity.data(), settings,
-                                         0.0, work.change_sq.data());
+    SweepChange change = sweep_measuring(contacts.data(), contacts.data() + contacts.size(), velocity.data(),
+                                         full_sweep, 0.0, work.change_sq.data());
     if (exchange) exchange->after_sweep(change);
     if (count_sweep(report, change, contacts.size(), settings)) return report;
     work.active.select(contacts, work.change_sq,
