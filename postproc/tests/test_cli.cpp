@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "synthetic_run.h"
@@ -199,10 +200,13 @@ TEST(Cli, SeriesRecoversTheFlowRulesAndScalings)
 // Pouliquen's rule with beta = 0.3, l = 6 (theta1 = 20, theta2 = 33 deg) at mu = 0.5: five
 // flowing runs with layers (amplitude decaying as exp((z - h)/20 d)), two at mu = 2, and three stopped runs,
 // which have no run directory (a stopped run is not read).
-TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay)
+constexpr double kPouliquenBeta = 0.3, kPouliquenEll = 6;
+
+// Writes the runs and DIR/series.csv of that series.
+void write_pouliquen_series(const std::filesystem::path& dir)
 {
-  auto dir = testing::scratch_dir();
-  const double beta = 0.3, ell = 6, tan1 = std::tan(20 * M_PI / 180), tan2 = std::tan(33 * M_PI / 180);
+  const double beta = kPouliquenBeta, ell = kPouliquenEll;
+  const double tan1 = std::tan(20 * M_PI / 180), tan2 = std::tan(33 * M_PI / 180);
   auto h_stop = [&](double theta) { return -ell * std::log((std::tan(theta * M_PI / 180) - tan1) / (tan2 - tan1)); };
   std::ofstream manifest(dir / "series.csv");
   manifest << "run,mu,theta,L,stopped,h_stop\n";
@@ -221,7 +225,27 @@ TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay)
   }
   for (double theta : {20.5, 21.0, 21.5})
     manifest << "stopped" << theta << ",0.5," << theta << ",45,1," << h_stop(theta) << "\n";
-  manifest.close();
+}
+
+// name -> value of every row of a results or fits CSV.
+std::map<std::string, double> csv_values(const std::filesystem::path& csv)
+{
+  std::map<std::string, double> values;
+  std::istringstream lines(slurp(csv));
+  std::string line;
+  std::getline(lines, line);
+  while (std::getline(lines, line)) {
+    const auto comma = line.find(',');
+    values[line.substr(0, comma)] = std::stod(line.substr(comma + 1));
+  }
+  return values;
+}
+
+TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay)
+{
+  auto dir = testing::scratch_dir();
+  const double beta = kPouliquenBeta, ell = kPouliquenEll;
+  write_pouliquen_series(dir);
   auto outcome = cdpost("series " + (dir / "series.csv").string() + " --out " + (dir / "post").string());
   ASSERT_EQ(outcome.status, 0) << outcome.err;
   const auto fits = dir / "post/fits.csv";
@@ -281,6 +305,63 @@ TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay)
   bad = cdpost("series " + (dir / "bad.csv").string());
   EXPECT_EQ(bad.err, "cdpost: error: " + (dir / "bad.csv").string() +
                          ":2: a stopped run needs its deposit thickness in the column h_stop (d)\n");
+}
+
+// The runs as `cdpost run` publishes them (results.csv, layers.csv: what results/runs/<name>
+// keeps) give the series the same fits as their raw outputs, to the 10 digits written.
+TEST(Cli, SeriesFromPublishedRunsGivesTheSameFits)
+{
+  auto dir = testing::scratch_dir();
+  write_pouliquen_series(dir);
+  auto raw = cdpost("series " + (dir / "series.csv").string() + " --out " + (dir / "post").string());
+  ASSERT_EQ(raw.status, 0) << raw.err;
+  std::ofstream manifest(dir / "published.csv");
+  std::istringstream rows(slurp(dir / "series.csv"));
+  std::string row;
+  while (std::getline(rows, row)) {
+    if (row.rfind("run", 0) == 0 && row.rfind("run,", 0) != 0) {
+      const auto name = row.substr(0, row.find(','));
+      auto published = cdpost("run " + (dir / name).string() + " --out " + (dir / "published" / name).string());
+      ASSERT_EQ(published.status, 0) << published.err;
+      row = "published/" + row;
+    }
+    manifest << row << "\n";
+  }
+  manifest.close();
+  auto read = cdpost("series " + (dir / "published.csv").string() + " --out " + (dir / "post2").string());
+  ASSERT_EQ(read.status, 0) << read.err;
+  const auto expected = csv_values(dir / "post/fits.csv"), found = csv_values(dir / "post2/fits.csv");
+  ASSERT_GT(expected.size(), 20u);
+  ASSERT_EQ(found.size(), expected.size());
+  for (const auto& [name, value] : expected) {
+    ASSERT_EQ(found.count(name), 1u) << name;
+    // Ten digits written; a correlation with the nearly constant phi amplifies their rounding
+    // by about phi over its spread (~1e4).
+    EXPECT_NEAR(found.at(name), value, 1e-5 * std::max(1.0, std::abs(value))) << name;
+  }
+  auto amplitudes = slurp(dir / "post2/layer_amplitudes.csv");
+  for (size_t at; (at = amplitudes.find("published/")) != std::string::npos;) amplitudes.erase(at, 10);
+  EXPECT_EQ(amplitudes, slurp(dir / "post/layer_amplitudes.csv"));
+
+  // A malformed published file fails with its file and line.
+  const auto results = dir / "published/run3/results.csv";
+  auto text = slurp(results);
+  const auto u_row = text.find("\nU,");
+  text.replace(u_row + 3, text.find(',', u_row + 3) - (u_row + 3), "fast");
+  std::ofstream(results) << text;
+  auto bad = cdpost("series " + (dir / "published.csv").string() + " --out " + (dir / "post3").string());
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.err.find(results.string() + ":"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("U"), std::string::npos) << bad.err;
+  std::ofstream(results) << "name,value,error,unit,description\nU,1,,sqrt(g d),\"unterminated\n";
+  bad = cdpost("series " + (dir / "published.csv").string() + " --out " + (dir / "post3").string());
+  EXPECT_NE(bad.err.find(results.string() + ":2: unterminated quoted field"), std::string::npos) << bad.err;
+  std::filesystem::copy_file(dir / "published/run2/results.csv", results,
+                             std::filesystem::copy_options::overwrite_existing);
+  const auto layers = dir / "published/run3/layers.csv";
+  std::ofstream(layers) << "z_d,f_peak_Hz\n1,2\n";
+  bad = cdpost("series " + (dir / "published.csv").string() + " --out " + (dir / "post3").string());
+  EXPECT_NE(bad.err.find(layers.string() + ":1: expected the header z_d, f_peak_Hz"), std::string::npos) << bad.err;
 }
 
 }  // namespace

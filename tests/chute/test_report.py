@@ -7,8 +7,10 @@ The campaign folder is written here as the runner leaves it (run folders with th
 outputs and legs, DONE), for the mu = 0.5 series and its replica, with flows that follow a
 known mu(I) rule, phi(U) law and oscillation; one run of the series is left unstarted. The
 report must analyse every finished run with cdpost, recover the laws from the series fit,
-measure the replica scatter, list the unstarted run, hold no dump or restart, keep a
-hand-written discussion when it is made again, and show a rigid/soft comparison's table. Standard library only.
+measure the replica scatter, list the unstarted run, hold no dump or restart, read a run whose
+raw outputs are gone back from what it published (and not when its deck variables differ),
+keep a hand-written discussion when it is made again, and show a rigid/soft comparison's table.
+Standard library only.
 """
 
 import argparse
@@ -210,6 +212,19 @@ def main():
         expected = REPLICA_SHIFT / math.sqrt(2)
         check(abs(scatter - expected) < 0.05 * expected, f"replica scatter of U {scatter}, expected {expected:.3g}")
 
+        # A run whose raw outputs are gone is read back from results/runs: same table, same fits.
+        lost = "mu0.5_theta25_L45"
+        shutil.rmtree(os.path.join(campaign, "runs", lost))
+        fits_before = open(os.path.join(results, "series", "flow_rules", "fits.csv")).read()
+        readme = report(os.path.abspath(args.cdpost), campaign, results)
+        check(f"| {lost} |" in readme and "published (raw outputs not here)" in readme,
+              "the run without raw outputs is not listed as published")
+        check(open(os.path.join(results, "series", "flow_rules", "fits.csv")).read() == fits_before,
+              "the series fits changed when a run was read back from its published results")
+        manifest = open(os.path.join(results, "series", "flow_rules", "manifest.csv")).read()
+        check(f"\n../../runs/{lost},0.5,25,0,\n" in manifest, "the manifest does not list the published run:\n"
+              + manifest)
+
         # A stationary window shorter than --min-window reopens the run, longer by --extend.
         cmd = [sys.executable, RUNNER, "--out", campaign, "--cdpost", "none", "--lmp", "/bin/false",
                "--min-window", "5", "--max-duration", "12"] + SERIES_ARGS
@@ -230,6 +245,10 @@ def main():
         check("| rigid tol 1e-3 | – | – | 24.671 ± 0.048 | 0.75299 ± 0.00046 | – | 21.6 ± 4.4 |" in again
               and "| granular hooke 1e-3 | 0.001 |" in again,
               "the rigid/soft table is not in the README:\n" + again[again.find("## Rigid against soft"):][:800])
+        # A published run made with other deck variables is not taken for this one.
+        other = report(os.path.abspath(args.cdpost), campaign, results, "--var", "tolerance=1e-4")
+        check("published run not used: tolerance 1.0e-3 -> 1e-4" in other,
+              "a published run with another tolerance was used:\n" + other[other.find("## The runs"):][:1500])
     except Failure as failure:
         print(f"FAILED report: {failure}")
         return 1

@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "analysis/published_run.h"
 #include "io/ave_time.h"
 #include "io/line_source.h"
 #include "io/progress.h"
@@ -406,7 +407,10 @@ SeriesAnalysis analyse_series(const SeriesSettings& settings)
     RunSettings run_settings = settings.run;
     run_settings.directory = entries[i].directory;
     try {
-      series.runs.push_back({entries[i], analyse_run(run_settings), std::nullopt});
+      series.runs.push_back({entries[i],
+                             is_published_run(run_settings.directory) ? read_published_run(run_settings.directory)
+                                                                      : analyse_run(run_settings),
+                             std::nullopt});
     } catch (const std::exception& e) {
       throw InputError(settings.manifest, entries[i].line, std::string("run failed: ") + e.what());
     }

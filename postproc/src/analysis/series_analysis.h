@@ -3,8 +3,10 @@
 //
 // The manifest is a CSV with a header naming at least run, mu and theta (degrees) and
 // optionally L (cell length in d), stopped (0 or 1) and h_stop (deposit thickness in d, given
-// exactly for the runs with stopped = 1); run is a directory, relative to the manifest. A
-// stopped run is not read: its row is the measurement h_stop(theta) for Pouliquen's rule.
+// exactly for the runs with stopped = 1); run is a directory, relative to the manifest: a run's
+// raw outputs, analysed again, or a run published by `cdpost run` (results.csv and layers.csv
+// at its top, analysis/published_run.h), read as it is. A stopped run is not read: its row is
+// the measurement h_stop(theta) for Pouliquen's rule.
 #pragma once
 
 #include <optional>

@@ -55,40 +55,50 @@ def analysed(job):
     return job.kind == "run" and job.done and os.path.exists(os.path.join(job.folder, "post", "results.csv"))
 
 
-def stopped_thickness(job):
+def stopped_thickness(results_csv):
     """h (in d) of a run whose layer stopped (U < STOPPED_U), else None."""
-    results = read_results(os.path.join(job.folder, "post", "results.csv"))
+    results = read_results(results_csv)
     u, h = results.get("U"), results.get("h")
     return h[0] if u and h and abs(u[0]) < STOPPED_U else None
 
 
 def write_manifest(folder, analysis, runs):
-    """series/<analysis>/manifest.csv: the runs' folders relative to it, mu, theta (and L where
-    it varies: cdpost correlates the results with L when it is given), and whether the layer
-    stopped, with its thickness then."""
-    with_length = len({j.vars["L"] for j in runs}) > 1
+    """<folder>/manifest.csv for cdpost series: one row per run given as (the folder cdpost reads:
+    raw outputs or published results, its results.csv, its deck variables), the folder relative to
+    the manifest, mu, theta (and L where it varies: cdpost correlates the results with L when it is
+    given), and whether the layer stopped, with its thickness then."""
+    with_length = len({variables["L"] for _, _, variables in runs}) > 1
     manifest = os.path.join(folder, "manifest.csv")
     with open(manifest, "w") as out:
         out.write(f"# {analysis}: run folders relative to this file\n")
         out.write("run,mu,theta" + (",L" if with_length else "") + ",stopped,h_stop\n")
-        for j in runs:
-            h_stop = stopped_thickness(j)
-            out.write(f"{os.path.relpath(j.folder, folder)},{j.vars['mu']},{j.vars['theta']}"
-                      + (f",{j.vars['L']}" if with_length else "")
+        for run_folder, results_csv, variables in runs:
+            h_stop = stopped_thickness(results_csv)
+            out.write(f"{os.path.relpath(run_folder, folder)},{variables['mu']},{variables['theta']}"
+                      + (f",{variables['L']}" if with_length else "")
                       + (f",1,{h_stop:.6g}" if h_stop is not None else ",0,") + "\n")
     return manifest
 
 
-def postprocess_series(jobs, cdpost, args):
-    """cdpost series on every analysis (ANALYSES) that has two analysed runs."""
-    for analysis, belongs in ANALYSES.items():
-        runs = [j for j in jobs if analysed(j) and belongs(j)]
-        if len(runs) < 2:
-            continue
-        folder = os.path.join(args.out, "series", analysis)
+def run_series(analysis, manifest_folder, runs, cdpost, args, out=None):
+    """cdpost series on `runs` (as write_manifest takes them), its manifest in manifest_folder and
+    its outputs and log in `out` (default series-post beside the manifest). Returns whether it
+    succeeded."""
+    out = out or os.path.join(manifest_folder, "series-post")
+    for folder in (manifest_folder, out):
         os.makedirs(folder, exist_ok=True)
-        manifest = write_manifest(folder, analysis, runs)
-        cmd = [cdpost, "series", manifest, "--z0", repr(wall_top(runs[0].vars))] + args.cdpost_option
-        ok, message = run_logged(cmd, os.path.join(folder, "cdpost.log"))
-        print(f"series {analysis}: {len(runs)} runs, cdpost series {'done' if ok else 'failed: ' + message}",
-              flush=True)
+    manifest = write_manifest(manifest_folder, analysis, runs)
+    cmd = [cdpost, "series", manifest, "--z0", repr(wall_top(runs[0][2])), "--out", out] + args.cdpost_option
+    ok, message = run_logged(cmd, os.path.join(out, "cdpost.log"))
+    print(f"series {analysis}: {len(runs)} runs, cdpost series {'done' if ok else 'failed: ' + message}", flush=True)
+    return ok
+
+
+def postprocess_series(jobs, cdpost, args):
+    """cdpost series on every analysis (ANALYSES) that has two analysed runs, from their raw
+    outputs (the campaign's own progress view; --report makes the published series)."""
+    for analysis, belongs in ANALYSES.items():
+        runs = [(j.folder, os.path.join(j.folder, "post", "results.csv"), j.vars)
+                for j in jobs if analysed(j) and belongs(j)]
+        if len(runs) >= 2:
+            run_series(analysis, os.path.join(args.out, "series", analysis), runs, cdpost, args)

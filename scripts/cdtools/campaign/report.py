@@ -2,7 +2,10 @@
 series the cdpost fits and figures, the replica scatter, the rigid/soft comparisons, and
 README.md.
 
-The series analyses are made again from every finished run first. Only small files are
+Every finished run is analysed (cdpost run) and published in results/runs/<name>; a run whose
+raw outputs are not here is read back from what an earlier report published there. The series
+analyses are then made from the published runs alone (results/series/<analysis>/manifest.csv
+lists them), so results/ reproduces its fits without the raw outputs. Only small files are
 written (CSV, JSON, Markdown, figures): no dumps, no restarts. A hand-written discussion between
 the DISCUSSION markers of an existing README.md is kept; everything else is regenerated.
 """
@@ -18,9 +21,10 @@ import sys
 from ..cdpost import read_results
 from ..stats import pooled_sd
 from ..text import markdown_table, number, with_error
+from .jobs import read_json
 from .legs import run_cost
 from .plan import ANALYSES, build_jobs
-from .post import postprocess_run, postprocess_series, window_bounds
+from .post import postprocess_run, run_series, window_bounds
 from .schedule import campaign_cdpost
 
 DISCUSSION_BEGIN = "<!-- discussion: kept when the report is regenerated -->"
@@ -60,21 +64,38 @@ def copy_matching(source, patterns, destination):
 
 
 class RunRecord:
-    """A run of the campaign as the report sees it: parameters, state, results, cost."""
+    """A run of the campaign as the report sees it: parameters, state, results, cost. Its results
+    come from its own analysis (post/ of a finished run) or, when the raw outputs are not here
+    (another machine, lost), from results/runs/<name> published by an earlier report, provided
+    that run had the same deck variables."""
 
-    def __init__(self, job, cost):
+    def __init__(self, job, destination):
         self.name = job.name
         self.series = job.series
         self.vars = job.vars
         self.folder = job.folder
-        self.cost = cost
-        post = os.path.join(job.folder, "post", "results.csv")
-        self.results = read_results(post) if job.done and os.path.exists(post) else None
-        self.state = self._state(job)
+        self.published = os.path.join(destination, "runs", job.name)
+        post = os.path.join(job.folder, "post")
+        mismatch = published_mismatch(self.published, job.vars)
+        if job.done and os.path.exists(os.path.join(post, "results.csv")):
+            self.source, self.state = post, "analysed"
+            self.cost = run_cost(job, job.legs())
+        elif os.path.exists(os.path.join(self.published, "results.csv")) and not mismatch:
+            self.source, self.state = self.published, "published (raw outputs not here)"
+            self.cost = read_json(os.path.join(self.published, "cost.json"), {})
+            self.vars = dict(job.vars, duration=published_vars(self.published).get("duration", job.vars["duration"]))
+        else:
+            self.source, self.state = None, self._state(job) + (f"; published run not used: {mismatch}"
+                                                                if mismatch else "")
+            self.cost = run_cost(job, job.legs())
+        self.results = read_results(os.path.join(self.source, "results.csv")) if self.source else None
+
+    @property
+    def local(self):
+        """Analysed here (its files go to results/), not read back from results/."""
+        return self.source is not None and self.source != self.published
 
     def _state(self, job):
-        if self.results is not None:
-            return "analysed"
         if job.done:
             log = os.path.join(job.folder, "cdpost.log")
             reason = open(log).read().strip().splitlines()[-1] if os.path.exists(log) else "no cdpost result"
@@ -90,11 +111,26 @@ class RunRecord:
         return f"{bounds[0]:.2f}–{bounds[1]:.2f}" if bounds else "–"
 
 
+def published_vars(folder):
+    """The deck variables a published run records ({} if none)."""
+    return read_json(os.path.join(folder, "params.json"), {}).get("vars", {})
+
+
+def published_mismatch(folder, variables):
+    """Why the run published in `folder` is not the run of these deck variables ('' if it is, or
+    if nothing is published). Its duration may differ (runs are extended); a variable it does not
+    record did not exist when it ran."""
+    recorded = published_vars(folder)
+    changed = sorted(k for k in set(recorded) & set(variables)
+                     if k != "duration" and str(recorded[k]) != str(variables[k]))
+    return ", ".join(f"{k} {recorded[k]} -> {variables[k]}" for k in changed)
+
+
 def write_run(record, destination):
     """results/runs/<name>/: cdpost's results, the cost and every command that made them."""
     folder = os.path.join(destination, "runs", record.name)
     os.makedirs(folder, exist_ok=True)
-    copy_matching(os.path.join(record.folder, "post"), RUN_FILES, folder)
+    copy_matching(record.source, RUN_FILES, folder)
     with open(os.path.join(folder, "cost.json"), "w") as out:
         json.dump(record.cost, out, indent=2, sort_keys=True)
     legs = sorted(glob.glob(os.path.join(record.folder, "legs", "*", "command.sh")))
@@ -217,15 +253,22 @@ def comparison_summary(path):
     return [heading for _, heading in COMPARISON_COLUMNS], [[cell(r, n) for n, _ in COMPARISON_COLUMNS] for r in rows]
 
 
-def section_comparisons(comparisons, destination):
-    text = ""
+def publish_comparisons(comparisons, destination):
+    """results/soft/<name>/: the small files of each reference/run_comparison.sh output folder given."""
     for source in comparisons:
         name = os.path.basename(os.path.normpath(source))
-        target = os.path.join(destination, "soft", name)
         folder = os.path.join(source, "comparison")
-        copied = copy_matching(folder if os.path.isdir(folder) else source, COMPARISON_FILES, target)
-        if "table.csv" not in copied:
-            text += f"## Rigid against soft: {name}\n\nno comparison table in {source}\n\n"
+        copy_matching(folder if os.path.isdir(folder) else source, COMPARISON_FILES,
+                      os.path.join(destination, "soft", name))
+
+
+def section_comparisons(destination):
+    """Every comparison published in results/soft/, given now or by an earlier report."""
+    text = ""
+    for target in sorted(glob.glob(os.path.join(destination, "soft", "*", ""))):
+        name = os.path.basename(os.path.normpath(target))
+        if not os.path.exists(os.path.join(target, "table.csv")):
+            text += f"## Rigid against soft: {name}\n\nno comparison table in results/soft/{name}\n\n"
             continue
         headings, rows = comparison_summary(os.path.join(target, "table.csv"))
         relative = os.path.relpath(target, destination)
@@ -233,7 +276,7 @@ def section_comparisons(comparisons, destination):
                  f"its commands in [{relative}/commands.txt]({relative}/commands.txt), every column in "
                  f"[{relative}/table.csv]({relative}/table.csv) and the full report in "
                  f"[{relative}/report.md]({relative}/report.md)).\n\n" + markdown_table(headings, rows))
-        spectra = [f for f in copied if f.startswith("figures/spectra") and f.endswith(".png")]
+        spectra = sorted(os.path.relpath(f, target) for f in glob.glob(os.path.join(target, "figures", "spectra*.png")))
         text += "\n" + "".join(f"![{os.path.basename(f)}]({relative}/{f}) " for f in spectra[:2]) + "\n\n"
     return text
 
@@ -252,8 +295,10 @@ def section_snapshots(records, destination):
             continue
         # The snapshot's SVG (a circle per grain and image, megabytes at 45 d) stays in the run folder.
         figures = ("figures/snapshot.png", "figures/profile.png", "figures/profile.svg")
-        copied = copy_matching(os.path.join(r.folder, "post"), figures, os.path.join(destination, "runs", r.name))
-        for figure in (f for f in copied if f.endswith(".png")):
+        if r.local:
+            copy_matching(r.source, figures, r.published)
+        shown = [f for f in figures if f.endswith(".png") and os.path.exists(os.path.join(r.published, f))]
+        for figure in shown:
             text += f"![{chosen[r.name]} run, {r.name}](runs/{r.name}/{figure}) "
         text += "\n"
     return text + "\n"
@@ -271,27 +316,26 @@ def kept_discussion(path):
     return text[begin:end + len(DISCUSSION_END)]
 
 
-def copy_series(series_folders, destination):
-    """results/series/<analysis>/: the manifest and cdpost's series results of each analysis
-    made; returns {analysis: its folder in results/}."""
-    copied = {}
-    for analysis, folder in series_folders.items():
-        post = os.path.join(folder, "series-post")
-        if os.path.isdir(post):
-            target = os.path.join(destination, "series", analysis)
-            copy_matching(post, SERIES_FILES, target)
-            copy_matching(folder, ("manifest.csv",), target)
-            copied[analysis] = target
-    return copied
+def publish_series(records, cdpost, args):
+    """results/series/<analysis>/: the manifest over the published runs (results/runs/<name>, so
+    that `cdpost series` can be run again from results/ alone) and cdpost's series results, for
+    every analysis with two analysed runs; returns {analysis: its folder in results/}."""
+    published = {}
+    for analysis, belongs in ANALYSES.items():
+        runs = [(r.published, os.path.join(r.published, "results.csv"), r.vars)
+                for r in records if r.results and belongs(r)]
+        if len(runs) < 2:
+            continue
+        target = os.path.join(args.report, "series", analysis)
+        work = os.path.join(args.out, "series", analysis, "published-post")
+        if run_series(analysis, target, runs, cdpost, args, out=work):
+            copy_matching(work, SERIES_FILES, target)
+            published[analysis] = target
+    return published
 
 
-def write_report(records, series_folders, comparisons, destination, command):
-    """Writes results/ (see the module's docstring); returns the README's path."""
-    os.makedirs(destination, exist_ok=True)
-    for r in records:
-        if r.results:
-            write_run(r, destination)
-    copied_series = copy_series(series_folders, destination)
+def write_report(records, copied_series, destination, command):
+    """Writes results/README.md (see the module's docstring); returns its path."""
     pairs = replica_pairs(records)
     readme = os.path.join(destination, "README.md")
     discussion = kept_discussion(readme) or f"{DISCUSSION_BEGIN}\n(no discussion yet)\n{DISCUSSION_END}"
@@ -316,7 +360,7 @@ def write_report(records, series_folders, comparisons, destination, command):
                            "creep length λ of u ∝ exp(z/λ) below the wall tops.", records, PROFILE_COLUMNS),
         section_fits("Cell length", length, ("correlation",), ("L_series",), destination),
         section_replicas(pairs, replica_scatter(pairs)),
-        section_comparisons(comparisons, destination),
+        section_comparisons(destination),
         section_snapshots(records, destination),
     ]
     with open(readme + ".tmp", "w") as out:
@@ -342,11 +386,17 @@ def write_results(args):
         return 2
     jobs = build_jobs(args)
     analyse_finished_runs(jobs, cdpost, args)
-    postprocess_series(jobs, cdpost, args)
-    records = [RunRecord(job, run_cost(job, job.legs())) for job in jobs if job.kind == "run"]
-    series = {analysis: os.path.join(args.out, "series", analysis) for analysis in ANALYSES}
+    os.makedirs(args.report, exist_ok=True)
+    records = [RunRecord(job, args.report) for job in jobs if job.kind == "run"]
+    for r in records:
+        if r.local:
+            write_run(r, args.report)
+    series = publish_series(records, cdpost, args)
     command = " ".join(shlex.quote(a) for a in ["scripts/chute_campaign.py"] + args.argv)
-    readme = write_report(records, series, args.comparison, args.report, command)
+    publish_comparisons(args.comparison, args.report)
+    readme = write_report(records, series, args.report, command)
     analysed = sum(r.results is not None for r in records)
-    print(f"{readme}: {analysed} of {len(records)} runs analysed", flush=True)
+    published = sum(r.results is not None and not r.local for r in records)
+    print(f"{readme}: {analysed} of {len(records)} runs analysed ({published} read from their published results)",
+          flush=True)
     return 0
