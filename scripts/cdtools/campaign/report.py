@@ -80,6 +80,7 @@ class RunRecord:
         if job.done and os.path.exists(os.path.join(post, "results.csv")):
             self.source, self.state = post, "analysed"
             self.cost = run_cost(job, job.legs())
+            self.vars = published_vars(job.folder) or job.vars  # as the runner recorded them
         elif os.path.exists(os.path.join(self.published, "results.csv")) and not mismatch:
             self.source, self.state = self.published, "published (raw outputs not here)"
             self.cost = read_json(os.path.join(self.published, "cost.json"), {})
@@ -112,7 +113,7 @@ class RunRecord:
 
 
 def published_vars(folder):
-    """The deck variables a published run records ({} if none)."""
+    """The deck variables a run folder or a published run records ({} if none)."""
     return read_json(os.path.join(folder, "params.json"), {}).get("vars", {})
 
 
