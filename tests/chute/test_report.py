@@ -249,6 +249,8 @@ def main():
         other = report(os.path.abspath(args.cdpost), campaign, results, "--var", "tolerance=1e-4")
         check("published run not used: tolerance 1.0e-3 -> 1e-4" in other,
               "a published run with another tolerance was used:\n" + other[other.find("## The runs"):][:1500])
+        check("| granular hooke 1e-3 | 0.001 |" in other,
+              "a comparison published by an earlier report is no longer shown when --comparison is not given")
     except Failure as failure:
         print(f"FAILED report: {failure}")
         return 1

@@ -72,23 +72,22 @@ class RunRecord:
     def __init__(self, job, destination):
         self.name = job.name
         self.series = job.series
-        self.vars = job.vars
         self.folder = job.folder
         self.published = os.path.join(destination, "runs", job.name)
         post = os.path.join(job.folder, "post")
-        mismatch = published_mismatch(self.published, job.vars)
-        if job.done and os.path.exists(os.path.join(post, "results.csv")):
-            self.source, self.state = post, "analysed"
+        mismatch = None
+        if job.done and has_results(post):
+            self.source, self.state, recorded_in = post, "analysed", job.folder
             self.cost = run_cost(job, job.legs())
-            self.vars = published_vars(job.folder) or job.vars  # as the runner recorded them
-        elif os.path.exists(os.path.join(self.published, "results.csv")) and not mismatch:
-            self.source, self.state = self.published, "published (raw outputs not here)"
+        elif has_results(self.published) and not (mismatch := published_mismatch(self.published, job.vars)):
+            self.source, self.state, recorded_in = self.published, "published (raw outputs not here)", self.published
             self.cost = read_json(os.path.join(self.published, "cost.json"), {})
-            self.vars = dict(job.vars, duration=published_vars(self.published).get("duration", job.vars["duration"]))
         else:
-            self.source, self.state = None, self._state(job) + (f"; published run not used: {mismatch}"
-                                                                if mismatch else "")
+            self.source, self.state, recorded_in = None, self._state(job), None
+            self.state += f"; published run not used: {mismatch}" if mismatch else ""
             self.cost = run_cost(job, job.legs())
+        # The deck variables as the run recorded them (its duration may have grown).
+        self.vars = (published_vars(recorded_in) if recorded_in else None) or job.vars
         self.results = read_results(os.path.join(self.source, "results.csv")) if self.source else None
 
     @property
@@ -110,6 +109,10 @@ class RunRecord:
         """The stationary window in s, '–' before the analysis."""
         bounds = window_bounds(self.results, self.vars) if self.results else None
         return f"{bounds[0]:.2f}–{bounds[1]:.2f}" if bounds else "–"
+
+
+def has_results(folder):
+    return os.path.exists(os.path.join(folder, "results.csv"))
 
 
 def published_vars(folder):
