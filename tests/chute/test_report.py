@@ -8,8 +8,9 @@ outputs and legs, DONE), for the mu = 0.5 series and its replica, with flows tha
 known mu(I) rule, phi(U) law and oscillation; one run of the series is left unstarted. The
 report must analyse every finished run with cdpost, recover the laws from the series fit,
 measure the replica scatter, list the unstarted run, hold no dump or restart, read a run whose
-raw outputs are gone back from what it published (and not when its deck variables differ),
-keep a hand-written discussion when it is made again, and show a rigid/soft comparison's table.
+raw outputs are gone back from what it published, use no run (its own or published) made with
+other deck variables than the report's, keep a hand-written discussion when it is made again,
+and show a rigid/soft comparison's table.
 Standard library only.
 """
 
@@ -224,6 +225,21 @@ def main():
         manifest = open(os.path.join(results, "series", "flow_rules", "manifest.csv")).read()
         check(f"\n../../runs/{lost},0.5,25,0,\n" in manifest, "the manifest does not list the published run:\n"
               + manifest)
+
+        # A finished run whose params.json records other deck variables than the report's is
+        # not used, and says why; a run that records none is analysed with the report's.
+        recorded = os.path.join(campaign, "runs", "mu0.5_theta23_L45", "params.json")
+        shutil.copy(os.path.join(results, "runs", "mu0.5_theta23_L45", "params.json"), recorded)
+        other = report(os.path.abspath(args.cdpost), campaign, os.path.join(work, "results_other"),
+                       "--var", "tolerance=1e-4")
+        rows = {}                       # the runs table: each run's first row
+        for line in other.splitlines():
+            if line.startswith("| mu0.5_"):
+                rows.setdefault(line.split("|")[1].strip(), line)
+        check("analysed run not used: tolerance 1.0e-3 -> 1e-4" in rows["mu0.5_theta23_L45"],
+              "a run made with another tolerance was used:\n" + rows["mu0.5_theta23_L45"])
+        check(rows["mu0.5_theta24_L45"].rstrip().endswith("| analysed |"),
+              "a run that records no deck variables was not analysed:\n" + rows["mu0.5_theta24_L45"])
 
         # A stationary window shorter than --min-window reopens the run, longer by --extend.
         cmd = [sys.executable, RUNNER, "--out", campaign, "--cdpost", "none", "--lmp", "/bin/false",

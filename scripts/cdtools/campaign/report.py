@@ -74,21 +74,33 @@ class RunRecord:
         self.series = job.series
         self.folder = job.folder
         self.published = os.path.join(destination, "runs", job.name)
-        post = os.path.join(job.folder, "post")
-        mismatch = None
-        if job.done and has_results(post):
-            self.source, self.state, recorded_in = post, "analysed", job.folder
-            self.cost = run_cost(job, job.legs())
-        elif has_results(self.published) and not (mismatch := published_mismatch(self.published, job.vars)):
-            self.source, self.state, recorded_in = self.published, "published (raw outputs not here)", self.published
+        self.source, self.state, recorded_in = self._choose_source(job)
+        if self.source == self.published:
             self.cost = read_json(os.path.join(self.published, "cost.json"), {})
         else:
-            self.source, self.state, recorded_in = None, self._state(job), None
-            self.state += f"; published run not used: {mismatch}" if mismatch else ""
             self.cost = run_cost(job, job.legs())
         # The deck variables as the run recorded them (its duration may have grown).
         self.vars = (published_vars(recorded_in) if recorded_in else None) or job.vars
         self.results = read_results(os.path.join(self.source, "results.csv")) if self.source else None
+
+    def _choose_source(self, job):
+        """(folder of the results, state, folder whose params.json recorded the run): the run's
+        own analysis, else what an earlier report published; either only if the run was made
+        with these deck variables."""
+        post = os.path.join(job.folder, "post")
+        if job.done and has_results(post):
+            mismatch = published_mismatch(job.folder, job.vars)
+            if not mismatch:
+                return post, "analysed", job.folder
+            state = f"analysed run not used: {mismatch}"
+        else:
+            state = self._state(job)
+        if has_results(self.published):
+            mismatch = published_mismatch(self.published, job.vars)
+            if not mismatch:
+                return self.published, "published (raw outputs not here)", self.published
+            state += f"; published run not used: {mismatch}"
+        return None, state, None
 
     @property
     def local(self):
@@ -121,9 +133,9 @@ def published_vars(folder):
 
 
 def published_mismatch(folder, variables):
-    """Why the run published in `folder` is not the run of these deck variables ('' if it is, or
-    if nothing is published). Its duration may differ (runs are extended); a variable it does not
-    record did not exist when it ran."""
+    """Why the run recorded in `folder` (a run folder or a published run) is not the run of these
+    deck variables ('' if it is, or if nothing is recorded). Its duration may differ (runs are
+    extended); a variable it does not record did not exist when it ran."""
     recorded = published_vars(folder)
     changed = sorted(k for k in set(recorded) & set(variables)
                      if k != "duration" and str(recorded[k]) != str(variables[k]))
