@@ -80,7 +80,7 @@ class RunRecord:
         else:
             self.cost = run_cost(job, job.legs())
         # The deck variables as the run recorded them (its duration may have grown).
-        self.vars = (published_vars(recorded_in) if recorded_in else None) or job.vars
+        self.vars = (recorded_vars(recorded_in) if recorded_in else {}) or job.vars
         self.results = read_results(os.path.join(self.source, "results.csv")) if self.source else None
 
     def _choose_source(self, job):
@@ -89,14 +89,14 @@ class RunRecord:
         with these deck variables."""
         post = os.path.join(job.folder, "post")
         if job.done and has_results(post):
-            mismatch = published_mismatch(job.folder, job.vars)
+            mismatch = recorded_mismatch(job.folder, job.vars)
             if not mismatch:
                 return post, "analysed", job.folder
             state = f"analysed run not used: {mismatch}"
         else:
             state = self._state(job)
         if has_results(self.published):
-            mismatch = published_mismatch(self.published, job.vars)
+            mismatch = recorded_mismatch(self.published, job.vars)
             if not mismatch:
                 return self.published, "published (raw outputs not here)", self.published
             state += f"; published run not used: {mismatch}"
@@ -127,16 +127,16 @@ def has_results(folder):
     return os.path.exists(os.path.join(folder, "results.csv"))
 
 
-def published_vars(folder):
+def recorded_vars(folder):
     """The deck variables a run folder or a published run records ({} if none)."""
     return read_json(os.path.join(folder, "params.json"), {}).get("vars", {})
 
 
-def published_mismatch(folder, variables):
+def recorded_mismatch(folder, variables):
     """Why the run recorded in `folder` (a run folder or a published run) is not the run of these
     deck variables ('' if it is, or if nothing is recorded). Its duration may differ (runs are
     extended); a variable it does not record did not exist when it ran."""
-    recorded = published_vars(folder)
+    recorded = recorded_vars(folder)
     changed = sorted(k for k in set(recorded) & set(variables)
                      if k != "duration" and str(recorded[k]) != str(variables[k]))
     return ", ".join(f"{k} {recorded[k]} -> {variables[k]}" for k in changed)
