@@ -107,6 +107,13 @@ def new_run(args, name, series, variables, deposition):
     return Job("run", name, folder, variables, deposition, series)
 
 
+def changed_vars(old, new, keys):
+    """'name old -> new' for each of `keys` whose value differs but duration (runs are
+    extended), comma-separated; '' if none."""
+    changed = sorted(k for k in keys if k != "duration" and str(old.get(k)) != str(new.get(k)))
+    return ", ".join(f"{k} {old.get(k)} -> {new.get(k)}" for k in changed)
+
+
 def check_recorded_params(job):
     """A run continues only with the parameters it was started with (duration may grow)."""
     path = os.path.join(job.folder, "params.json")
@@ -114,12 +121,8 @@ def check_recorded_params(job):
     if recorded is None:
         return None
     old = recorded.get("vars", {})
-    changed = [k for k in set(old) | set(job.vars)
-               if k != "duration" and str(old.get(k)) != str(job.vars.get(k))]
-    if changed:
-        return ("parameters differ from those recorded in " + path + ": "
-                + ", ".join(f"{k} {old.get(k)} -> {job.vars.get(k)}" for k in sorted(changed)))
-    return None
+    changed = changed_vars(old, job.vars, set(old) | set(job.vars))
+    return "parameters differ from those recorded in " + path + ": " + changed if changed else None
 
 
 def recorded_duration(job):

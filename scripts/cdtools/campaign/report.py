@@ -23,7 +23,7 @@ from ..stats import pooled_sd
 from ..text import markdown_table, number, with_error
 from .jobs import read_json
 from .legs import run_cost
-from .plan import ANALYSES, build_jobs
+from .plan import ANALYSES, build_jobs, changed_vars
 from .post import postprocess_run, run_series, window_bounds
 from .schedule import campaign_cdpost
 
@@ -137,9 +137,7 @@ def recorded_mismatch(folder, variables):
     deck variables ('' if it is, or if nothing is recorded). Its duration may differ (runs are
     extended); a variable it does not record did not exist when it ran."""
     recorded = recorded_vars(folder)
-    changed = sorted(k for k in set(recorded) & set(variables)
-                     if k != "duration" and str(recorded[k]) != str(variables[k]))
-    return ", ".join(f"{k} {recorded[k]} -> {variables[k]}" for k in changed)
+    return changed_vars(recorded, variables, set(recorded) & set(variables))
 
 
 def write_run(record, destination):
