@@ -307,6 +307,43 @@ TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay)
                          ":2: a stopped run needs its deposit thickness in the column h_stop (d)\n");
 }
 
+// A cell-length series: one friction and one angle, the amplitude of the oscillation falling as
+// L^(-1/2). No flow rule is fitted to runs at one angle; A against L gives the exponent.
+TEST(Cli, SeriesAtOneAngleGivesTheLengthLawAndNoFlowRule)
+{
+  auto dir = testing::scratch_dir();
+  std::ofstream manifest(dir / "series.csv");
+  manifest << "run,mu,theta,L\n";
+  int index = 0;
+  for (double length : {12.0, 22.0, 45.0, 90.0}) {
+    testing::SyntheticRun run;
+    run.duration = 2.5;
+    run.relaxation = 0.1;
+    run.with_chunks_and_dump = false;
+    run.seed = static_cast<unsigned>(++index);
+    run.noise = 0.05;  // about 0.004 in a 1 Hz bin against amplitudes of 0.07 to 0.2
+    run.amplitude = 0.2 * std::pow(length / 12, -0.5);
+    const std::string name = "L" + std::to_string(index);
+    testing::write_synthetic_run(dir / name, run);
+    manifest << name << ",0.5,22," << length << "\n";
+  }
+  manifest.close();
+  auto outcome = cdpost("series " + (dir / "series.csv").string() + " --out " + (dir / "post").string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const auto fits = slurp(dir / "post/fits.csv");
+  EXPECT_EQ(fits.find("pouliquen_"), std::string::npos) << fits;
+  EXPECT_EQ(fits.find("muI_"), std::string::npos) << fits;
+  const auto json = slurp(dir / "post/fits.json");
+  EXPECT_NE(json.find("Pouliquen's rule needs runs at 3 or more angles per friction coefficient; mu = 0.5 has 1"),
+            std::string::npos)
+      << json;
+  EXPECT_NE(json.find("the mu(I) rule: the runs at mu = 0.5 (1 angle(s)) are left out"), std::string::npos) << json;
+  const auto values = csv_values(dir / "post/fits.csv");
+  EXPECT_NEAR(values.at("A_vs_L_exponent"), -0.5, 0.05);
+  EXPECT_NEAR(values.at("f_vs_L_exponent"), 0.0, 0.05);  // one frequency at every length
+  EXPECT_EQ(values.at("correlation_A_L_n"), 4);
+}
+
 // The runs as `cdpost run` publishes them (results.csv, layers.csv: what results/runs/<name>
 // keeps) give the series the same fits as their raw outputs, to the 10 digits written.
 TEST(Cli, SeriesFromPublishedRunsGivesTheSameFits)

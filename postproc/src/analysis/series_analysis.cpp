@@ -232,6 +232,23 @@ struct SeriesFitter {
     });
   }
 
+  // The points of the frictions whose runs span `needed` angles; a warning names the others
+  // (a series at one angle, such as the cell-length series, has no flow rule).
+  std::vector<FlowPoint> points_at_enough_angles(const std::vector<FlowPoint>& points, size_t needed,
+                                                 const std::string& rule)
+  {
+    std::vector<FlowPoint> kept;
+    for (double mu : friction_values(points)) {
+      auto of_mu = points_with_mu(points, mu);
+      if (angle_count(of_mu) >= needed) kept.insert(kept.end(), of_mu.begin(), of_mu.end());
+      else
+        series.warnings.push_back(rule + ": the runs at mu = " + mu_label(mu) + " (" +
+                                  std::to_string(angle_count(of_mu)) + " angle(s)) are left out: it needs " +
+                                  std::to_string(needed) + " angles per friction coefficient");
+    }
+    return kept;
+  }
+
   void flow_rules()
   {
     const auto points = flow_points();
@@ -246,7 +263,7 @@ struct SeriesFitter {
         series.warnings.push_back("stopped run " + entry.directory + " (mu = " + mu_label(entry.mu) +
                                   ") not used: no flowing run at that mu");
     attempt("the mu(I) rule", [&] {
-      auto fit = fit_mu_of_i(points);
+      auto fit = fit_mu_of_i(points_at_enough_angles(points, kMuOfIAngles, "the mu(I) rule"));
       r.add("muI_I0", fit.i0, "", "I0 of the mu(I) rule, shared by every mu");
       for (const auto& a : fit.angles) {
         r.add("muI_theta1_mu" + mu_label(a.mu), a.theta1_deg, "deg", "theta1 of the mu(I) rule");
@@ -362,14 +379,21 @@ struct SeriesFitter {
     correlation_of("phi", "A", "A_phi");
   }
 
-  // Over the runs with an L column only (the L series is at one friction).
+  // Over the runs with an L column only (the L series is at one friction): the correlation of
+  // f, A and A_mean with L and, over 3 or more lengths, their power law y = c L^n.
   void length_dependence()
   {
-    for (const auto& [y, label] : {std::pair{"f", "f_L"}, {"A", "A_L"}, {"A_mean", "A_mean_L"}}) {
+    for (const std::string y : {"f", "A", "A_mean"}) {
       auto [lengths, ys] = columns("L", y);
-      if (!lengths.empty())
-        significance("correlation_" + std::string(label), "correlation_" + std::string(label), "", "",
-                     std::string(y) + " with L", lengths, ys);
+      if (lengths.empty()) continue;
+      significance("correlation_" + y + "_L", "correlation_" + y + "_L", "", "", y + " with L", lengths, ys);
+      if (std::set<double>(lengths.begin(), lengths.end()).size() < 3) continue;
+      attempt(y + " against L", [&] {
+        auto law = fit_power_law(lengths, ys);
+        const std::string meaning = y + " against L: " + y + " = c (L/d)^n";
+        series.fits.add(y + "_vs_L_exponent", law.exponent, "", "exponent n of " + meaning);
+        series.fits.add(y + "_vs_L_prefactor", law.prefactor, "", "prefactor c of " + meaning);
+      });
     }
   }
 };

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
+#include <sstream>
 
 #include "fit/nonlinear_fit.h"
 
@@ -96,6 +98,28 @@ std::vector<FlowPoint> points_with_mu(const std::vector<FlowPoint>& points, doub
   return selected;
 }
 
+size_t angle_count(const std::vector<FlowPoint>& points)
+{
+  std::set<double> angles;
+  for (const auto& p : points) angles.insert(p.theta_deg);
+  return angles.size();
+}
+
+namespace {
+
+// Throws unless `points` (of one friction coefficient) span `needed` angles.
+void require_angles(const std::vector<FlowPoint>& points, size_t needed, const std::string& rule)
+{
+  if (size_t found = angle_count(points); found < needed) {
+    std::ostringstream text;
+    text << rule << " needs runs at " << needed << " or more angles per friction coefficient";
+    if (!points.empty()) text << "; mu = " << points.front().mu << " has " << found;
+    throw AnalysisError(text.str());
+  }
+}
+
+}  // namespace
+
 double pouliquen_tan(double inertial_number, double tan1, double tan2, double ell, double beta)
 {
   return tan1 + (tan2 - tan1) * std::exp(-beta / (ell * inertial_number));
@@ -103,7 +127,7 @@ double pouliquen_tan(double inertial_number, double tan1, double tan2, double el
 
 PouliquenFit fit_pouliquen(const std::vector<FlowPoint>& points, double beta)
 {
-  if (points.size() < 3) throw AnalysisError("Pouliquen's rule needs at least 3 runs per friction coefficient");
+  require_angles(points, kPouliquenAngles, "Pouliquen's rule");
   const auto observed = tangents(points);
   auto [tan1, tan2] = initial_tangents(observed);
   const auto middle = median_point(points);
@@ -215,6 +239,8 @@ std::optional<double> mu_of_i_inertial_number(double tan_theta, const AngleBound
 MuIFit fit_mu_of_i(const std::vector<FlowPoint>& points)
 {
   const auto mus = friction_values(points);
+  if (mus.empty()) throw AnalysisError("the mu(I) rule needs flowing runs");
+  for (double mu : mus) require_angles(points_with_mu(points, mu), kMuOfIAngles, "the mu(I) rule");
   const auto observed = tangents(points);
   std::vector<size_t> group;  // friction coefficient index of each point
   for (const auto& p : points)

@@ -372,7 +372,8 @@ def write_report(records, copied_series, destination, command):
                      ("f_vs_scale", "f_vs_shear_rate", "A_vs_U", "A_vs_phi", "amplitude_vs_depth"), destination),
         section_quantities("Velocity profiles", "Bagnold fit u = slip + a (h^1.5 − (h − z)^1.5) over the layer; "
                            "creep length λ of u ∝ exp(z/λ) below the wall tops.", records, PROFILE_COLUMNS),
-        section_fits("Cell length", length, ("correlation",), ("L_series",), destination),
+        section_fits("Cell length", length, ("correlation", "f_vs_L", "A_vs_L", "A_mean_vs_L"), ("L_series",),
+                     destination),
         section_replicas(pairs, replica_scatter(pairs)),
         section_comparisons(destination),
         section_snapshots(records, destination),
