@@ -48,7 +48,7 @@ def argument_parser():
                         help="deck variable for every run, e.g. --var tolerance=1e-4 (repeatable)")
     parser.add_argument("--jobs", type=int, default=1, help="simulations at once (default 1)")
     parser.add_argument("--mpi", type=int, default=1,
-                        help="MPI ranks per simulation (default 1; fix contact/dynamics runs on one rank for now)")
+                        help="MPI ranks per simulation (default 1; CPU time is counted over all ranks)")
     parser.add_argument("--launcher", default=None,
                         help="command put before lmp_cd (default 'mpirun -np N' when --mpi N > 1)")
     parser.add_argument("--lmp", default=os.environ.get("LMP_CD", BUILT_LMP_CD),

@@ -92,7 +92,7 @@ class LogProgress:
 
 
 LOOP_TIME = re.compile(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps")
-CPU_USE = re.compile(r"([0-9.]+)% CPU use")
+CPU_USE = re.compile(r"([0-9.]+)% CPU use(?: with (\d+) MPI tasks)?")
 
 
 def read_progress(path, tags=("CHUTE", "DEPOSITION")):
@@ -115,7 +115,9 @@ def read_progress(path, tags=("CHUTE", "DEPOSITION")):
                     continue
                 cpu = CPU_USE.match(line)
                 if cpu and loop_wall is not None:
-                    progress.cpu += loop_wall * float(cpu.group(1)) / 100.0
+                    # LAMMPS's CPU use is the mean over the MPI tasks (each with its threads).
+                    tasks = int(cpu.group(2) or 1)
+                    progress.cpu += loop_wall * tasks * float(cpu.group(1)) / 100.0
                     loop_wall = None
                     continue
                 if line.startswith(tuple(tag + " " for tag in tags)):

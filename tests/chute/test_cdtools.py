@@ -117,12 +117,12 @@ def check_logs(work):
     check(logs.tagged_line("CHUTES U 2\n", "CHUTE") is None, "another tag was taken for CHUTE")
     log = write(work, "log.lammps", "Step Time\n  100 0.1\n  200 0.2\n"
                 "Loop time of 4 on 1 procs for 100 steps with 60 atoms\n\n50.0% CPU use with 1 MPI tasks\n"
-                f"Step Time\n  200 0.2\n  300 0.3\nLoop time of 6 on 1 procs for 100 steps with 60 atoms\n\n"
-                f"100.0% CPU use with 1 MPI tasks\n{line}\nCHUTE U 2\nERROR: one\nERROR: two\n")
+                f"Step Time\n  200 0.2\n  300 0.3\nLoop time of 6 on 2 procs for 100 steps with 60 atoms\n\n"
+                f"100.0% CPU use with 2 MPI tasks x 1 OpenMP threads\n{line}\nCHUTE U 2\nERROR: one\nERROR: two\n")
     check(logs.log_summary(work, "CHUTE") == dict(U=2.0), "the last CHUTE line of a log")
     progress = logs.read_progress(log)
     check((progress.first_step, progress.last_step, progress.wall, progress.steps, progress.cpu, progress.summary)
-          == (100, 300, 10.0, 200, 8.0, "CHUTE U 2"), f"progress {progress}")
+          == (100, 300, 10.0, 200, 14.0, "CHUTE U 2"), f"progress {progress}")  # 4 x 50 % + 6 x 2 ranks
     check(logs.error_line(open(log).read()) == "ERROR: one", "the first ERROR line")
     try:
         logs.log_summary(work, "SOLVER")
