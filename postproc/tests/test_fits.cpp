@@ -116,6 +116,8 @@ TEST(FlowRules, PouliquenRecoversAnglesAndLength)
   ASSERT_TRUE(i);
   EXPECT_NEAR(pouliquen_tan(*i, tan1, tan2, ell, beta), std::tan(24 * M_PI / 180), 0.01);
   EXPECT_THROW(fit_pouliquen({points[0], points[1]}, beta), AnalysisError);
+  // Three runs at two angles do not fix three parameters.
+  EXPECT_THROW(fit_pouliquen({points[0], points[1], points[1]}, beta), AnalysisError);
 }
 
 // Pouliquen's rule with β = 0.3 and ℓ = 6 (β away from 0.136, so a fit that fell back on it
@@ -215,6 +217,10 @@ TEST(FlowRules, MuOfIRecoversSharedI0AndAnglesPerFriction)
   expect_recovers(fit.angles[0].theta2_deg, 26, "theta2(0.05)");
   expect_recovers(fit.angles[1].theta1_deg, 21, "theta1(0.5)");
   expect_recovers(fit.angles[1].theta2_deg, 33, "theta2(0.5)");
+  // A friction whose runs are all at one angle has no theta1, theta2 of its own.
+  auto one_angle = series(2.0, {28, 28, 28}, rule(b1, b2), 6);
+  points.insert(points.end(), one_angle.begin(), one_angle.end());
+  EXPECT_THROW(fit_mu_of_i(points), AnalysisError);
 }
 
 TEST(FlowRules, PhiVelocityHasOneSlopeAndOnePhiCPerFriction)

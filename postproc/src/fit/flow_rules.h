@@ -103,7 +103,7 @@ PhiFit fit_phi_velocity(const std::vector<FlowPoint>& points);
 std::vector<double> friction_values(const std::vector<FlowPoint>& points);
 std::vector<FlowPoint> points_with_mu(const std::vector<FlowPoint>& points, double mu);
 // The distinct angles the points were run at. A rule of tan θ against I is determined only by
-// runs at more angles per friction coefficient than it has parameters there.
+// runs at as many angles per friction coefficient as it has parameters there, or more.
 size_t angle_count(const std::vector<FlowPoint>& points);
 constexpr size_t kPouliquenAngles = 3;  // θ1, θ2, ℓ per friction (β fixed or shared)
 constexpr size_t kMuOfIAngles = 2;      // θ1, θ2 per friction, I0 shared
