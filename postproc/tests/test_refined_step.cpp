@@ -11,31 +11,32 @@
 #include "analysis/run_analysis.h"
 #include "io/ave_chunk.h"
 #include "io/ave_time.h"
+#include "io/line_source.h"
 #include "synthetic_run.h"
 
 namespace cdpost {
 namespace {
 
-// Between 2 s and 3 s the step is halved: one more step per original step. Sample k is at
-// k ms, 100 k original steps.
-constexpr long samples_before = 2000, refined_samples = 1000, steps_per_sample = 100;
+constexpr long steps_per_sample = 100;  // sample k is at k ms, 100 k original steps
 
-long refined_step(long uniform_step)
-{
-  const long into_refined =
-      std::clamp(uniform_step - samples_before * steps_per_sample, 0L, refined_samples * steps_per_sample);
-  return uniform_step + into_refined;
-}
+// Samples [first, first + count) where the step is halved: one more step per original step.
+struct RefinedStretch {
+  long first = 2000, count = 1000;  // by default between 2 s and 3 s
 
-bool in_refined_stretch(long uniform_step)
-{
-  return uniform_step >= samples_before * steps_per_sample &&
-         uniform_step < (samples_before + refined_samples) * steps_per_sample;
-}
+  long refined_step(long uniform_step) const
+  {
+    return uniform_step + std::clamp(uniform_step - first * steps_per_sample, 0L, count * steps_per_sample);
+  }
+  bool contains(long uniform_step) const
+  {
+    return uniform_step >= first * steps_per_sample && uniform_step < (first + count) * steps_per_sample;
+  }
+};
 
 // The same flow.time with the halved stretch: TimeStep shifted and a sample between every two
-// (its values anything: here the row's own, tripled).
-void refine_time_file(const std::filesystem::path& from, const std::filesystem::path& to)
+// (its values anything: here the row's own, tripled), under the given header line.
+void refine_time_file(const std::filesystem::path& from, const std::filesystem::path& to,
+                      const RefinedStretch& stretch = {}, const std::string& title = "")
 {
   const ColumnTable table = read_ave_time(from.string());
   std::vector<std::vector<double>> rows;
@@ -43,29 +44,30 @@ void refine_time_file(const std::filesystem::path& from, const std::filesystem::
     std::vector<double> row;
     for (const auto& column : table.columns) row.push_back(column[r]);
     const long step = static_cast<long>(row[0]);
-    row[0] = static_cast<double>(refined_step(step));
+    row[0] = static_cast<double>(stretch.refined_step(step));
     rows.push_back(row);
-    if (!in_refined_stretch(step)) continue;
+    if (!stretch.contains(step)) continue;
     std::vector<double> between = row;
     for (size_t c = 2; c < between.size(); ++c) between[c] *= 3;
     between[0] += steps_per_sample;                                                    // 100 half steps later
     between[1] += 0.5 * steps_per_sample * table.columns[1][1] / table.columns[0][1];  // half a sample
     rows.push_back(between);
   }
-  testing::write_file(to, testing::ave_time_text(table.names, rows));
+  testing::write_file(to, title + testing::ave_time_text(table.names, rows));
 }
 
 void refine_chunk_file(const std::filesystem::path& from, const std::filesystem::path& to, bool every_sample)
 {
+  const RefinedStretch stretch;
   const ChunkSeries chunks = read_ave_chunk(from.string());
   std::vector<long> steps;
   std::vector<size_t> source_block;
   for (size_t b = 0; b < chunks.blocks(); ++b) {
     const long step = static_cast<long>(chunks.timesteps[b]);
-    steps.push_back(refined_step(step));
+    steps.push_back(stretch.refined_step(step));
     source_block.push_back(b);
-    if (every_sample && in_refined_stretch(step)) {
-      steps.push_back(refined_step(step) + steps_per_sample);
+    if (every_sample && stretch.contains(step)) {
+      steps.push_back(stretch.refined_step(step) + steps_per_sample);
       source_block.push_back(chunks.blocks());  // an extra sample
     }
   }
@@ -93,7 +95,7 @@ TEST(RefinedStep, ExtraSamplesAndShiftedStepsLeaveEveryResultUnchanged)
   settings.directory = refined.string();
   const RunAnalysis got = analyse_run(settings);
 
-  ASSERT_EQ(got.series.rows_read, expected.series.rows_read + refined_samples);
+  ASSERT_EQ(got.series.rows_read, expected.series.rows_read + RefinedStretch{}.count);
   ASSERT_EQ(got.series.time_s.size(), expected.series.time_s.size());
   for (const ResultRow& row : expected.results.rows()) {
     const ResultRow* same = got.results.find(row.name);
@@ -106,6 +108,50 @@ TEST(RefinedStep, ExtraSamplesAndShiftedStepsLeaveEveryResultUnchanged)
   EXPECT_TRUE(std::any_of(got.warnings.begin(), got.warnings.end(), [](const std::string& w) {
     return w.find("samples between the uniform ones") != std::string::npos;
   }));
+}
+
+// A file refined from end to end (a short continuation of a fast flow) shows no interval of
+// the sample grid: its own rate, declared in its header as the chute deck does or given as
+// --sample-rate, brings back the uniform run's results; without it the spectrum reaches twice
+// the frequency and A_mean, a mean over that wider band, differs.
+TEST(RefinedStep, AFileRefinedThroughoutIsDecimatedToItsDeclaredRate)
+{
+  const auto uniform = testing::scratch_dir() / "uniform_all", declared = testing::scratch_dir() / "declared",
+             undeclared = testing::scratch_dir() / "undeclared";
+  testing::SyntheticRun truth;
+  truth.with_chunks_and_dump = false;
+  testing::write_synthetic_run(uniform, truth);
+  testing::write_synthetic_run(declared, truth);
+  testing::write_synthetic_run(undeclared, truth);
+  const RefinedStretch whole_run{0, 1000000};
+  refine_time_file(uniform / "flow.time", declared / "flow.time", whole_run,
+                   "# chute flow (sample_rate 1000 Hz): test\n");
+  refine_time_file(uniform / "flow.time", undeclared / "flow.time", whole_run);
+
+  RunSettings settings;
+  settings.directory = uniform.string();
+  const RunAnalysis expected = analyse_run(settings);
+  auto a_mean = [](const RunAnalysis& run) { return run.results.find("A_mean")->value; };
+  settings.directory = declared.string();
+  const RunAnalysis from_header = analyse_run(settings);
+  settings.directory = undeclared.string();
+  const RunAnalysis finer = analyse_run(settings);
+  settings.sample_rate_hz = 1000;
+  const RunAnalysis given = analyse_run(settings);
+
+  for (const RunAnalysis* got : {&from_header, &given}) {
+    EXPECT_EQ(got->series.time_s.size(), expected.series.time_s.size());
+    EXPECT_NEAR(got->series.sample_interval_s, 1e-3, 1e-12);
+    EXPECT_NEAR(a_mean(*got), a_mean(expected), 1e-9 * a_mean(expected));
+    EXPECT_NEAR(got->peak.frequency_hz, expected.peak.frequency_hz, 1e-9);
+  }
+  EXPECT_NEAR(finer.series.sample_interval_s, 0.5e-3, 1e-12);
+  EXPECT_GT(std::abs(a_mean(finer) - a_mean(expected)), 0.1 * a_mean(expected));
+
+  settings.sample_rate_hz = 300;  // 3.3 ms: the 0.5 ms interval does not divide it
+  EXPECT_THROW(analyse_run(settings), InputError);
+  settings.sample_rate_hz = 4000;  // a grid finer than the file's samples
+  EXPECT_THROW(analyse_run(settings), InputError);
 }
 
 }  // namespace

@@ -75,30 +75,47 @@ double regular_interval(const std::string& source, const std::vector<double>& ti
   return interval;
 }
 
-// Rows on the coarsest uniform grid (see TimeSeries): the longest interval is the grid's; every
-// interval must divide it, and every grid point must be there. Other sampling is refused.
-std::vector<size_t> coarse_rows(const ColumnTable& table, const std::vector<double>& time_s)
+// Rows on the uniform grid (see TimeSeries): every interval must divide the grid, and every grid
+// point must be there. The grid is the sample rate's, declared or given, counted from time 0;
+// else the longest interval, counted from the first row. Other sampling is refused.
+std::vector<size_t> coarse_rows(const ColumnTable& table, const std::vector<double>& time_s,
+                                std::optional<double> sample_rate_hz)
 {
   if (time_s.size() < 2) throw InputError(table.source, 0, "fewer than 2 samples");
-  double coarse = 0, finest = std::numeric_limits<double>::infinity();
+  double longest = 0, finest = std::numeric_limits<double>::infinity();
   for (size_t i = 1; i < time_s.size(); ++i) {
-    coarse = std::max(coarse, time_s[i] - time_s[i - 1]);
+    longest = std::max(longest, time_s[i] - time_s[i - 1]);
     finest = std::min(finest, time_s[i] - time_s[i - 1]);
   }
+  const double coarse = sample_rate_hz ? 1.0 / *sample_rate_hz : longest;
+  const double origin = sample_rate_hz ? 0.0 : time_s[0];
+  if (longest > coarse * (1 + 1e-4))
+    throw InputError(table.source, 0,
+                     "sampling interval " + std::to_string(longest) + " s is longer than that of the sample rate, " +
+                         std::to_string(coarse) + " s");
   // Times are printed rounded: tolerances well above rounding, well below the finest fraction.
   const double off_grid = 0.25 * finest / coarse;
-  std::vector<size_t> kept{0};
-  for (size_t i = 1; i < time_s.size(); ++i) {
-    const double interval = time_s[i] - time_s[i - 1];
-    const double parts = coarse / interval;
-    if (!(interval > 0) || std::abs(parts - std::round(parts)) > 1e-4 * parts)
-      throw InputError(table.source, table.row_lines[i],
-                       "irregular sampling: interval " + std::to_string(interval) + " s does not divide the longest, " +
-                           std::to_string(coarse) + " s (spectra need a fixed output interval)");
-    const double grid = (time_s[i] - time_s[0]) / coarse;
+  std::vector<size_t> kept;
+  for (size_t i = 0; i < time_s.size(); ++i) {
+    if (i > 0) {
+      const double interval = time_s[i] - time_s[i - 1];
+      const double parts = coarse / interval;
+      if (!(interval > 0) || std::abs(parts - std::round(parts)) > 1e-4 * parts)
+        throw InputError(table.source, table.row_lines[i],
+                         "irregular sampling: interval " + std::to_string(interval) + " s does not divide " +
+                             std::to_string(coarse) + " s (spectra need a fixed output interval)");
+    }
+    const double grid = (time_s[i] - origin) / coarse;
     if (std::abs(grid - std::round(grid)) < off_grid) kept.push_back(i);
   }
+  if (kept.size() < 2) throw InputError(table.source, 0, "fewer than 2 samples on the grid of the sample rate");
   return kept;
+}
+
+// The sample rate given on the command line, else the one the file declares.
+std::optional<double> sample_rate_of(const ColumnTable& table, const RunSettings& settings)
+{
+  return settings.sample_rate_hz ? settings.sample_rate_hz : declared_sample_rate(table);
 }
 
 std::vector<double> rows_of(const std::vector<double>& values, const std::vector<size_t>& rows)
@@ -135,7 +152,7 @@ TimeSeries read_time_series(const RunSettings& settings, std::vector<std::string
   auto table = read_ave_time(path_in(settings, c.time_file));
   const double velocity = settings.units.velocity_unit_mps();
   const std::vector<double> all_times = time_in_seconds(table, settings);
-  const std::vector<size_t> rows = coarse_rows(table, all_times);
+  const std::vector<size_t> rows = coarse_rows(table, all_times, sample_rate_of(table, settings));
   auto kept = [&](const std::vector<double>& column) { return rows_of(column, rows); };
   TimeSeries series;
   series.rows_read = all_times.size();
@@ -447,7 +464,7 @@ ColumnSpectrum analyse_column_spectrum(const std::string& path, const std::strin
 {
   auto table = read_ave_time(path);
   const auto all_times = time_in_seconds(table, settings);
-  const auto rows = coarse_rows(table, all_times);
+  const auto rows = coarse_rows(table, all_times, sample_rate_of(table, settings));
   const auto time_s = rows_of(all_times, rows);
   const double interval = regular_interval(table.source, time_s);
   return about_file(path, [&] {

@@ -55,6 +55,9 @@ struct RunSettings {
   RunColumns columns;
   std::optional<double> timestep_size;   // input time units per step (--dt)
   std::optional<double> t_start, t_end;  // override of the stationary window, input time units
+  // Rate (Hz) of the uniform samples the spectra use (--sample-rate); else the rate the time
+  // file's header declares (sample_rate RATE Hz), else its longest sampling interval.
+  std::optional<double> sample_rate_hz;
   StationaryCriterion criterion;
   SpectrumOptions spectrum;
   double peak_fmin_hz = 5;
@@ -66,10 +69,13 @@ struct RunSettings {
   bool progress = false;
 };
 
-// The samples of the time file on its coarsest uniform grid. A run whose step follows the flow
+// The samples of the time file on the grid of its sample rate. A run whose step follows the flow
 // (fix contact/dynamics dt_max) samples every N steps, so a stretch at a smaller step wrote
-// extra samples in between; the step changes only at samples of the coarse grid, so keeping
-// those rows is an exact decimation, and time is linear in TimeStep between two of them.
+// extra samples in between; the step changes only at samples of the grid, so keeping those
+// rows is an exact decimation, and time is linear in TimeStep between two of them. A file
+// refined from end to end (a short continuation of a fast flow) shows no interval of the grid:
+// its rate must be declared (RunSettings::sample_rate_hz), or its spectra would reach higher
+// frequencies than those of the same run sampled on the grid.
 struct TimeSeries {
   std::vector<double> time_s;
   std::vector<double> timestep;  // TimeStep of each kept sample

@@ -78,6 +78,9 @@ std::vector<OptionSpec> analysis_options()
       {"fmin", "HZ", "lowest frequency searched for the peak (default 5)"},
       {"fmax", "HZ", "highest frequency searched for the peak (default Nyquist)"},
       {"high-frequency", "HZ", "A_mean is the mean amplitude above this (default 100)"},
+      {"sample-rate", "HZ",
+       "spectra use the samples on this rate's grid (default: the rate the time file's header declares, "
+       "'sample_rate RATE Hz', else its longest interval)"},
       {"z0", "LENGTH", "height of the wall tops in input length units (z = y - z0; default 0)"},
       {"creep-depth", "D", "the creep fit uses -D <= z < 0, in d (default 30)"},
       {"blocks", "N", "blocks for the standard error of means (default 10)"},
@@ -116,6 +119,8 @@ RunSettings settings_from(const ParsedOptions& options, const std::string& comma
   s.peak_fmin_hz = options.number("fmin").value_or(s.peak_fmin_hz);
   s.peak_fmax_hz = options.number("fmax").value_or(s.peak_fmax_hz);
   s.high_frequency_hz = options.number("high-frequency").value_or(s.high_frequency_hz);
+  s.sample_rate_hz = options.number("sample-rate");
+  if (s.sample_rate_hz && !(*s.sample_rate_hz > 0)) throw UsageError(command + ": --sample-rate must be positive");
   s.z0 = options.number("z0").value_or(s.z0);
   s.creep_depth_d = options.number("creep-depth").value_or(s.creep_depth_d);
   s.averaging_blocks = static_cast<int>(options.integer("blocks").value_or(s.averaging_blocks));

@@ -15,7 +15,7 @@ REPLICA_SEED = 20261123
 SERIES = {
     "mu0.05": [dict(mu=0.05, theta=t, L=45) for t in range(16, 23)],
     "mu0.5": [dict(mu=0.5, theta=t, L=45) for t in range(22, 29)],
-    "mu2": [dict(mu=2, theta=t, L=45) for t in range(25, 31)],
+    "mu2": [dict(mu=2, theta=t, L=45) for t in range(24, 31)],
     "L": [dict(mu=0.5, theta=22, L=n) for n in (12, 22, 32, 52, 72, 102, 152)],
     # Another deposition (rain seed) at one point per friction: the scatter between two
     # realisations of a run, which the error bars of one run's windows understate.

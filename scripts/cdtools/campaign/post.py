@@ -30,7 +30,9 @@ def run_logged(cmd, log):
 
 def postprocess_run(job, cdpost, args):
     """cdpost run on a finished run. Returns (ok, message); 'not stationary' is reported."""
+    # The deck's sample rate sets the spectra's grid even where a leg ran at a refined step throughout.
     cmd = [cdpost, "run", job.folder, "--d", job.vars["d"], "--g", job.vars["g"],
+           "--sample-rate", job.vars["sample_rate"],
            "--z0", repr(wall_top(job.vars)), "--dump", os.path.join(job.folder, "dump.chute.gz")]
     return run_logged(cmd + args.cdpost_option, os.path.join(job.folder, "cdpost.log"))
 
