@@ -49,21 +49,6 @@ TEST(AveTime, AcceptsRepeatedHeaderAfterRestart)
   EXPECT_EQ(read_ave_time(write_file(scratch_dir() / "f", text)).rows(), 3u);
 }
 
-TEST(AveTime, DeclaredSampleRateIsReadFromTheTitle)
-{
-  const std::string rows = testing::ave_time_text({"TimeStep", "v_u"}, {{1, 2}, {2, 3}});
-  auto dir = scratch_dir();
-  auto declared =
-      read_ave_time(write_file(dir / "declared", "# flow, one row per sample (sample_rate 2500 Hz): v_u\n" + rows));
-  EXPECT_DOUBLE_EQ(declared_sample_rate(declared).value(), 2500);
-  auto prose = read_ave_time(write_file(dir / "prose", "# one row per sample (sample_rate): v_u\n" + rows));
-  EXPECT_FALSE(declared_sample_rate(prose).has_value());
-  EXPECT_FALSE(declared_sample_rate(read_ave_time(write_file(dir / "plain", rows))).has_value());
-  auto bad = read_ave_time(write_file(dir / "bad", "# (sample_rate -1 Hz)\n" + rows));
-  EXPECT_EQ(error_of([&] { declared_sample_rate(bad); }),
-            (dir / "bad").string() + ": header declares sample_rate '-1' Hz: not a positive number");
-}
-
 TEST(AveTime, ErrorsNameFileLineAndProblem)
 {
   auto dir = scratch_dir();

@@ -34,9 +34,9 @@ struct RefinedStretch {
 };
 
 // The same flow.time with the halved stretch: TimeStep shifted and a sample between every two
-// (its values anything: here the row's own, tripled), under the given header line.
+// (its values anything: here the row's own, tripled).
 void refine_time_file(const std::filesystem::path& from, const std::filesystem::path& to,
-                      const RefinedStretch& stretch = {}, const std::string& title = "")
+                      const RefinedStretch& stretch = {})
 {
   const ColumnTable table = read_ave_time(from.string());
   std::vector<std::vector<double>> rows;
@@ -53,7 +53,7 @@ void refine_time_file(const std::filesystem::path& from, const std::filesystem::
     between[1] += 0.5 * steps_per_sample * table.columns[1][1] / table.columns[0][1];  // half a sample
     rows.push_back(between);
   }
-  testing::write_file(to, title + testing::ave_time_text(table.names, rows));
+  testing::write_file(to, testing::ave_time_text(table.names, rows));
 }
 
 void refine_chunk_file(const std::filesystem::path& from, const std::filesystem::path& to, bool every_sample)
@@ -111,40 +111,31 @@ TEST(RefinedStep, ExtraSamplesAndShiftedStepsLeaveEveryResultUnchanged)
 }
 
 // A file refined from end to end (a short continuation of a fast flow) shows no interval of
-// the sample grid: its own rate, declared in its header as the chute deck does or given as
-// --sample-rate, brings back the uniform run's results; without it the spectrum reaches twice
-// the frequency and A_mean, a mean over that wider band, differs.
-TEST(RefinedStep, AFileRefinedThroughoutIsDecimatedToItsDeclaredRate)
+// the sample grid: its own rate, given as --sample-rate, brings back the uniform run's results;
+// without it the spectrum reaches twice the frequency and A_mean, a mean over that wider band,
+// differs.
+TEST(RefinedStep, AFileRefinedThroughoutIsDecimatedToTheGivenRate)
 {
-  const auto uniform = testing::scratch_dir() / "uniform_all", declared = testing::scratch_dir() / "declared",
-             undeclared = testing::scratch_dir() / "undeclared";
+  const auto uniform = testing::scratch_dir() / "uniform_all", refined = testing::scratch_dir() / "refined_all";
   testing::SyntheticRun truth;
   truth.with_chunks_and_dump = false;
   testing::write_synthetic_run(uniform, truth);
-  testing::write_synthetic_run(declared, truth);
-  testing::write_synthetic_run(undeclared, truth);
-  const RefinedStretch whole_run{0, 1000000};
-  refine_time_file(uniform / "flow.time", declared / "flow.time", whole_run,
-                   "# chute flow (sample_rate 1000 Hz): test\n");
-  refine_time_file(uniform / "flow.time", undeclared / "flow.time", whole_run);
+  testing::write_synthetic_run(refined, truth);
+  refine_time_file(uniform / "flow.time", refined / "flow.time", RefinedStretch{0, 1000000});
 
   RunSettings settings;
   settings.directory = uniform.string();
   const RunAnalysis expected = analyse_run(settings);
   auto a_mean = [](const RunAnalysis& run) { return run.results.find("A_mean")->value; };
-  settings.directory = declared.string();
-  const RunAnalysis from_header = analyse_run(settings);
-  settings.directory = undeclared.string();
+  settings.directory = refined.string();
   const RunAnalysis finer = analyse_run(settings);
   settings.sample_rate_hz = 1000;
   const RunAnalysis given = analyse_run(settings);
 
-  for (const RunAnalysis* got : {&from_header, &given}) {
-    EXPECT_EQ(got->series.time_s.size(), expected.series.time_s.size());
-    EXPECT_NEAR(got->series.sample_interval_s, 1e-3, 1e-12);
-    EXPECT_NEAR(a_mean(*got), a_mean(expected), 1e-9 * a_mean(expected));
-    EXPECT_NEAR(got->peak.frequency_hz, expected.peak.frequency_hz, 1e-9);
-  }
+  EXPECT_EQ(given.series.time_s.size(), expected.series.time_s.size());
+  EXPECT_NEAR(given.series.sample_interval_s, 1e-3, 1e-12);
+  EXPECT_NEAR(a_mean(given), a_mean(expected), 1e-9 * a_mean(expected));
+  EXPECT_NEAR(given.peak.frequency_hz, expected.peak.frequency_hz, 1e-9);
   EXPECT_NEAR(finer.series.sample_interval_s, 0.5e-3, 1e-12);
   EXPECT_GT(std::abs(a_mean(finer) - a_mean(expected)), 0.1 * a_mean(expected));
 

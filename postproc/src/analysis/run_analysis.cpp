@@ -76,8 +76,8 @@ double regular_interval(const std::string& source, const std::vector<double>& ti
 }
 
 // Rows on the uniform grid (see TimeSeries): every interval must divide the grid, and every grid
-// point must be there. The grid is the sample rate's, declared or given, counted from time 0;
-// else the longest interval, counted from the first row. Other sampling is refused.
+// point must be there. The grid is the given sample rate's, counted from time 0, else the
+// longest interval, counted from the first row. Other sampling is refused.
 std::vector<size_t> coarse_rows(const ColumnTable& table, const std::vector<double>& time_s,
                                 std::optional<double> sample_rate_hz)
 {
@@ -110,12 +110,6 @@ std::vector<size_t> coarse_rows(const ColumnTable& table, const std::vector<doub
   }
   if (kept.size() < 2) throw InputError(table.source, 0, "fewer than 2 samples on the grid of the sample rate");
   return kept;
-}
-
-// The sample rate given on the command line, else the one the file declares.
-std::optional<double> sample_rate_of(const ColumnTable& table, const RunSettings& settings)
-{
-  return settings.sample_rate_hz ? settings.sample_rate_hz : declared_sample_rate(table);
 }
 
 std::vector<double> rows_of(const std::vector<double>& values, const std::vector<size_t>& rows)
@@ -152,7 +146,7 @@ TimeSeries read_time_series(const RunSettings& settings, std::vector<std::string
   auto table = read_ave_time(path_in(settings, c.time_file));
   const double velocity = settings.units.velocity_unit_mps();
   const std::vector<double> all_times = time_in_seconds(table, settings);
-  const std::vector<size_t> rows = coarse_rows(table, all_times, sample_rate_of(table, settings));
+  const std::vector<size_t> rows = coarse_rows(table, all_times, settings.sample_rate_hz);
   auto kept = [&](const std::vector<double>& column) { return rows_of(column, rows); };
   TimeSeries series;
   series.rows_read = all_times.size();
@@ -464,7 +458,7 @@ ColumnSpectrum analyse_column_spectrum(const std::string& path, const std::strin
 {
   auto table = read_ave_time(path);
   const auto all_times = time_in_seconds(table, settings);
-  const auto rows = coarse_rows(table, all_times, sample_rate_of(table, settings));
+  const auto rows = coarse_rows(table, all_times, settings.sample_rate_hz);
   const auto time_s = rows_of(all_times, rows);
   const double interval = regular_interval(table.source, time_s);
   return about_file(path, [&] {

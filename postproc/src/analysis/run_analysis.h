@@ -55,8 +55,8 @@ struct RunSettings {
   RunColumns columns;
   std::optional<double> timestep_size;   // input time units per step (--dt)
   std::optional<double> t_start, t_end;  // override of the stationary window, input time units
-  // Rate (Hz) of the uniform samples the spectra use (--sample-rate); else the rate the time
-  // file's header declares (sample_rate RATE Hz), else its longest sampling interval.
+  // Rate (Hz) of the uniform samples the spectra use (--sample-rate); else the time file's
+  // longest sampling interval.
   std::optional<double> sample_rate_hz;
   StationaryCriterion criterion;
   SpectrumOptions spectrum;
@@ -74,7 +74,7 @@ struct RunSettings {
 // extra samples in between; the step changes only at samples of the grid, so keeping those
 // rows is an exact decimation, and time is linear in TimeStep between two of them. A file
 // refined from end to end (a short continuation of a fast flow) shows no interval of the grid:
-// its rate must be declared (RunSettings::sample_rate_hz), or its spectra would reach higher
+// its rate must be given (RunSettings::sample_rate_hz), or its spectra would reach higher
 // frequencies than those of the same run sampled on the grid.
 struct TimeSeries {
   std::vector<double> time_s;

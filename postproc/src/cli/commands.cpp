@@ -79,8 +79,8 @@ std::vector<OptionSpec> analysis_options()
       {"fmax", "HZ", "highest frequency searched for the peak (default Nyquist)"},
       {"high-frequency", "HZ", "A_mean is the mean amplitude above this (default 100)"},
       {"sample-rate", "HZ",
-       "spectra use the samples on this rate's grid (default: the rate the time file's header declares, "
-       "'sample_rate RATE Hz', else its longest interval)"},
+       "spectra use the samples on this rate's grid, the deck's sample_rate (default: the time file's "
+       "longest interval)"},
       {"z0", "LENGTH", "height of the wall tops in input length units (z = y - z0; default 0)"},
       {"creep-depth", "D", "the creep fit uses -D <= z < 0, in d (default 30)"},
       {"blocks", "N", "blocks for the standard error of means (default 10)"},

@@ -1,7 +1,6 @@
 #include "io/ave_time.h"
 
 #include <algorithm>
-#include <cstdlib>
 
 #include "io/line_source.h"
 #include "io/progress.h"
@@ -85,7 +84,6 @@ ColumnTable read_ave_time(const std::string& path)
     if (source.line_number() % 4096 == 0) progress.update(source.fraction_read());
     if (is_blank(line)) continue;
     if (is_comment(line)) {
-      if (table.rows() == 0) table.preamble.push_back(line);
       last_comment_names = header_names(line.substr(line.find('#')));
       expecting_header = true;
       continue;
@@ -101,24 +99,6 @@ ColumnTable read_ave_time(const std::string& path)
   if (table.rows() == 0) source.fail("no data rows (only comments)");
   check_timesteps_increase(table);
   return table;
-}
-
-std::optional<double> declared_sample_rate(const ColumnTable& table)
-{
-  const std::string key = "sample_rate";
-  for (const std::string& line : table.preamble) {
-    for (size_t at = line.find(key); at != std::string::npos; at = line.find(key, at + 1)) {
-      const auto tokens = split_whitespace(std::string_view(line).substr(at + key.size()));
-      if (tokens.size() < 2 || tokens[1].substr(0, 2) != "Hz") continue;  // the name alone, as in prose
-      const std::string value(tokens[0]);
-      char* end = nullptr;
-      const double rate = std::strtod(value.c_str(), &end);
-      if (end == value.c_str() || *end != '\0' || !(rate > 0))
-        throw InputError(table.source, 0, "header declares sample_rate '" + value + "' Hz: not a positive number");
-      return rate;
-    }
-  }
-  return std::nullopt;
 }
 
 }  // namespace cdpost

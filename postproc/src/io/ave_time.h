@@ -2,7 +2,6 @@
 // which before the data names the columns ("# TimeStep v_u v_v"), then one row per output.
 #pragma once
 
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,7 +14,6 @@ struct ColumnTable {
   std::vector<std::string> names;
   std::vector<std::vector<double>> columns;  // columns[c][row]
   std::vector<long> row_lines;
-  std::vector<std::string> preamble;  // the comment lines before the first row
 
   size_t rows() const { return row_lines.size(); }
   bool has(const std::string& name) const;
@@ -24,10 +22,6 @@ struct ColumnTable {
 };
 
 ColumnTable read_ave_time(const std::string& path);
-
-// The sampling rate (Hz) a preamble line declares as "sample_rate RATE Hz" (the chute decks'
-// title line), if any; a declaration that is not a positive number fails naming the file.
-std::optional<double> declared_sample_rate(const ColumnTable& table);
 
 // The names in a '#' comment line ("# TimeStep v_u" gives TimeStep, v_u).
 std::vector<std::string> header_names(const std::string& comment_line);
