@@ -19,6 +19,7 @@ import re
 import subprocess
 import sys
 
+from cdtools.campaign.plan import deck_defaults
 from cdtools.cdpost import read_results
 from cdtools.lammps_files import read_chunk_file, read_time_file
 from cdtools.run import BUILT_CDPOST
@@ -46,9 +47,9 @@ def step_clock(flow):
 def cdpost(folder, z0, t0, t1, name):
     post = os.path.join(folder, name)
     # The runs continue a flow for a second or two: a fast one may stay refined throughout, so
-    # the deck's sample rate (1000 Hz) sets the spectra's grid.
+    # the deck's sample rate sets the spectra's grid.
     cmd = [BUILT_CDPOST, "run", folder, "--z0", f"{z0:g}", "--t-start", f"{t0:g}", "--t-end", f"{t1:g}",
-           "--sample-rate", "1000", "--out", post]
+           "--sample-rate", deck_defaults()["sample_rate"], "--out", post]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
     return {name: entry[0] for name, entry in read_results(os.path.join(post, "results.csv")).items()}
 

@@ -3,6 +3,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -63,6 +64,27 @@ TEST(Cli, HelpAndUsageErrors)
   EXPECT_EQ(unknown.err, "cdpost: cdpost run: unknown option '--frobnicate' (see cdpost --help)\n");
   EXPECT_EQ(cdpost("run . --dt abc").status, 2);
   EXPECT_EQ(cdpost("transmogrify").status, 2);
+  auto zero_rate = cdpost("run . --sample-rate 0");
+  EXPECT_EQ(zero_rate.status, 2);
+  EXPECT_EQ(zero_rate.err, "cdpost: cdpost run: --sample-rate must be positive (see cdpost --help)\n");
+}
+
+// A sample rate whose grid the file's rows cannot lie on fails in one line naming the file.
+TEST(Cli, SampleRateTheFileDoesNotFitIsRefused)
+{
+  auto dir = testing::scratch_dir() / "rate";
+  testing::SyntheticRun truth;
+  truth.duration = 2.0;
+  truth.with_chunks_and_dump = false;
+  testing::write_synthetic_run(dir, truth);
+  auto finer = cdpost("spectrum " + (dir / "flow.time").string() + " --column v_v_flow --sample-rate 4000");
+  EXPECT_EQ(finer.status, 1);
+  EXPECT_EQ(finer.err, "cdpost: error: " + (dir / "flow.time").string() +
+                           ": sampling interval 0.001000 s is longer than that of the sample rate, 0.000250 s\n");
+  auto undivided = cdpost("spectrum " + (dir / "flow.time").string() + " --column v_v_flow --sample-rate 300");
+  EXPECT_EQ(undivided.status, 1);
+  EXPECT_NE(undivided.err.find("does not divide 0.003333 s"), std::string::npos) << undivided.err;
+  EXPECT_EQ(std::count(undivided.err.begin(), undivided.err.end(), '\n'), 1);
 }
 
 TEST(Cli, RunWritesResultsFiguresAndReport)
