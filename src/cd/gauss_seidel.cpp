@@ -1,7 +1,6 @@
 #include "cd/gauss_seidel.h"
 
 #include <algorithm>
-#include <deque>
 #include <limits>
 
 namespace cd {
@@ -159,26 +158,30 @@ std::vector<int> interleaved_order(const std::vector<Contact>& contacts, int bod
 {
   // Greedy: each slot takes the first waiting contact whose bodies were last used at least
   // `spacing` slots ago, looking a bounded distance ahead; otherwise the oldest waiting one.
-  constexpr std::size_t lookahead = 16;
+  // The waiting contacts form a list in their order (after_[k]: the next one waiting after k),
+  // so that taking one from the middle costs nothing.
+  constexpr int lookahead = 16;
+  const int count = static_cast<int>(contacts.size());
+  const int end = count;  // after_[end] is the first waiting contact
+  std::vector<int> after(count + 1);
+  for (int k = 0; k < count; k++) after[k] = k + 1;
+  after[end] = 0;
   std::vector<int> last_slot(body_count, -spacing);
-  std::deque<int> waiting;
-  for (std::size_t k = 0; k < contacts.size(); k++) waiting.push_back(static_cast<int>(k));
   std::vector<int> order;
   order.reserve(contacts.size());
-  while (!waiting.empty()) {
-    const int slot = static_cast<int>(order.size());
-    std::size_t chosen = 0;
-    for (std::size_t k = 0; k < waiting.size() && k < lookahead; k++) {
-      const Contact& c = contacts[waiting[k]];
+  for (int slot = 0; slot < count; slot++) {
+    int before_chosen = end;  // the waiting contact before the chosen one (end: none)
+    for (int before = end, seen = 0; after[before] != end && seen < lookahead; before = after[before], seen++) {
+      const Contact& c = contacts[after[before]];
       if (slot - last_slot[c.body_a] >= spacing && slot - last_slot[c.body_b] >= spacing) {
-        chosen = k;
+        before_chosen = before;
         break;
       }
     }
-    const Contact& c = contacts[waiting[chosen]];
-    last_slot[c.body_a] = last_slot[c.body_b] = slot;
-    order.push_back(waiting[chosen]);
-    waiting.erase(waiting.begin() + static_cast<std::ptrdiff_t>(chosen));
+    const int chosen = after[before_chosen];
+    after[before_chosen] = after[chosen];
+    last_slot[contacts[chosen].body_a] = last_slot[contacts[chosen].body_b] = slot;
+    order.push_back(chosen);
   }
   return order;
 }
