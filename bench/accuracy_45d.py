@@ -170,28 +170,34 @@ def compare(args):
     print("\n".join(lines))
 
 
+# What the convergence figure shows, with its axis labels.
+CONVERGENCE = [("f", "f (Hz)"), ("A", "A (sqrt(g d))"), ("A_mean", "A_mean, f >= 100 Hz (sqrt(g d))"),
+               ("U", "U (sqrt(g d))"), ("phi_layer", "phi of 0 < z < 40 d")]
+
+
 def convergence(args):
-    """f, A, A_mean against one setting (tolerance or dt): a CSV, and a gnuplot figure."""
+    """f, A, A_mean, U and the layer's packing against one setting (tolerance or dt): a CSV,
+    and a gnuplot figure."""
     windows = parse_windows(args.windows)
     os.makedirs(args.out, exist_ok=True)
+    names = [q for q, _ in CONVERGENCE]
     series = []
     for item in args.series.split(","):
         value, folder = item.split("=")
         values = group_values(args, folder.replace("+", ","), windows)    # RUN+RUN: replicas
-        series.append((float(value), folder, {q: group(values, q) for q in ("f", "A", "A_mean", "U")},
+        series.append((float(value), folder, {q: group(values, q) for q in names},
                        cost(os.path.join(args.runs, folder.split("+")[0]))))
     series.sort()
     reference = None
     if args.reference:
         values = group_values(args, args.reference, windows)
-        reference = {q: group(values, q) for q in ("f", "A", "A_mean")}
-    stem = os.path.join(args.out, f"convergence_{args.setting}")
+        reference = {q: group(values, q) for q in names}
+    stem = os.path.join(args.out, args.name or f"convergence_{args.setting}")
     with open(stem + ".csv", "w") as f:
-        f.write(f"{args.setting},run,f_Hz,f_se,A,A_se,A_mean,A_mean_se,U,U_se,cpu_s_per_s\n")
+        f.write(f"{args.setting},run," + ",".join(f"{q},{q}_se" for q in names) + ",cpu_s_per_s\n")
         for value, folder, g, c in series:
-            f.write(f"{value:g},{folder}," + ",".join(f"{g[q][0]:.6g},{g[q][1]:.3g}" for q in ("f", "A", "A_mean", "U"))
-                    + f",{c:.1f}\n")
-    convergence_figure(stem, args.setting, reference)
+            f.write(f"{value:g},{folder}," + ",".join(f"{g[q][0]:.6g},{g[q][1]:.3g}" for q in names) + f",{c:.1f}\n")
+    convergence_figure(stem, args.setting, reference, [value for value, *_ in series])
     print(open(stem + ".csv").read())
 
 
@@ -204,25 +210,27 @@ def reference_band(reference, q):
            f"{m + e} with lines dt 3 lc 'gray' notitle"
 
 
-def convergence_figure(stem, setting, reference):
-    """stem.png and stem.svg from stem.csv: f, A and A_mean against the setting."""
-    band = {q: reference_band(reference, q) for q in ("f", "A", "A_mean")}
-    for ext, term in (("png", "pngcairo size 1000,320"), ("svg", "svg size 1000,320")):
+def convergence_figure(stem, setting, reference, values):
+    """stem.png and stem.svg from stem.csv: each quantity of CONVERGENCE against the setting
+    (its values span the x axis, with the reference band across it)."""
+    panels = []
+    for k, (q, label) in enumerate(CONVERGENCE):
+        column = 3 + 2 * k
+        key = "title 'mean of the windows +- SE'" if k == 0 else "notitle"
+        panels.append(f"set ylabel '{label}'\n"
+                      f"plot '{stem}.csv' every ::1 using 1:{column}:{column + 1} with yerrorlines {key}"
+                      f"{reference_band(reference, q)}")
+    for ext, term in (("png", "pngcairo size 1000,640"), ("svg", "svg size 1000,640")):
         script = f"""set terminal {term} noenhanced
 set output '{stem}.{ext}'
 set datafile separator ','
 set logscale x
+set xrange [{min(values) / 1.5}:{max(values) * 1.5}]
+set xtics rotate by -30 ({", ".join(f"'{v:g}' {v}" for v in values)})
 set key top right font ",9"
-set multiplot layout 1,3
+set multiplot layout 2,3
 set xlabel '{setting}'
-set ylabel 'f (Hz)'
-plot '{stem}.csv' every ::1 using 1:3:4 with yerrorlines title 'mean of the windows +- SE'{band["f"]}
-set ylabel 'A (sqrt(g d))'
-plot '{stem}.csv' every ::1 using 1:5:6 with yerrorlines notitle{band["A"]}
-set ylabel 'A_mean, f >= 100 Hz (sqrt(g d))'
-plot '{stem}.csv' every ::1 using 1:7:8 with yerrorlines notitle{band["A_mean"]}
-unset multiplot
-"""
+""" + "\n".join(panels) + "\nunset multiplot\n"
         subprocess.run(["gnuplot"], input=script, text=True, check=True)
 
 
@@ -238,6 +246,8 @@ def main():
     sub.choices["compare"].add_argument("--reference", required=True, help="RUN[,RUN...]: replicas of the reference")
     sub.choices["compare"].add_argument("--candidate", required=True, help="RUN[,RUN...]: replicas of the candidate")
     sub.choices["compare"].add_argument("--name", help="file name of the table (default CANDIDATE_vs_REFERENCE)")
+    sub.choices["convergence"].add_argument("--name",
+                                            help="file name of the figure and table (default convergence_SETTING)")
     sub.choices["convergence"].add_argument("--setting", required=True, help="name of the varied setting (axis label)")
     sub.choices["convergence"].add_argument("--series", required=True,
                                             help="VALUE=RUN[+RUN...],...: the run (or replicas) of each value")
