@@ -40,6 +40,17 @@ size_t line_count(const std::string& text)
   return static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
 }
 
+// A synthetic run of `duration` s with flow.time alone (no chunk files, no dump) in the
+// scratch folder `name`; returns its folder.
+std::filesystem::path flow_only_run(const std::string& name, double duration, testing::SyntheticRun& truth)
+{
+  auto dir = testing::scratch_dir() / name;
+  truth.duration = duration;
+  truth.with_chunks_and_dump = false;
+  testing::write_synthetic_run(dir, truth);
+  return dir;
+}
+
 // The value column of row `name` in a name,value,error,... CSV.
 double csv_value(const std::filesystem::path& csv, const std::string& name)
 {
@@ -72,11 +83,8 @@ TEST(Cli, HelpAndUsageErrors)
 // A sample rate whose grid the file's rows cannot lie on fails in one line naming the file.
 TEST(Cli, SampleRateTheFileDoesNotFitIsRefused)
 {
-  auto dir = testing::scratch_dir() / "rate";
   testing::SyntheticRun truth;
-  truth.duration = 2.0;
-  truth.with_chunks_and_dump = false;
-  testing::write_synthetic_run(dir, truth);
+  auto dir = flow_only_run("rate", 2.0, truth);
   auto finer = cdpost("spectrum " + (dir / "flow.time").string() + " --column v_v_flow --sample-rate 4000");
   EXPECT_EQ(finer.status, 1);
   EXPECT_EQ(finer.err, "cdpost: error: " + (dir / "flow.time").string() +
@@ -84,7 +92,7 @@ TEST(Cli, SampleRateTheFileDoesNotFitIsRefused)
   auto undivided = cdpost("spectrum " + (dir / "flow.time").string() + " --column v_v_flow --sample-rate 300");
   EXPECT_EQ(undivided.status, 1);
   EXPECT_NE(undivided.err.find("does not divide 0.003333 s"), std::string::npos) << undivided.err;
-  EXPECT_EQ(std::count(undivided.err.begin(), undivided.err.end(), '\n'), 1);
+  EXPECT_EQ(line_count(undivided.err), 1u) << undivided.err;
 }
 
 TEST(Cli, RunWritesResultsFiguresAndReport)
@@ -109,11 +117,8 @@ TEST(Cli, RunWritesResultsFiguresAndReport)
 
 TEST(Cli, BrokenInputGivesOneLineNamingFileAndLine)
 {
-  auto dir = testing::scratch_dir() / "run";
   testing::SyntheticRun truth;
-  truth.duration = 1.0;
-  truth.with_chunks_and_dump = false;
-  testing::write_synthetic_run(dir, truth);
+  auto dir = flow_only_run("run", 1.0, truth);
   auto text = slurp(dir / "flow.time");
   testing::write_file(dir / "flow.time", text.substr(0, text.size() - 30));  // cut inside the last row
   auto outcome = cdpost("run " + dir.string());
@@ -130,11 +135,8 @@ TEST(Cli, BrokenInputGivesOneLineNamingFileAndLine)
 
 TEST(Cli, SpectrumOfOneColumn)
 {
-  auto dir = testing::scratch_dir() / "run";
   testing::SyntheticRun truth;
-  truth.duration = 2.0;
-  truth.with_chunks_and_dump = false;
-  testing::write_synthetic_run(dir, truth);
+  auto dir = flow_only_run("run", 2.0, truth);
   auto outcome =
       cdpost("spectrum " + (dir / "flow.time").string() + " --column v_v_flow --out " + (dir / "s").string());
   ASSERT_EQ(outcome.status, 0) << outcome.err;
