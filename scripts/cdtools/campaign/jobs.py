@@ -20,7 +20,7 @@ from ..run import DECK, lmp_command, start_detached
 PRIOR_SECONDS_PER_GRAIN_CHUTE_SECOND = 0.02
 PRIOR_SECONDS_PER_GRAIN_DEPOSITION_STEP = 1.0e-6
 # Grains of the 45 d cell: a run of another length without a grain count scales them with L.
-GRAINS_PER_45_D = 3967
+GRAINS_PER_45_D = {"count": 3967, "layer": 3290}   # in.chute's counts per 45 d of each reading
 
 
 def write_json(path, data):
@@ -64,7 +64,8 @@ class Job:
 
     def grains(self):
         n = int(float(self.vars.get("grains", "0")))
-        return n if n > 0 else int(round(GRAINS_PER_45_D * float(self.vars["L"]) / 45))
+        per_45d = GRAINS_PER_45_D[self.vars.get("reading", "count")]
+        return n if n > 0 else int(round(per_45d * float(self.vars["L"]) / 45))
 
     def total_work(self):
         """Deposition steps (at most settle_max), or the chute time of a run (s)."""

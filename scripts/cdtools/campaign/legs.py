@@ -12,7 +12,8 @@ from .jobs import write_json
 # Output files of one leg: (name, kind). Kind "time" is a fix ave/time file, "chunk" a fix
 # ave/chunk file, "dump" a gzipped dump; all are spliced by time step.
 LEG_OUTPUTS = (("flow.time", "time"), ("solver.time", "time"), ("profile.chunk", "chunk"),
-               ("packing.chunk", "chunk"), ("layers.chunk", "chunk"), ("dump.chute.gz", "dump"))
+               ("packing.chunk", "chunk"), ("layers.chunk", "chunk"), ("columns.chunk", "chunk"),
+               ("dump.chute.gz", "dump"))
 READERS = {"time": read_time_records, "chunk": read_chunk_records, "dump": read_dump_records}
 
 

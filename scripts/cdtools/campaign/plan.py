@@ -22,16 +22,23 @@ SERIES = {
     "replicas": [dict(mu=mu, theta=theta, L=45, seed=REPLICA_SEED)
                  for mu, theta in ((0.05, 20), (0.5, 24), (2, 28))],
 }
+# The other reading of the source's 45 d cell (doc/scene.md): the count whose flowing layer is
+# 40-49 d thick (deck variable reading=layer), the same friction series and replicas.
+LAYER_SERIES = {"layer_" + name: [dict(point, reading="layer") for point in SERIES[name]]
+                for name in ("mu0.05", "mu0.5", "mu2", "replicas")}
+SERIES.update(LAYER_SERIES)
 # The cdpost series analyses: the flow rules need every mu together; the L series also takes
 # the 45 d run at the same (mu, theta) from the mu = 0.5 series.
 ANALYSES = {
     "flow_rules": lambda job: job.series in ("mu0.05", "mu0.5", "mu2"),
-    "L_series": lambda job: float(job.vars["mu"]) == 0.5 and float(job.vars["theta"]) == 22,
+    "L_series": lambda job: (float(job.vars["mu"]) == 0.5 and float(job.vars["theta"]) == 22
+                             and reading(job.vars) == "count"),
+    "layer_flow_rules": lambda job: job.series in ("layer_mu0.05", "layer_mu0.5", "layer_mu2"),
 }
 
 # Deck variables that shape the deposition: one packing serves every run with the same
 # values (by default one per L, deposited with mu_deposition = 0.5, for all three mu).
-DEPOSITION_VARS = ("L", "grains", "wall_height", "mu_deposition", "e", "e_wall", "seed", "d",
+DEPOSITION_VARS = ("L", "reading", "grains", "wall_height", "mu_deposition", "e", "e_wall", "seed", "d",
                    "dispersity", "density", "g", "dt_deposition", "tolerance_deposition",
                    "rain_fill", "settle_ke", "settle_max", "max_iterations")
 # Wall laws default to the grains' (mu, e) of each run unless --var sets them.
@@ -63,9 +70,19 @@ def run_variables(args, defaults, point):
     return variables
 
 
+def reading(variables):
+    """The reading of the source's cell a job's variables select ('count' before the switch)."""
+    return variables.get("reading", "count")
+
+
+def reading_suffix(variables):
+    return "" if reading(variables) == "count" else "_" + reading(variables)
+
+
 def run_name(variables, defaults):
     name = f"mu{variables['mu']}_theta{variables['theta']}_L{variables['L']}"
-    return name + (f"_seed{variables['seed']}" if variables["seed"] != defaults["seed"] else "")
+    name += f"_seed{variables['seed']}" if variables["seed"] != defaults["seed"] else ""
+    return name + reading_suffix(variables)
 
 
 def build_jobs(args):
@@ -86,8 +103,8 @@ def build_jobs(args):
 
 def deposition_of(args, variables, depositions):
     """The deposition a run starts from, added to `depositions` if new."""
-    dep_vars = {k: variables[k] for k in DEPOSITION_VARS}
-    name = f"mu{dep_vars['mu_deposition']}_L{dep_vars['L']}_seed{dep_vars['seed']}"
+    dep_vars = {k: variables[k] for k in DEPOSITION_VARS if k in variables}
+    name = f"mu{dep_vars['mu_deposition']}_L{dep_vars['L']}_seed{dep_vars['seed']}" + reading_suffix(dep_vars)
     if name not in depositions:
         depositions[name] = Job("deposition", name, os.path.join(args.out, "depositions", name), dep_vars)
     return depositions[name]
