@@ -64,17 +64,8 @@ TEST(Reproducibility, RunSplitAtARestartIsBitwiseTheSameAsTwoRuns)
   {
     LammpsSession s;
     s.commands("read_restart " + restart);
-    s.commands(fmt::format(R"(
-neighbor {skin} bin
-comm_modify vel yes
-neigh_modify delay 0 every 1 check yes
-fix grav all gravity 9.81 vector 0 -1 0
-fix cd all contact/dynamics 0.5 0.5 wall yplane 0.0 0.5 0.5 {options}
-fix 2d all enforce2d
-run {steps}
-)",
-                           fmt::arg("skin", 0.2 * cdtest::deposition_d), fmt::arg("options", tolerance),
-                           fmt::arg("steps", half_run)));
+    s.commands(cdtest::small_deposition_after_restart(tolerance));
+    s.commands(fmt::format("run {}", half_run));
     through_the_file = state_of(s);
   }
   std::remove(restart.c_str());
