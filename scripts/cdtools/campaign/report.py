@@ -23,7 +23,7 @@ from ..stats import pooled_sd
 from ..text import markdown_table, number, with_error
 from .jobs import read_json
 from .legs import run_cost
-from .plan import ANALYSES, build_jobs, changed_vars
+from .plan import ANALYSES, build_jobs, changed_vars, reading
 from .post import postprocess_run, run_series, window_bounds
 from .schedule import campaign_cdpost
 
@@ -163,12 +163,12 @@ def replica_pairs(records):
     """(replica, original) pairs: a run of another seed and the run at the same mu, theta, L."""
     by_point = {}
     for r in records:
-        by_point.setdefault((r.vars["mu"], r.vars["theta"], r.vars["L"]), []).append(r)
+        by_point.setdefault((r.vars["mu"], r.vars["theta"], r.vars["L"], reading(r.vars)), []).append(r)
     pairs = []
     for runs in by_point.values():
         analysed = [r for r in runs if r.results]
-        seeds = sorted(analysed, key=lambda r: r.series == "replicas")
-        if len(seeds) >= 2 and seeds[-1].series == "replicas":
+        seeds = sorted(analysed, key=lambda r: r.series.endswith("replicas"))
+        if len(seeds) >= 2 and seeds[-1].series.endswith("replicas"):
             pairs.append((seeds[-1], seeds[0]))
     return pairs
 
@@ -223,6 +223,64 @@ def section_fits(title, folder, prefixes, figures, destination):
         text += markdown_table(["fit parameter", "value", "unit"], rows) + "\n"
     text += "".join(f"![{f}]({relative}/figures/{f}.png) " for f in shown) + "\n"
     return text
+
+
+# The series analysis of each reading of the 45 d cell (doc/scene.md), in the order shown.
+READINGS = (("count", "flow_rules"), ("layer", "layer_flow_rules"))
+# Per-run quantities shown per friction beside the fits: (result name, heading).
+READING_MEANS = (("h", "h (d)"), ("phi", "φ"), ("creep_lambda", "creep length λ (d)"),
+                 ("bagnold_amplitude", "Bagnold a (√(gd)/d^1.5)"))
+
+
+def reading_fits(copied_series, destination):
+    """{reading: its series fits} for the readings whose series analysis exists."""
+    fits = {}
+    for name, analysis in READINGS:
+        folder = copied_series.get(analysis, os.path.join(destination, "series", analysis))
+        if read_fits(folder):
+            fits[name] = read_fits(folder)
+    return fits
+
+
+def difference_text(a, b):
+    """(b − a) in units of the combined error, '–' where either has no error."""
+    if not (a and b and a[1] and b[1]):
+        return "–"
+    return f"{(b[0] - a[0]) / (a[1] ** 2 + b[1] ** 2) ** 0.5:+.1f}"
+
+
+def series_means(records, name):
+    """{(reading, mu): (mean of `name` over the analysed L = 45 d runs, their count)}."""
+    groups = {}
+    for r in records:
+        if r.results and r.get(name) and float(r.vars["L"]) == 45:
+            groups.setdefault((reading(r.vars), r.vars["mu"]), []).append(r.get(name)[0])
+    return {key: (sum(v) / len(v), len(v)) for key, v in groups.items()}
+
+
+def section_readings(records, copied_series, destination):
+    """Both readings of the 45 d cell side by side: every series fit, and the per-friction means
+    of the layer's thickness, packing, creep length and Bagnold amplitude."""
+    fits = reading_fits(copied_series, destination)
+    if len(fits) < 2:
+        return ""
+    names = [n for n in fits["count"] if n in fits["layer"]]
+    rows = [[n, result_text(fits["count"][n]), result_text(fits["layer"][n]),
+             difference_text(fits["count"][n], fits["layer"][n]), fits["count"][n][2]] for n in names]
+    text = ("## Two readings of the 45 d cell\n\nEvery series fit of the count reading (3967 grains) "
+            "and of the layer reading (3290 grains, a 40–49 d layer; `doc/scene.md`), from "
+            "`series/flow_rules` and `series/layer_flow_rules`; the difference is layer − count in units "
+            "of the combined error.\n\n"
+            + markdown_table(["fit", "count", "layer", "difference (σ)", "unit"], rows) + "\n")
+    mean_rows = []
+    for name, heading in READING_MEANS:
+        means = series_means(records, name)
+        for mu in sorted({mu for _, mu in means}, key=float):
+            cells = [f"{number(means[(r, mu)][0], 4)} ({means[(r, mu)][1]} runs)" if (r, mu) in means else "–"
+                     for r, _ in READINGS]
+            mean_rows.append([heading, mu] + cells)
+    return text + "\nMeans over each friction's analysed runs:\n\n" + markdown_table(
+        ["quantity", "mu", "count", "layer"], mean_rows)
 
 
 def section_replicas(pairs, scatter):
@@ -374,6 +432,7 @@ def write_report(records, copied_series, destination, command):
                            "creep length λ of u ∝ exp(z/λ) below the wall tops.", records, PROFILE_COLUMNS),
         section_fits("Cell length", length, ("correlation", "f_vs_L", "A_vs_L", "A_mean_vs_L"), ("L_series",),
                      destination),
+        section_readings(records, copied_series, destination),
         section_replicas(pairs, replica_scatter(pairs)),
         section_comparisons(destination),
         section_snapshots(records, destination),
