@@ -13,6 +13,7 @@ the DISCUSSION markers of an existing README.md is kept; everything else is rege
 import csv
 import glob
 import json
+import math
 import os
 import shlex
 import shutil
@@ -140,11 +141,30 @@ def recorded_mismatch(folder, variables):
     return changed_vars(recorded, variables, set(recorded) & set(variables))
 
 
-def write_run(record, destination):
-    """results/runs/<name>/: cdpost's results, the cost and every command that made them."""
+def changed_numbers(old, new):
+    """[(name, old, new)] for every published number that a new analysis changes (beyond the
+    10 significant digits cdpost writes), drops (new None) or adds to a published file (old None)."""
+    def same(a, b):
+        return (math.isnan(a) and math.isnan(b)) or abs(a - b) <= 1e-9 * max(abs(a), abs(b), 1e-300)
+    changes = [(n, old[n][0], new[n][0] if n in new else None) for n in sorted(old)
+               if n not in new or not same(old[n][0], new[n][0])]
+    return changes + [(n, None, new[n][0]) for n in sorted(new) if n not in old and old]
+
+
+def read_published(path):
+    return read_results(path) if os.path.exists(path) else {}
+
+
+def write_run(record, destination, changes):
+    """results/runs/<name>/: cdpost's results, the cost and every command that made them; what it
+    changes of an earlier publication of the run goes to `changes` (file -> [(name, old, new)])."""
     folder = os.path.join(destination, "runs", record.name)
     os.makedirs(folder, exist_ok=True)
+    published = os.path.join(folder, "results.csv")
+    before = read_published(published)
     copy_matching(record.source, RUN_FILES, folder)
+    if changed_numbers(before, read_published(published)):
+        changes[os.path.relpath(published, destination)] = changed_numbers(before, read_published(published))
     with open(os.path.join(folder, "cost.json"), "w") as out:
         json.dump(record.cost, out, indent=2, sort_keys=True)
     legs = sorted(glob.glob(os.path.join(record.folder, "legs", "*", "command.sh")))
@@ -388,10 +408,11 @@ def kept_discussion(path):
     return text[begin:end + len(DISCUSSION_END)]
 
 
-def publish_series(records, cdpost, args):
+def publish_series(records, cdpost, args, changes):
     """results/series/<analysis>/: the manifest over the published runs (results/runs/<name>, so
     that `cdpost series` can be run again from results/ alone) and cdpost's series results, for
-    every analysis with two analysed runs; returns {analysis: its folder in results/}."""
+    every analysis with two analysed runs; returns {analysis: its folder in results/}. The fits
+    it changes of the earlier publication go to `changes`."""
     published = {}
     for analysis, belongs in ANALYSES.items():
         runs = [(r.published, os.path.join(r.published, "results.csv"), r.vars)
@@ -400,13 +421,27 @@ def publish_series(records, cdpost, args):
             continue
         target = os.path.join(args.report, "series", analysis)
         work = os.path.join(args.out, "series", analysis, "published-post")
+        before = read_fits(target)
         if run_series(analysis, target, runs, cdpost, args, out=work):
             copy_matching(work, SERIES_FILES, target)
             published[analysis] = target
+            if changed_numbers(before, read_fits(target)):
+                changes[os.path.join("series", analysis, "fits.csv")] = changed_numbers(before, read_fits(target))
     return published
 
 
-def write_report(records, copied_series, destination, command):
+def section_changes(changes):
+    """Every published number this report changed, dropped or added (none: no section)."""
+    if not changes:
+        return ""
+    rows = [[f, name, "–" if old is None else number(old, 6), "–" if new is None else number(new, 6)]
+            for f, entries in sorted(changes.items()) for name, old, new in entries]
+    return ("## Changed by this report\n\nNumbers of an earlier publication that this analysis changed "
+            "(a new cdpost, a re-analysed run), dropped (–) or added; the earlier values are in the git "
+            "history of results/.\n\n" + markdown_table(["file", "name", "was", "now"], rows))
+
+
+def write_report(records, copied_series, destination, command, changes):
     """Writes results/README.md (see the module's docstring); returns its path."""
     pairs = replica_pairs(records)
     readme = os.path.join(destination, "README.md")
@@ -418,6 +453,7 @@ def write_report(records, copied_series, destination, command):
         + "\n\n(every number below comes from the files beside this page; errors are one standard error"
         " unless said otherwise).\n",
         discussion + "\n",
+        section_changes(changes),
         section_runs(records),
         section_quantities("Flow", "Means over each run's stationary window (block standard errors).",
                            records, FLOW_COLUMNS),
@@ -462,13 +498,17 @@ def write_results(args):
     analyse_finished_runs(jobs, cdpost, args)
     os.makedirs(args.report, exist_ok=True)
     records = [RunRecord(job, args.report) for job in jobs if job.kind == "run"]
+    changes = {}
     for r in records:
         if r.local:
-            write_run(r, args.report)
-    series = publish_series(records, cdpost, args)
+            write_run(r, args.report, changes)
+    series = publish_series(records, cdpost, args, changes)
     command = " ".join(shlex.quote(a) for a in ["scripts/chute_campaign.py"] + args.argv)
     publish_comparisons(args.comparison, args.report)
-    readme = write_report(records, series, args.report, command)
+    readme = write_report(records, series, args.report, command, changes)
+    for path, entries in sorted(changes.items()):
+        print(f"{path}: {len(entries)} published numbers changed, dropped or added (README, 'Changed by this report')",
+              flush=True)
     analysed = sum(r.results is not None for r in records)
     published = sum(r.results is not None and not r.local for r in records)
     print(f"{readme}: {analysed} of {len(records)} runs analysed ({published} read from their published results)",
