@@ -7,6 +7,11 @@ Lengths (`length_problems`):
   settings and corrected figures live there or in the git history, and no reference page needs
   them to be read.
 
+History (`history_problems`): a reference page (README.md, doc/ but doc/notes/) has no section
+named Open, Earlier or History and none of the phrases of a study log that HISTORY matches
+("measured at commit", "not kept", "first reported", "previous defaults", ...): those go to the
+git history or to a dated note.
+
 Costs (`cost_problems`): each deck of inputs/ has its cost stated once. The statement that
 gives it carries a marker naming the deck, in a comment of the page's language:
 
@@ -34,6 +39,10 @@ NEWCOMER_PAGES = ("README.md", "doc/scene.md", "doc/fix_contact_dynamics.rst", "
 NEWCOMER_LIMIT = 1200
 NOTES = "doc/notes/"
 NOTE_NAME = re.compile(r"^\d{4}-\d{2}-\d{2}-[a-z0-9][a-z0-9-]*\.md$")
+
+HISTORY = re.compile(r"measured at commit|\bat commit [0-9a-f]{7}|\bnot kept\b|\bfirst reported\b|"
+                     r"\breported (here )?earlier\b|\bsince deleted\b|\bprevious defaults?\b", re.I)
+HISTORY_HEADING = re.compile(r"^(open|open questions|earlier\b.*|history)$", re.I)
 
 # Names the pages use for a deck of inputs/, besides its file name.
 DECK_NAMES = {
@@ -74,6 +83,36 @@ def length_problems(pages):
     if total > NEWCOMER_LIMIT:
         counts = ", ".join(f"{path} {line_count(pages[path])}" for path in NEWCOMER_PAGES if path in pages)
         problems.append(f"the newcomer pages hold {total} lines together, more than {NEWCOMER_LIMIT} ({counts})")
+    return problems
+
+
+def headings(text):
+    """(line number, title) of the Markdown and reST headings of a page, code blocks skipped."""
+    lines, found, fence = text.split("\n"), [], False
+    for k, line in enumerate(lines):
+        if re.match(r"^ {0,3}(```|~~~)", line):
+            fence = not fence
+        elif not fence and re.match(r"^#{1,6}\s", line):
+            found.append((k + 1, line.lstrip("#").strip()))
+        elif not fence and line.strip() and k + 1 < len(lines) and re.match(r"^([=\-~^])\1{2,}\s*$", lines[k + 1]):
+            found.append((k + 1, line.strip()))
+    return found
+
+
+def history_problems(pages):
+    """pages: {path relative to the top: text}. One line per section or phrase of a study log."""
+    problems = []
+    for path, text in sorted(pages.items()):
+        if not (path == "README.md" or is_reference_page(path)):
+            continue
+        for line, title in headings(text):
+            if HISTORY_HEADING.match(title):
+                problems.append(f"{path}:{line}: a section '{title}' on a reference page: move it to the git "
+                                f"history or to {NOTES}YYYY-MM-DD-topic.md")
+        for k, line in enumerate(text.split("\n")):
+            for match in HISTORY.finditer(line):
+                problems.append(f"{path}:{k + 1}: '{match.group(0)}' is a study log's phrase: say what is, "
+                                f"and keep how it came to be in the git history or in {NOTES}")
     return problems
 
 

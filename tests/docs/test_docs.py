@@ -4,7 +4,8 @@
     test_docs.py CASE --lmp build/lmp_cd --cdpost build/postproc/cdpost --work DIR
     test_docs.py pages|costs|page_rules
 
-The cases `pages` (lengths: README.md, every page under doc/, the newcomer pages together),
+The cases `pages` (lengths: README.md, every page under doc/, the newcomer pages together; no
+study log's sections or phrases),
 `costs` (each deck's cost stated once) and `page_rules` (those rules tried on synthetic pages)
 run no program: page_rules.py says what they check.
 
@@ -401,7 +402,7 @@ def report(problems, passed):
 def case_pages(args):
     pages = tree_files(REFERENCE_PAGES)
     total = sum(page_rules.line_count(pages[path]) for path in page_rules.NEWCOMER_PAGES if path in pages)
-    report(page_rules.length_problems(pages),
+    report(page_rules.length_problems(pages) + page_rules.history_problems(pages),
            f"{len(pages)} pages within their lengths; the newcomer pages {total} lines together")
 
 

@@ -74,6 +74,22 @@ class Lengths(unittest.TestCase):
         self.assertEqual(found, ["a newcomer page is missing: doc/chute.md"])
 
 
+class History(unittest.TestCase):
+    def test_sections_and_phrases_of_a_study_log_are_found_on_reference_pages_only(self):
+        log = ("# Accuracy\n\nThe defaults.\n\n## Open\n\n- more runs\n\nEarlier\n-------\n\n"
+               "Measured at commit fbf61fa: 22 s. A prototype, not kept.\n```sh\n## Open\n```\n")
+        found = page_rules.history_problems({"doc/accuracy.md": log, "doc/notes/2026-11-25-accuracy.md": log})
+        self.assertEqual([p.split(": ")[0] for p in found],
+                         ["doc/accuracy.md:5", "doc/accuracy.md:9", "doc/accuracy.md:12", "doc/accuracy.md:12"], found)
+        self.assertIn("a section 'Open'", found[0])
+        self.assertIn("'Measured at commit'", found[2])
+        self.assertIn("'not kept'", found[3])
+
+    def test_a_reference_page_passes(self):
+        page = "# Accuracy\n\n## What decides\n\nThe deck keeps 1e-4 s; the open cell is periodic.\n"
+        self.assertEqual(page_rules.history_problems({"doc/accuracy.md": page, "README.md": page}), [])
+
+
 class Costs(unittest.TestCase):
     def test_one_marked_statement_and_links_pass(self):
         found = problems_of({"doc/chute.md": CHUTE_COST,
