@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Set-up (idempotent), the default scene and its postprocessing.
 # inputs/in.default_scene: rain deposition of 400 disks in a 20 d cell with 10 d walls, then a
-# 1.5 s chute flow at 24 degrees (a few minutes on one core). cdpost then writes post/report.md
+# 1.5 s chute flow at 24 degrees (its cost: doc/chute.md). cdpost then writes post/report.md
 # and post/figures/ (u_t, profile, spectrum, spectra_depth, snapshot).
 # Outputs go to ${OUT_DIR:-runs/default_scene}; extra arguments are passed to lmp_cd
 # (e.g. -var theta 26 -var duration 3).

@@ -19,7 +19,7 @@ import sys
 import time
 
 import rank_solutions
-from cdtools.lammps_files import read_dump, read_time_file, unwrapped
+from cdtools.lammps_files import read_chunk_file, read_dump, read_time_file, unwrapped
 from cdtools.logs import tagged_line
 from cdtools.run import DECK, TOP, lmp_command, mpi_launcher
 
@@ -223,6 +223,50 @@ def case_walls_trap(args):
     check(lowest > WALL_TOP, f"a grain crossed with its centre {(lowest - WALL_TOP) / D:.3f} d from the wall top")
     print(f"walls: {len(buried)} grains stayed below the wall tops and none crossed; {len(crossed)} "
           f"grains crossed, the lowest at z = {(lowest - WALL_TOP) / D:.2f} d")
+
+
+def case_columns(args):
+    """columns.chunk holds the flowing layer's v(x, t): at every sample round(L/column_width)
+    columns tile the cell, their counts add up to the layer's grains (flow.time's n_flow), and
+    their count-weighted mean vy is the layer's mean v_flow."""
+    folder = os.path.join(args.work, "flow")
+    rows = {round(r["v_time"] * 1000): r for r in read_time_file(os.path.join(folder, "flow.time"))}
+    blocks = read_chunk_file(os.path.join(folder, "columns.chunk"))
+    columns = round(float(CELL["L"]) / 1.5)
+    check(len(blocks) >= len(rows) - 1, f"{len(blocks)} blocks of columns.chunk for {len(rows)} samples")
+    compared = 0
+    for step, chunks in blocks:
+        check(len(chunks) == columns, f"step {step}: {len(chunks)} columns, expected {columns}")
+        centres = [c["Coord1"] for c in chunks]
+        check(all(abs(x - (k + 0.5) / columns) < 1e-6 for k, x in enumerate(centres)), f"column centres {centres}")
+        count = sum(c["Ncount"] for c in chunks)
+        row = next((r for r in rows.values() if r["TimeStep"] == step), None)
+        if row is None or count == 0:
+            continue
+        check(count == row["v_n_flow"], f"step {step}: {count} grains in the columns, {row['v_n_flow']} in the layer")
+        v = sum(c["Ncount"] * c["vy"] for c in chunks) / count
+        check(abs(v - row["v_v_flow"]) <= 1e-6 * max(1.0, abs(row["v_v_flow"])) + 1e-9,
+              f"step {step}: columns' mean vy {v}, the layer's {row['v_v_flow']}")
+        compared += 1
+    check(compared > 10, f"only {compared} samples compared")
+    print(f"columns: {columns} columns tile the cell; at {compared} samples their grains and mean vy are the layer's")
+
+
+def case_reading(args):
+    """-var reading selects the source's count per 45 d (3967) or the count of a 40-49 d layer
+    (3290), scaled with L; -var grains wins. The deposition stops right after creating its
+    grains (settle_max shorter than the fall), so each count costs a fraction of a second."""
+    folder = os.path.join(args.work, "reading")
+    cases = ((dict(reading="count"), round(3967 * 9 / 45)), (dict(reading="layer"), round(3290 * 9 / 45)),
+             (dict(reading="layer", grains="700"), 700))
+    for given, expected in cases:
+        variables = dict(given, stage="deposition", L="9", wall_height="3", settle_max="0.001")
+        status, output = run_lmp(args.lmp, folder, variables, expect_ok=False)
+        created = [line for line in output.splitlines() if line.strip().startswith("Created") and "atoms" in line]
+        check(status == 1 and created, f"{given}: status {status}, no 'Created N atoms' line")
+        count = int(created[-1].split()[1])
+        check(count == expected, f"{given}: {count} grains, expected {expected}")
+    print("reading: count 3967 and layer 3290 grains per 45 d, scaled with L; -var grains wins")
 
 
 def case_steady_flow(args):
@@ -487,6 +531,9 @@ BAD_VARS = [
     ("acceleration", "anderson", "-var acceleration anderson"),
     ("full_sweep_every", "0", "-var full_sweep_every 0"),
     ("full_sweep_every", "2.5", "-var full_sweep_every 2.5"),
+    ("reading", "both", "-var reading both"),
+    ("column_width", "0", "-var column_width 0"),
+    ("grains", "100", "-var grains 100: too few to cover the wall tops (at least 1425"),
 ]
 
 
@@ -612,6 +659,8 @@ CASES = {
     "static_tilt": case_static_tilt,
     "runaway": case_runaway,
     "bad_var": case_bad_var,
+    "columns": case_columns,
+    "reading": case_reading,
     "start_mismatch": case_start_mismatch,
     "runner_resume": case_runner_resume,
     "restart_between_samples": case_restart_between_samples,

@@ -222,6 +222,18 @@ def main():
               "the run without raw outputs is not listed as published")
         check(open(os.path.join(results, "series", "flow_rules", "fits.csv")).read() == fits_before,
               "the series fits changed when a run was read back from its published results")
+        check("## Changed by this report" not in readme, "an unchanged re-analysis reported changes")
+        # A published number that the analysis does not reproduce (an earlier cdpost, say) is
+        # replaced, and the report says which, with the value it had.
+        fits_path = os.path.join(results, "series", "flow_rules", "fits.csv")
+        published = fits_before.replace("\nmuI_I0,", "\nmuI_I0,9", 1)
+        check(published != fits_before, "no muI_I0 row to alter")
+        open(fits_path, "w").write(published)
+        changed = report(os.path.abspath(args.cdpost), campaign, results)
+        rows = [r for r in changed.splitlines() if r.startswith("| series/flow_rules/fits.csv | muI_I0 | 9")]
+        check("## Changed by this report" in changed and len(rows) == 1,
+              "a changed published fit was not reported:\n" + changed[:1500])
+        check(open(fits_path).read() == fits_before, "the altered fit was not replaced by the analysis")
         manifest = open(os.path.join(results, "series", "flow_rules", "manifest.csv")).read()
         check(f"\n../../runs/{lost},0.5,25,0,\n" in manifest, "the manifest does not list the published run:\n"
               + manifest)
