@@ -115,8 +115,8 @@ int FixContactDynamics::setmask()
 
 namespace {
 
-// The whole of `text` as a finite number; anything else (trailing characters, overflow) is
-// refused naming the keyword.
+// The whole of `text` as a finite number; anything else (trailing characters, overflow,
+// underflow) is refused naming the keyword.
 double number_for(const char* keyword, const char* text, Error* error)
 {
   char* end = nullptr;
@@ -125,7 +125,7 @@ double number_for(const char* keyword, const char* text, Error* error)
   if (end == text || *end != '\0' || !utils::is_double(text))
     error->all(FLERR, "Fix contact/dynamics: {} expects a number, got '{}'", keyword, text);
   if (errno == ERANGE || !std::isfinite(value))
-    error->all(FLERR, "Fix contact/dynamics: {} must be finite, got '{}'", keyword, text);
+    error->all(FLERR, "Fix contact/dynamics: {} '{}' is outside the range of a double", keyword, text);
   return value;
 }
 
