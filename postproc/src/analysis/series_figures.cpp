@@ -50,42 +50,12 @@ Panel panel(const std::string& title, const std::string& x_label, const std::str
   return p;
 }
 
-Curve sampled(const std::string& title, double x0, double x1, const std::function<std::optional<double>(double)>& y)
-{
-  Curve curve;
-  curve.title = title;
-  curve.style = CurveStyle::Lines;
-  for (int i = 0; i <= 100; ++i) {
-    double x = x0 + (x1 - x0) * i / 100.0;
-    if (auto value = y(x)) {
-      curve.x.push_back(x);
-      curve.y.push_back(*value);
-    }
-  }
-  return curve;
-}
-
 std::pair<double, double> x_extent(const std::vector<Curve>& curves)
 {
   double low = INFINITY, high = -INFINITY;
   for (const auto& c : curves)
     for (double x : c.x) low = std::min(low, x), high = std::max(high, x);
   return {low, high};
-}
-
-Figure power_law_figure(const SeriesAnalysis& series, const std::string& name, const std::string& x,
-                        const std::string& x_label, const std::optional<PowerLaw>& law)
-{
-  auto curves = by_friction(series, x, "f");
-  if (law && !curves.empty()) {
-    auto [x0, x1] = x_extent(curves);
-    curves.push_back(sampled("f = " + format_estimate(law->prefactor.value, law->prefactor.error) + " x^(" +
-                                 format_estimate(law->exponent.value, law->exponent.error) + ")",
-                             x0, x1,
-                             [&](double xv) { return law->prefactor.value * std::pow(xv, law->exponent.value); }));
-  }
-  return {
-      name, "Oscillation frequency f against " + x_label, {panel("f against " + x_label, x_label, "f (Hz)", curves)}};
 }
 
 // A fitted curve y(x) over [x0, x1] with its one-sigma band from the fit's covariance (delta
@@ -108,6 +78,23 @@ Curve banded(const std::string& title, double x0, double x1, const FitResult& fi
     curve.y_error.push_back(*sigma);
   }
   return curve;
+}
+
+Figure power_law_figure(const SeriesAnalysis& series, const std::string& name, const std::string& x,
+                        const std::string& x_label, const std::optional<PowerLaw>& law)
+{
+  auto curves = by_friction(series, x, "f");
+  if (law && !curves.empty()) {
+    auto [x0, x1] = x_extent(curves);
+    curves.push_back(banded("f = " + format_estimate(law->prefactor.value, law->prefactor.error) + " x^(" +
+                                format_estimate(law->exponent.value, law->exponent.error) + ")",
+                            x0, x1, law->line, [](const std::vector<double>& p, double xv) {
+                              return std::exp(p[0]) * std::pow(xv, p[1]);
+                            }));
+  }
+  return {name,
+          "Oscillation frequency f against " + x_label + "; band: one standard error of the fitted law (delta method)",
+          {panel("f against " + x_label, x_label, "f (Hz)", curves)}};
 }
 
 // phi against x (U or I) under one reading, with the fitted line of each friction and its band.
@@ -282,6 +269,8 @@ std::optional<Figure> depth_figure(const SeriesAnalysis& series)
 std::optional<Figure> beta_free_figure(const SeriesAnalysis& series)
 {
   std::vector<Curve> stops, froude;
+  double h_max = 0;
+  for (const auto& entry : series.stopped) h_max = std::max(h_max, *entry.h_stop_d);
   for (const auto& fit : series.pouliquen_free) {
     if (!fit.beta) continue;
     const double mu = fit.angles.mu, tan1 = fit.raw["tan_theta1"].value, tan2 = fit.raw["tan_theta2"].value,
@@ -299,17 +288,19 @@ std::optional<Figure> beta_free_figure(const SeriesAnalysis& series)
         flowing.y.push_back(run.value("U") / std::sqrt(h));
       }
     stops.push_back(measured);
-    stops.push_back(
-        sampled("h_stop(theta), mu = " + label(mu), fit.angles.theta1_deg.value, fit.angles.theta2_deg.value, h_stop));
+    stops.push_back(banded(
+        "h_stop(theta), mu = " + label(mu), fit.angles.theta1_deg.value, fit.angles.theta2_deg.value, fit.raw,
+        [](const std::vector<double>& p, double theta) {
+          return pouliquen_stop_thickness(std::tan(theta * M_PI / 180), p[0], p[1], p[2]);
+        },
+        2 * h_max));
     froude.push_back(flowing);
     if (!flowing.x.empty())
-      froude.push_back(sampled("Fr = beta h/h_stop, beta = " + format_estimate(fit.beta->value, fit.beta->error), 0,
-                               *std::max_element(flowing.x.begin(), flowing.x.end()),
-                               [&](double x) { return fit.beta->value * x; }));
+      froude.push_back(banded("Fr = beta h/h_stop, beta = " + format_estimate(fit.beta->value, fit.beta->error), 0,
+                              *std::max_element(flowing.x.begin(), flowing.x.end()), fit.raw,
+                              [](const std::vector<double>& p, double x) { return std::optional<double>(p[3] * x); }));
   }
   if (stops.empty()) return std::nullopt;
-  double h_max = 0;
-  for (const auto& entry : series.stopped) h_max = std::max(h_max, *entry.h_stop_d);
   auto left = panel("Deposit thickness of the stopped runs", "theta (deg)", "h_stop / d", stops);
   left.y_range = std::make_pair(0.0, 2 * h_max);  // h_stop(theta) diverges at theta1
   left.width = 0.5;
@@ -317,7 +308,8 @@ std::optional<Figure> beta_free_figure(const SeriesAnalysis& series)
   right.width = 0.5;
   right.origin_x = 0.5;
   return Figure{"pouliquen_beta_free",
-                "Pouliquen's rule with beta free: h_stop(theta) and Fr = beta h/h_stop",
+                "Pouliquen's rule with beta free: h_stop(theta) and Fr = beta h/h_stop; bands: one standard error "
+                "(delta method)",
                 {left, right},
                 1300,
                 600};

@@ -137,6 +137,7 @@ PowerLaw fit_power_law(const std::vector<double>& x, const std::vector<double>& 
   if (log_prefactor.error) law.prefactor.error = law.prefactor.value * *log_prefactor.error;
   law.exponent = fit.parameters[1];
   law.points = fit.points;
+  law.line = fit;
   if (x.size() >= 3) law.correlation = correlation(x, y);
   return law;
 }

@@ -56,6 +56,7 @@ struct PowerLaw {
   Estimate exponent;
   std::optional<double> correlation;  // Pearson correlation of x and y (3 points or more)
   int points = 0;
+  FitResult line;  // ln y = ln c + n ln x: parameters log_prefactor, exponent and their covariance
 };
 PowerLaw fit_power_law(const std::vector<double>& x, const std::vector<double>& y);
 
