@@ -4,8 +4,11 @@
 
 #include <cmath>
 
+#include "analysis/published_run.h"
 #include "fit/packing_profile.h"
+#include "io/line_source.h"
 #include "signal/statistics.h"
+#include "temp_files.h"
 
 namespace cdpost {
 namespace {
@@ -109,6 +112,42 @@ TEST(LayerMeasures, PackingFromCountsUsesTheMeanGrainArea)
   EXPECT_EQ(phi[1], 0);
   EXPECT_THROW(packing_from_counts({1}, 0, 1, dispersity), AnalysisError);
   EXPECT_THROW(packing_from_counts({1}, 45, 1, 1.2), AnalysisError);
+}
+
+// A published run without phi in profile.csv (as results/runs/<name> before the packing
+// reading): phi(z) from its counts with L and the dispersity of params.json.
+TEST(LayerMeasures, PublishedRunsEstimatePhiFromTheirCounts)
+{
+  const auto dir = testing::scratch_dir();
+  testing::write_file(dir / "results.csv",
+                      "name,value,error,unit,description\nU,20,0.1,sqrt(g d),\nh,40,0.02,d,\"2 <z>\"\n");
+  std::string profile = "z_d,u_sqrt_gd,count\n";
+  const double area = mean_grain_area_d2(0.4), length = 45;
+  const Layer layer;  // its phi(z) as counts: count = phi L / area
+  for (double z = -9.5; z < 60; z += 1)
+    if (layer.phi(z) > 1e-6) profile += std::to_string(z) + ",1," + std::to_string(layer.phi(z) * length / area) + "\n";
+  testing::write_file(dir / "profile.csv", profile);
+  // Without params.json: a warning, no packing reading.
+  auto run = read_published_run(dir.string());
+  EXPECT_FALSE(run.results.find("phi_bulk"));
+  ASSERT_EQ(run.warnings.size(), 1u);
+  EXPECT_NE(run.warnings[0].find("params.json is missing (L, dispersity)"), std::string::npos) << run.warnings[0];
+  testing::write_file(dir / "params.json",
+                      "{\n  \"vars\": {\n    \"L\": \"45\",\n    \"dispersity\": \"0.4\"\n  }\n}\n");
+  run = read_published_run(dir.string());
+  ASSERT_TRUE(run.results.find("phi_bulk"));
+  EXPECT_NEAR(run.results.find("phi_bulk")->value, layer.phi_bulk, 1e-4);  // counts written to 6 decimals
+  EXPECT_NEAR(run.results.find("h_packing")->value, layer.top, 0.01);
+  EXPECT_NEAR(run.results.find("I_packing")->value, 20 / std::pow(run.results.find("h_packing")->value, 1.5), 1e-12);
+  // A params.json without L fails naming the file.
+  testing::write_file(dir / "params.json", "{\"vars\": {\"dispersity\": \"0.4\"}}\n");
+  try {
+    read_published_run(dir.string());
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("params.json"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no value for \"L\""), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
