@@ -5,6 +5,7 @@
 #include <set>
 
 #include "analysis/series_analysis.h"
+#include "io/ave_time.h"
 #include "output/gnuplot.h"
 #include "output/report.h"
 
@@ -400,15 +401,18 @@ void held_table(MarkdownReport& report, const SeriesAnalysis& series, const std:
                       format_estimate(h.angles.theta2_deg.value, h.angles.theta2_deg.error),
                       format_estimate(h.rms_residual, std::nullopt)});
   if (rows.empty()) return;
-  const std::string free = reading + (rule == "muI" ? "muI_I0" : "pouliquen_ell_mu");
-  std::string fitted;
-  for (const auto& row : series.fits.rows())
-    if (row.name.rfind(free, 0) == 0) fitted += " " + row.name + " = " + format_estimate(row.value, row.error) + ";";
+  std::vector<std::string> fitted;  // the free fit's parameter and rms residual
+  for (const std::string stem : rule == "muI"
+                                    ? std::vector<std::string>{"muI_I0", "muI_rms_residual"}
+                                    : std::vector<std::string>{"pouliquen_ell_mu", "pouliquen_rms_residual_mu"})
+    for (const auto& row : series.fits.rows())
+      if (row.name.rfind(reading + stem, 0) == 0)
+        fitted.push_back(row.name + " = " + format_estimate(row.value, row.error));
   report.paragraph((reading.empty() ? "Surface reading" : "Packing reading") + std::string(", ") +
                    (rule == "muI" ? "the mu(I) rule with I0 held (one joint fit per value, the rms over every run)"
                                   : "Pouliquen's rule with l held (beta = " + label(series.settings.beta) +
                                         ", one fit per friction and value)") +
-                   ". Free fit:" + fitted);
+                   ". Free fit: " + join_names(fitted) + ".");
   report.table(header, rows);
 }
 
