@@ -418,6 +418,8 @@ TEST(Cli, SeriesFromPublishedRunsGivesTheSameFits)
     manifest << row << "\n";
   }
   manifest.close();
+  // The runs have packing.chunk: their published profile.csv carries phi(z), read back for the packing reading.
+  EXPECT_EQ(slurp(dir / "published/run1/profile.csv").rfind("z_d,u_sqrt_gd,count,phi\n", 0), 0u);
   auto read = cdpost("series " + (dir / "published.csv").string() + " --out " + (dir / "post2").string());
   ASSERT_EQ(read.status, 0) << read.err;
   const auto expected = csv_values(dir / "post/fits.csv"), found = csv_values(dir / "post2/fits.csv");
