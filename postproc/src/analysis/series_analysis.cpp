@@ -265,7 +265,7 @@ struct SeriesFitter {
   }
 
   // What a description of the packing reading's fits ends with, and what its warnings start
-  // with; "" for the surface reading, whose names and descriptions are those of old.
+  // with; both "" for the surface reading, whose names carry no prefix either.
   static std::string of(const ReadingFits& fits)
   {
     return fits.reading.prefix.empty() ? "" : "; " + fits.reading.description;
