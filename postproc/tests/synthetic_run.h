@@ -1,5 +1,6 @@
 // A synthetic run directory in the layout the chute decks write (SI units), with known
-// U, phi, h, oscillation frequency and amplitude, Bagnold profile and creep length.
+// U, phi, h, oscillation frequency and amplitude, Bagnold profile and creep length, and a packing
+// profile of known bulk phi and half-height.
 #pragma once
 
 #include <cmath>
@@ -26,6 +27,9 @@ struct SyntheticRun {
   double amplitude = 0.2;     // sqrt(g d)
   double noise = 0.3;         // sqrt(g d), white noise on v(t)
   double creep_lambda = 3.0;  // d
+  double phi_bed = 0.82;      // packing below the wall tops
+  double phi_bulk = 0.80;     // packing of the layer's bulk, falling to half of it at z = h
+  double tail_width = 2.0;    // d, width of the dilute surface: phi = phi_bulk erfc((z - h)/w)/2
   unsigned seed = 1;
   bool with_chunks_and_dump = true;
 
@@ -38,6 +42,8 @@ struct SyntheticRun {
     if (z < 0) return slip * std::exp(z / creep_lambda);
     return slip + (surface - slip) * (std::pow(h, 1.5) - std::pow(h - std::min(z, h), 1.5)) / std::pow(h, 1.5);
   }
+  // Antisymmetric about z = h: on bins centred h ± 0.5 d, linear interpolation finds h exactly.
+  double phi_of_z(double z) const { return z < 0 ? phi_bed : 0.5 * phi_bulk * std::erfc((z - h) / tail_width); }
 };
 
 inline void write_synthetic_run(const std::filesystem::path& dir, const SyntheticRun& run)
@@ -71,6 +77,14 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const Syntheti
                if (column == 1) return occupied ? 20.0 : 0.0;
                return occupied ? run.u_of_z(z) * v0 * std::exp(0.02 * gauss(rng)) : 0.0;
              }));
+
+  write_file(dir / "packing.chunk", ave_chunk_text({"Coord1", "Ncount", "v_phi_of_grain"}, profile_steps, bins,
+                                                   [&](size_t, size_t bin, size_t column) {
+                                                     const double z = z_of(bin);
+                                                     if (column == 0) return z * run.d;
+                                                     if (column == 1) return z < run.h ? 20.0 : 0.0;
+                                                     return run.phi_of_z(z);
+                                                   }));
 
   std::vector<long> layer_steps;
   for (long step = run.output_every; step <= steps; step += run.output_every) layer_steps.push_back(step);

@@ -199,8 +199,31 @@ TEST(Cli, SeriesRecoversTheFlowRulesAndScalings)
   EXPECT_EQ(slurp(fits).find("pouliquen_betafree_beta_mu"), std::string::npos);
   EXPECT_NE(slurp(dir / "post/fits.json").find("mu = 0.5: no stopped run, so beta and l are not determined separately"),
             std::string::npos);
-  // Residuals: 10 runs in each of pouliquen, pouliquen_betafree, muI and phi_U, plus the header.
-  EXPECT_EQ(line_count(slurp(dir / "post/residuals.csv")), 41u);
+  // Residuals: 10 runs in each of pouliquen, pouliquen_betafree, muI, phi_U and phi_I, plus the header;
+  // no packing reading, since these runs have no packing.chunk.
+  EXPECT_EQ(line_count(slurp(dir / "post/residuals.csv")), 51u);
+  EXPECT_NE(slurp(dir / "post/fits.json").find("no run has I_packing"), std::string::npos);
+  // phi = phi_c - 0.002 U is phi_c - 0.002 h^1.5 I at the runs' h.
+  const double h15 = std::pow(testing::SyntheticRun{}.h, 1.5);
+  EXPECT_NEAR(csv_value(fits, "phiI_k"), 0.002 * h15, 0.0003 * h15);
+  // I0 and theta2 trade off; held at 0.1 ... 0.5, the rms residual is smallest at the true 0.3.
+  EXPECT_GT(csv_value(fits, "muI_corr_I0_theta2_mu0.5"), 0.9);
+  std::map<double, double> rms_of_held;
+  std::istringstream held(slurp(dir / "post/held_fits.csv"));
+  std::string row;
+  std::getline(held, row);
+  EXPECT_EQ(row.rfind("reading,rule,held_parameter,held_value,mu,", 0), 0u) << row;
+  while (std::getline(held, row))
+    if (row.rfind("surface,muI,I0,", 0) == 0) {
+      std::vector<std::string> fields;
+      std::istringstream cells(row);
+      for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
+      rms_of_held[std::stod(fields[3])] = std::stod(fields[9]);
+    }
+  ASSERT_EQ(rms_of_held.size(), 6u);
+  auto best = std::min_element(rms_of_held.begin(), rms_of_held.end(),
+                               [](const auto& a, const auto& b) { return a.second < b.second; });
+  EXPECT_EQ(best->first, 0.3);
   EXPECT_GT(csv_value(fits, "muI_rms_residual"), 0);
   // Significance overall and per friction (5 runs each).
   EXPECT_EQ(csv_value(fits, "f_vs_scale_n"), 10);
@@ -291,7 +314,13 @@ TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay)
   EXPECT_EQ(line_count(slurp(dir / "post/runs.csv")), 8u);
   const auto residuals = slurp(dir / "post/residuals.csv");
   EXPECT_NE(residuals.find("\nstopped21.5,0.5,21.5,pouliquen_betafree,tan_theta,"), std::string::npos) << residuals;
-  EXPECT_EQ(line_count(residuals), 1u + 5 + 8 + 7 + 7);  // pouliquen, betafree (5 + 3) at mu 0.5; muI, phi_U over all
+  // Surface reading: pouliquen, betafree (5 + 3) at mu 0.5; muI, phi_U, phi_I over all. Packing reading (the
+  // runs have packing.chunk): the same but betafree.
+  EXPECT_EQ(line_count(residuals), 1u + (5 + 8 + 7 + 7 + 7) + (5 + 7 + 7 + 7));
+  // Both readings see h = 40 d (2 <z> and the half height of phi(z)): the same rule at fixed beta.
+  EXPECT_NEAR(csv_value(fits, "packing_pouliquen_ell_mu0.5"), csv_value(fits, "pouliquen_ell_mu0.5"),
+              0.03 * csv_value(fits, "pouliquen_ell_mu0.5"));
+  EXPECT_NEAR(csv_value(fits, "packing_phi_c_mu0.5"), testing::SyntheticRun{}.phi_bulk, 1e-6);
   EXPECT_EQ(line_count(slurp(dir / "post/layer_amplitudes.csv")), 1u + 7 * 5);  // 5 filled layers per run
   const auto json = slurp(dir / "post/fits.json");
   EXPECT_NE(json.find("correlation of A with U (mu = 2): 2 runs, no correlation or p-value (they need 3)"),
@@ -389,6 +418,8 @@ TEST(Cli, SeriesFromPublishedRunsGivesTheSameFits)
     manifest << row << "\n";
   }
   manifest.close();
+  // The runs have packing.chunk: their published profile.csv carries phi(z), read back for the packing reading.
+  EXPECT_EQ(slurp(dir / "published/run1/profile.csv").rfind("z_d,u_sqrt_gd,count,phi\n", 0), 0u);
   auto read = cdpost("series " + (dir / "published.csv").string() + " --out " + (dir / "post2").string());
   ASSERT_EQ(read.status, 0) << read.err;
   const auto expected = csv_values(dir / "post/fits.csv"), found = csv_values(dir / "post2/fits.csv");

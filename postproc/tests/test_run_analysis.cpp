@@ -47,6 +47,12 @@ TEST_F(SyntheticRunTest, RecoversEveryMeasuredQuantity)
   EXPECT_NEAR(result(run, "shear_rate_reduced"), truth_.u_final / truth_.h, 0.01);
   EXPECT_NEAR(result(run, "creep_lambda"), truth_.creep_lambda, 3 * error(run, "creep_lambda") + 0.05);
   EXPECT_GT(result(run, "bagnold_r2"), 0.99);
+  // phi(z) is the same in every block: its bulk and half-height come out exactly (to rounding).
+  EXPECT_NEAR(result(run, "phi_bulk"), truth_.phi_bulk, 1e-9);
+  EXPECT_NEAR(result(run, "h_packing"), truth_.h, 1e-6);
+  EXPECT_NEAR(result(run, "I_packing"), result(run, "U") / std::pow(truth_.h, 1.5), 1e-9);
+  ASSERT_EQ(run.profile->phi.size(), run.profile->z_d.size());
+  EXPECT_NEAR(run.profile->phi.front(), truth_.phi_bed, 1e-9);
   ASSERT_EQ(run.layers.size(), 5u);  // the empty top layer is left out
   EXPECT_LT(run.layers.front().amplitude_at_f, run.layers.back().amplitude_at_f);
   EXPECT_TRUE(run.warnings.empty());

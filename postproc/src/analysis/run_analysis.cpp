@@ -6,6 +6,7 @@
 #include <limits>
 #include <gsl/gsl_statistics_double.h>
 
+#include "analysis/layer_geometry.h"
 #include "io/ave_chunk.h"
 #include "io/ave_time.h"
 #include "io/line_source.h"
@@ -245,6 +246,40 @@ VelocityProfile average_profile(const ChunkSeries& chunks, const std::vector<siz
   return profile;
 }
 
+// phi(z) of every bin, a time average over the blocks weighted by the duration each covers.
+PackingProfile average_packing(const ChunkSeries& chunks, const std::vector<size_t>& blocks,
+                               const std::vector<double>& durations, const RunSettings& settings)
+{
+  const size_t coord = chunks.column_index(settings.columns.packing_coord);
+  const size_t phi = chunks.column_index(settings.columns.packing_phi);
+  const double to_d = settings.units.length_unit_m / settings.units.d_m;
+  PackingProfile profile;
+  for (size_t chunk = 0; chunk < chunks.chunks; ++chunk) {
+    double sum = 0, duration = 0;
+    for (size_t b : blocks) sum += durations[b] * chunks.value(b, chunk, phi), duration += durations[b];
+    profile.z_d.push_back((chunks.value(blocks.front(), chunk, coord) - settings.z0) * to_d);
+    profile.phi.push_back(sum / duration);
+  }
+  return profile;
+}
+
+// phi of each bin of u(z), from the packing profile's bin at the same height.
+std::vector<double> packing_of_bins(const VelocityProfile& velocity, const PackingProfile& packing,
+                                    const std::string& source)
+{
+  std::vector<double> phi;
+  for (double z : velocity.z_d) {
+    auto same =
+        std::find_if(packing.z_d.begin(), packing.z_d.end(), [&](double zp) { return std::abs(zp - z) < 1e-6; });
+    if (same == packing.z_d.end())
+      throw InputError(
+          source, 0,
+          "no bin at z = " + std::to_string(z) + " d, where profile.chunk has one (both need the same bins)");
+    phi.push_back(packing.phi[static_cast<size_t>(same - packing.z_d.begin())]);
+  }
+  return phi;
+}
+
 // Layer top: the highest bin above z = 0 still holding half the median count of the
 // occupied bins above z = 0.
 std::optional<Estimate> thickness_from_profile(const VelocityProfile& profile)
@@ -367,6 +402,17 @@ struct Analyser {
     fit_profile(chunks->source);
   }
 
+  // phi(z) from packing.chunk over the window, in profile.csv and as phi_bulk, h_packing, I_packing.
+  void packing()
+  {
+    auto chunks = read_optional_chunks(settings.columns.packing_file, "no phi(z), phi_bulk or h_packing");
+    if (!chunks) return;
+    run.packing = average_packing(*chunks, window_blocks(*chunks), block_durations(*chunks, run.series), settings);
+    if (run.profile) run.profile->phi = packing_of_bins(*run.profile, *run.packing, chunks->source);
+    if (auto problem = add_layer_geometry(run.results, *run.packing, "packing.chunk"))
+      run.warnings.push_back(chunks->source + ": " + *problem);
+  }
+
   void fit_profile(const std::string& file)
   {
     const auto& p = *run.profile;
@@ -485,6 +531,7 @@ RunAnalysis analyse_run(const RunSettings& settings)
   analyser.spectrum_of_v();
   analyser.profile();
   if (run.h_d <= 0 && run.results.find("h")) run.h_d = run.results.find("h")->value;
+  analyser.packing();
   analyser.derived_rates();
   analyser.layer_spectra();
   return run;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "fit/packing_profile.h"
 #include "fit/profile_fits.h"
 #include "output/results.h"
 #include "signal/spectrum.h"
@@ -43,7 +44,10 @@ struct RunColumns {
   std::string profile_coord = "Coord1";
   std::string profile_vx = "vx";
   std::string profile_count = "Ncount";
-  std::string layers_file = "layers.chunk";  // fix ave/chunk of vy per layer, sampled finely
+  std::string packing_file = "packing.chunk";  // fix ave/chunk over the profile's bins, norm none
+  std::string packing_coord = "Coord1";
+  std::string packing_phi = "v_phi_of_grain";  // area fraction of the bin
+  std::string layers_file = "layers.chunk";    // fix ave/chunk of vy per layer, sampled finely
   std::string layers_coord = "Coord1";
   std::string layers_vz = "vy";
   std::string layers_count = "Ncount";  // optional
@@ -87,6 +91,7 @@ struct TimeSeries {
 
 struct VelocityProfile {
   std::vector<double> z_d, u_reduced, count;  // per bin, averaged over the stationary window
+  std::vector<double> phi;                    // area fraction per bin, from packing.chunk (empty without it)
   double bin_width_d = 0;
 };
 
@@ -107,6 +112,7 @@ struct RunAnalysis {
   std::optional<VelocityProfile> profile;
   std::optional<BagnoldFit> bagnold;
   std::optional<CreepFit> creep;
+  std::optional<PackingProfile> packing;  // phi(z) over the window, every bin (packing.chunk)
   std::vector<LayerSpectrum> layers;
   ResultTable results;
   std::vector<std::string> warnings;

@@ -158,9 +158,12 @@ Figure depth_figure(const RunAnalysis& run)
 void write_tables(const RunAnalysis& run, const std::string& out)
 {
   write_columns_csv(out + "/spectrum.csv", {"f_Hz", "A_sqrt_gd"}, {run.spectrum.frequency_hz, run.spectrum.amplitude});
-  if (run.profile)
-    write_columns_csv(out + "/profile.csv", {"z_d", "u_sqrt_gd", "count"},
-                      {run.profile->z_d, run.profile->u_reduced, run.profile->count});
+  if (run.profile) {
+    std::vector<std::string> names{"z_d", "u_sqrt_gd", "count"};
+    std::vector<std::vector<double>> columns{run.profile->z_d, run.profile->u_reduced, run.profile->count};
+    if (!run.profile->phi.empty()) names.push_back("phi"), columns.push_back(run.profile->phi);
+    write_columns_csv(out + "/profile.csv", names, columns);
+  }
   if (!run.layers.empty()) {
     std::vector<std::vector<double>> columns(5);
     for (const auto& layer : run.layers) {
