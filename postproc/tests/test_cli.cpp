@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -34,6 +35,8 @@ Outcome cdpost(const std::string& arguments)
   int status = std::system(command.c_str());
   return {WEXITSTATUS(status), slurp(dir / "out.txt"), slurp(dir / "err.txt")};
 }
+
+std::map<std::string, double> csv_values(const std::filesystem::path& csv);
 
 size_t line_count(const std::string& text)
 {
@@ -113,6 +116,117 @@ TEST(Cli, RunWritesResultsFiguresAndReport)
     EXPECT_TRUE(std::filesystem::exists(dir / "post/figures" / (std::string(figure) + ".svg"))) << figure;
     EXPECT_NE(slurp(dir / "post/report.md").find("figures/" + std::string(figure) + ".png"), std::string::npos);
   }
+}
+
+// A run whose wall tops stand 10 d above the floor: its chute.params gives z0, the sample rate,
+// d and g. u(z) is Bagnold above z = 0 on a slip of 0.3 sqrt(g d) and u0 exp(z/3 d) below, with
+// u0 = the slip; measured from the floor (z0 = 0) every bin sits 10 d too high and the creep
+// fit reads u0 = 0.3 exp(-10/3) instead.
+constexpr double kWallTopsD = 10;
+
+std::filesystem::path run_with_wall_tops(const std::string& name, testing::SyntheticRun& truth)
+{
+  auto dir = testing::scratch_dir() / name;
+  truth.duration = 4.0;
+  truth.y_top = kWallTopsD * truth.d;
+  testing::write_synthetic_run(dir, truth);
+  return dir;
+}
+
+TEST(Cli, RunTakesTheWallTopsAndSampleRateFromTheRunFolder)
+{
+  testing::SyntheticRun truth;
+  auto dir = run_with_wall_tops("run", truth);
+  auto outcome = cdpost("run " + dir.string() + " --dump " + (dir / "dump.chute.gz").string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const std::string said =
+      "parameters: z0 0.005 m, sample rate 1000 Hz, d 0.0005 m, g 9.81 m/s^2 from " + (dir / "chute.params").string();
+  EXPECT_EQ(outcome.out.substr(0, outcome.out.find('\n')), said);
+  EXPECT_NE(slurp(dir / "post/report.md").find("Parameters: z0 0.005 m, sample rate 1000 Hz"), std::string::npos);
+  const auto values = csv_values(dir / "post/results.csv");
+  // Profile bins carry 2 % noise: the fitted u0 within 5 % of the slip.
+  EXPECT_NEAR(values.at("creep_u0"), 0.3, 0.05 * 0.3);
+  EXPECT_NEAR(values.at("creep_lambda"), truth.creep_lambda, 0.1 * truth.creep_lambda);
+  EXPECT_GT(values.at("bagnold_r2"), 0.99);
+
+  // The command line wins over the record, and says so.
+  outcome = cdpost("run " + dir.string() + " --z0 0 --sample-rate 500 --out " + (dir / "floor").string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_EQ(outcome.out.substr(0, outcome.out.find('\n')),
+            "parameters: z0 0 m from --z0; sample rate 500 Hz from --sample-rate; d 0.0005 m, g 9.81 m/s^2 from " +
+                (dir / "chute.params").string());
+  EXPECT_NEAR(csv_value(dir / "floor/results.csv", "creep_u0"), 0.3 * std::exp(-kWallTopsD / truth.creep_lambda),
+              0.05 * 0.3 * std::exp(-kWallTopsD / truth.creep_lambda));
+
+  // A dump's snapshot takes the wall tops from the record beside it.
+  outcome = cdpost("snapshot " + (dir / "dump.chute.gz").string() + " --out " + (dir / "snap").string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_EQ(outcome.out.rfind("parameters: z0 0.005 m,", 0), 0u) << outcome.out;
+}
+
+TEST(Cli, RunFolderRecordingNothingNeedsZ0)
+{
+  testing::SyntheticRun truth;
+  truth.with_record = false;
+  auto dir = run_with_wall_tops("run", truth);
+  auto refused = cdpost("run " + dir.string());
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_EQ(refused.err, "cdpost: error: " + dir.string() +
+                             ": no chute.params (inputs/in.chute writes it): give --z0, the height of the wall tops "
+                             "that z is measured from\n");
+  EXPECT_FALSE(std::filesystem::exists(dir / "post"));
+
+  auto given = cdpost("run " + dir.string() + " --z0 0.005");
+  ASSERT_EQ(given.status, 0) << given.err;
+  EXPECT_EQ(given.out.substr(0, given.out.find('\n')),
+            "parameters: z0 0.005 m from --z0; sample rate none given or recorded (the time file's longest "
+            "interval); d 0.0005 m, g 9.81 m/s^2 by default");
+  EXPECT_NEAR(csv_value(dir / "post/results.csv", "creep_u0"), 0.3, 0.05 * 0.3);
+
+  // A series reads each run's record: the same folder in a manifest fails on its line.
+  std::ofstream(dir.parent_path() / "series.csv") << "run,mu,theta\nrun,0.5,24\n";
+  auto series = cdpost("series " + (dir.parent_path() / "series.csv").string());
+  EXPECT_EQ(series.status, 1);
+  EXPECT_NE(series.err.find("series.csv:2: run failed: " + dir.string() + ": no chute.params"), std::string::npos)
+      << series.err;
+  EXPECT_NE(series.err.find("give --z0"), std::string::npos) << series.err;
+  EXPECT_EQ(line_count(series.err), 1u) << series.err;
+
+  testing::write_file(dir / "chute.params", "y_top_m 0.005\nsample_rate_hz fast\n");
+  auto malformed = cdpost("run " + dir.string());
+  EXPECT_EQ(malformed.err,
+            "cdpost: error: " + (dir / "chute.params").string() + ":2: bad number 'fast' for sample_rate_hz\n");
+}
+
+// U(t) relaxes as 1 - exp(-t / 0.4 s): a window from t = 0 drifts by most of U, one from 2.5 s
+// by 10 exp(-6.25) = 0.02 sqrt(g d) of 10, well within 2 %.
+TEST(Cli, ForcedWindowThatDriftsIsLabelledEverywhere)
+{
+  testing::SyntheticRun truth;
+  auto dir = run_with_wall_tops("run", truth);
+  auto outcome = cdpost("run " + dir.string() + " --t-start 0");
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_EQ(line_count(outcome.err), 1u) << outcome.err;
+  EXPECT_EQ(outcome.err.rfind("cdpost: warning: the window t = 0.001 to ", 0), 0u) << outcome.err;
+  EXPECT_NE(outcome.err.find(" sqrt(d/g)) is not stationary: U drifts by "), std::string::npos) << outcome.err;
+  EXPECT_NE(outcome.err.find("above the 2% the stationarity test allows (--max-drift)"), std::string::npos);
+  const auto json = slurp(dir / "post/results.json");
+  EXPECT_NE(json.find("\"warnings\": [\"the window t = 0.001 to "), std::string::npos) << json;
+  const auto report = slurp(dir / "post/report.md");
+  EXPECT_NE(report.find("Window given on the command line, not stationary: U drifts by"), std::string::npos);
+  EXPECT_NE(report.find("*Spectrum of v(t) over the window (not stationary)*"), std::string::npos);
+  EXPECT_NE(report.find("## Warnings\n\n- the window t = 0.001 to "), std::string::npos);
+  EXPECT_EQ(report.find("stationary window"), std::string::npos);
+  EXPECT_NE(slurp(dir / "post/figures/u_t.gp").find("shaded: window (not stationary)"), std::string::npos);
+  EXPECT_NE(slurp(dir / "post/results.csv").find("start of the given window (not stationary)"), std::string::npos);
+
+  outcome = cdpost("run " + dir.string() + " --t-start 2.5 --out " + (dir / "late").string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_EQ(outcome.err, "");
+  EXPECT_LT(csv_value(dir / "late/results.csv", "stationary_drift"), 0.02);
+  EXPECT_NE(slurp(dir / "late/report.md").find("Stationary window given on the command line, U drifts by"),
+            std::string::npos);
+  EXPECT_NE(slurp(dir / "late/figures/u_t.gp").find("shaded: stationary window"), std::string::npos);
 }
 
 TEST(Cli, BrokenInputGivesOneLineNamingFileAndLine)

@@ -36,6 +36,7 @@ TEST_F(SyntheticRunTest, RecoversEveryMeasuredQuantity)
 {
   auto run = analyse_run(settings_);
   EXPECT_TRUE(run.window_detected);
+  EXPECT_TRUE(run.window_stationary);
   EXPECT_GT(result(run, "t_start") * std::sqrt(truth_.d / truth_.g), 3 * truth_.relaxation * 0.5);
   EXPECT_NEAR(result(run, "U"), truth_.u_final, 0.015 * truth_.u_final);  // the criterion allows a small drift
   EXPECT_NEAR(result(run, "phi"), truth_.phi, 4 * error(run, "phi") + 1e-3);
@@ -65,6 +66,12 @@ TEST_F(SyntheticRunTest, ExplicitWindowOverridesDetection)
   EXPECT_FALSE(run.window_detected);
   EXPECT_EQ(run.window.begin, 0u);
   EXPECT_LT(result(run, "U"), truth_.u_final - 0.2);  // the transient drags the mean down
+  // ... and U drifts across it: analysed all the same, labelled and warned of.
+  EXPECT_FALSE(run.window_stationary);
+  EXPECT_GT(result(run, "stationary_drift"), run.settings.criterion.max_relative_drift);
+  ASSERT_EQ(run.warnings.size(), 1u);
+  EXPECT_NE(run.warnings[0].find("is not stationary: U drifts by"), std::string::npos) << run.warnings[0];
+  EXPECT_EQ(window_name(run), "window (not stationary)");
 }
 
 TEST_F(SyntheticRunTest, MissingTimeInformationIsAnErrorNamingTheFile)

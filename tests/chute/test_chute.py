@@ -64,6 +64,19 @@ def summary(output, tag):
     return values
 
 
+def check_record(folder, wall_height, grains, theta):
+    """chute.params, the record in.chute writes for cdpost as a chute stage starts: the wall tops
+    z is measured from, the sample rate (the deck's default), d, g, the grains and the tilt."""
+    path = os.path.join(folder, "chute.params")
+    check(os.path.exists(path), f"no chute.params in {folder}")
+    with open(path) as src:
+        record = {name: float(value) for name, value in
+                  (line.split() for line in src if line.strip() and not line.startswith("#"))}
+    expected = dict(y_top_m=wall_height * D, sample_rate_hz=1000, d_m=D, g_mps2=G, grains=grains, theta_deg=theta)
+    wrong = {k: record.get(k) for k, v in expected.items() if record.get(k) is None or abs(record[k] - v) > 1e-9 * v}
+    check(not wrong, f"{path}: {wrong}, expected {expected}")
+
+
 def mean(values):
     values = list(values)
     return sum(values) / len(values)
@@ -107,6 +120,7 @@ def case_deposition(args):
     result = summary(output, "DEPOSITION")
     for name in ("deposition.restart", "deposition.data", "deposition.dump"):
         check(os.path.exists(os.path.join(folder, name)), f"{name} not written")
+    check(not os.path.exists(os.path.join(folder, "chute.params")), "the deposition wrote a chute's chute.params")
     check(result["grains"] == 200, f"{result['grains']} grains, expected 200")
     check(result["ke_per_grain"] < 1e-4, f"not settled: KE per grain {result['ke_per_grain']} m g d")
     check(result["max_interpenetration_d"] < 0.005,
@@ -167,9 +181,15 @@ FLOW_THETA, FLOW_DURATION, FLOW_FRAME = 24, 1.2, 0.004
 
 def case_flow_run(args):
     """The flow that steady_flow and walls_trap analyse: 24 degrees (the thin layer stops at
-    23) for 1.2 s, a dump frame every 4 ms."""
-    chute(args, "flow", FLOW_THETA, FLOW_DURATION, snapshot_interval=FLOW_FRAME)
-    print("flow run written")
+    23) for 1.2 s, a dump frame every 4 ms. Its chute.params, and that of the same cell in stage
+    all (deposition and chute in one process, 4 ms of flow at 26 degrees)."""
+    folder, _ = chute(args, "flow", FLOW_THETA, FLOW_DURATION, snapshot_interval=FLOW_FRAME)
+    check_record(folder, 8, 200, FLOW_THETA)
+    in_one = os.path.join(args.work, "stage_all")
+    shutil.rmtree(in_one, ignore_errors=True)
+    run_lmp(args.lmp, in_one, dict(CELL, stage="all", theta=26, duration=0.004))
+    check_record(in_one, 8, 200, 26)
+    print("flow run written; chute.params right from a deposition and in stage all")
 
 
 def case_dt_change(args):
@@ -556,10 +576,11 @@ def case_restart_between_samples(args):
     (at a refined level, 0.25 ms steps against 1 ms samples); continued from there, the run keeps
     the level and its position in the period: it starts from the state the straight run had at
     that step, takes the same steps at the same chute times up to the end of the period, and
-    samples every whole millisecond after it. Small skin and dt 1e-4 s, so that the 0.3 s flow
-    refines the step; a restart every 2 ms, so that the last two restarts fall within a few ms
-    of the end. (Later values are not compared: rebuilt neighbour lists may reorder the
-    contacts, and the flow amplifies differences within the solver's tolerance.)"""
+    samples every whole millisecond after it; it records the chute in its chute.params. Small skin
+    and dt 1e-4 s, so that the 0.3 s flow refines the step; a restart every 2 ms, so that the
+    last two restarts fall within a few ms of the end. (Later values are not compared: rebuilt
+    neighbour lists may reorder the contacts, and the flow amplifies differences within the
+    solver's tolerance.)"""
     work = os.path.join(args.work, "restart_between_samples")
     shutil.rmtree(work, ignore_errors=True)
     start = os.path.join(args.work, "deposition", "deposition.restart")
@@ -578,6 +599,7 @@ def case_restart_between_samples(args):
         folder = os.path.join(work, "from_" + name)
         run_lmp(args.lmp, folder, dict(settings, start=os.path.join(straight, name), duration=duration + 0.01))
         rows = [r for r in read_time_file(os.path.join(folder, "flow.time")) if r["v_time"] <= duration + 1e-9]
+        check_record(folder, 8, 200, 24)
         first = rows[0]
         if not whole_ms(first["v_time"]):
             between.append(f"{name} at {first['v_time']} s")
@@ -598,7 +620,8 @@ def case_restart_between_samples(args):
 
 def case_runner_resume(args):
     """The runner, killed in the middle of a run, continues it from its restart when started
-    again; the spliced outputs are continuous; a finished run is not run again."""
+    again; the spliced outputs are continuous, the legs' chute.params is carried into the run's
+    folder; a finished run is not run again."""
     out = os.path.join(args.work, "campaign")
     shutil.rmtree(out, ignore_errors=True)
     cmd = [sys.executable, RUNNER, "--out", out, "--lmp", args.lmp, "--cdpost", "none",
@@ -637,6 +660,7 @@ def case_runner_resume(args):
     for name in ("params.json", "cost.json", "chute.restart", "profile.chunk", "layers.chunk",
                  "packing.chunk", "solver.time", "dump.chute.gz"):
         check(os.path.exists(os.path.join(run, name)), f"{name} missing from the run folder")
+    check_record(run, 4, 80, 24)
 
     third = subprocess.run(cmd, capture_output=True, text=True, timeout=60)
     check(third.returncode == 0 and "start run" not in third.stdout,

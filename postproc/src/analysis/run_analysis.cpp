@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 #include <gsl/gsl_statistics_double.h>
 
 #include "analysis/layer_geometry.h"
@@ -195,6 +197,33 @@ Window choose_window(const RunSettings& settings, const TimeSeries& series, bool
   });
 }
 
+std::string percent(double fraction)
+{
+  std::ostringstream text;
+  text << std::setprecision(2) << 100 * fraction << "%";
+  return text.str();
+}
+
+// A window given on the command line is analysed whatever its drift; one that fails the test the
+// detection applies (the drift of U across it within --max-drift) is labelled so and warned of.
+void test_stationarity(RunAnalysis& run)
+{
+  const auto& s = run.series;
+  const double drift = relative_drift(s.time_s, s.u_flow_mps, run.window);
+  const double limit = run.settings.criterion.max_relative_drift;
+  run.window_stationary = drift <= limit;
+  run.window_drift = "U drifts by " + percent(drift) + " across it, " + (run.window_stationary ? "within" : "above") +
+                     " the " + percent(limit) + " the stationarity test allows (--max-drift)";
+  if (run.window_stationary) return;
+  auto bounds = [&](double unit) {
+    return format_estimate(s.time_s[run.window.begin] / unit, std::nullopt) + " to " +
+           format_estimate(s.time_s[run.window.end - 1] / unit, std::nullopt);
+  };
+  run.warnings.push_back("the window t = " + bounds(1.0) + " s (" + bounds(run.settings.units.reduced_time_s()) +
+                         " sqrt(d/g)) is not stationary: " + run.window_drift +
+                         "; its means, spectra and profile are those of a changing flow");
+}
+
 // Blocks of a chunk file whose time lies in [t0, t1].
 std::vector<size_t> blocks_between(const ChunkSeries& chunks, const TimeSeries& clock, double t0, double t1)
 {
@@ -332,8 +361,8 @@ struct Analyser {
     const auto& s = run.series;
     auto& r = run.results;
     r.add("t_start", reduced_time(s.time_s[run.window.begin]), "sqrt(d/g)",
-          run.window_detected ? "start of the detected stationary regime" : "start of the stationary window (given)");
-    r.add("t_end", reduced_time(s.time_s[run.window.end - 1]), "sqrt(d/g)", "end of the stationary window");
+          run.window_detected ? "start of the detected stationary regime" : "start of the given " + window_name(run));
+    r.add("t_end", reduced_time(s.time_s[run.window.end - 1]), "sqrt(d/g)", "end of the " + window_name(run));
     r.add("stationary_drift", relative_drift(s.time_s, s.u_flow_mps, run.window), "",
           "drift of the line fitted to U(t) across the window, relative to its mean");
     r.add("U", window_mean(s.u_flow_mps, 1 / units.reduced_velocity_mps()), "sqrt(g d)",
@@ -520,12 +549,18 @@ ColumnSpectrum analyse_column_spectrum(const std::string& path, const std::strin
   });
 }
 
+std::string window_name(const RunAnalysis& run)
+{
+  return run.window_stationary ? "stationary window" : "window (not stationary)";
+}
+
 RunAnalysis analyse_run(const RunSettings& settings)
 {
   RunAnalysis run;
   run.settings = settings;
   run.series = read_time_series(settings, run.warnings);
   run.window = choose_window(settings, run.series, run.window_detected, path_in(settings, settings.columns.time_file));
+  test_stationarity(run);
   Analyser analyser{run, settings, settings.units};
   analyser.time_averages();
   analyser.spectrum_of_v();

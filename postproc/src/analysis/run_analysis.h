@@ -68,6 +68,7 @@ struct RunSettings {
   double peak_fmax_hz = std::numeric_limits<double>::infinity();
   double high_frequency_hz = 100;  // A_mean is the mean amplitude at and above this
   double z0 = 0;                   // wall-top height in input length units (z = y - z0)
+  std::string parameters;          // which d, g, z0 and sample rate are used, and where from (one line)
   double creep_depth_d = 30;       // the creep fit uses -creep_depth_d <= z < 0
   int averaging_blocks = 10;
   bool progress = false;
@@ -107,7 +108,9 @@ struct RunAnalysis {
   TimeSeries series;
   Window window;
   bool window_detected = true;
-  Spectrum spectrum;  // of v(t), amplitude in sqrt(g d)
+  bool window_stationary = true;  // U drifts across the window within criterion.max_relative_drift
+  std::string window_drift;       // that drift against the limit, in words
+  Spectrum spectrum;              // of v(t), amplitude in sqrt(g d)
   SpectralPeak peak;
   std::optional<VelocityProfile> profile;
   std::optional<BagnoldFit> bagnold;
@@ -120,6 +123,10 @@ struct RunAnalysis {
 };
 
 RunAnalysis analyse_run(const RunSettings& settings);
+
+// How results, report and figures name the analysed window: "stationary window", or
+// "window (not stationary)" when it fails the stationarity test.
+std::string window_name(const RunAnalysis& run);
 
 // Spectrum, peak and A_mean of one column of a fix ave/time file, over the whole file or
 // the window settings.t_start/t_end; amplitudes in the column's own units.

@@ -501,9 +501,10 @@ SeriesAnalysis analyse_series(const SeriesSettings& settings)
     RunSettings run_settings = settings.run;
     run_settings.directory = entries[i].directory;
     try {
+      const bool published = is_published_run(run_settings.directory);
+      if (!published && settings.complete_run) settings.complete_run(run_settings);
       series.runs.push_back({entries[i],
-                             is_published_run(run_settings.directory) ? read_published_run(run_settings.directory)
-                                                                      : analyse_run(run_settings),
+                             published ? read_published_run(run_settings.directory) : analyse_run(run_settings),
                              std::nullopt});
     } catch (const std::exception& e) {
       throw InputError(settings.manifest, entries[i].line, std::string("run failed: ") + e.what());

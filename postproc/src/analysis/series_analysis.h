@@ -9,6 +9,7 @@
 // the measurement h_stop(theta) for Pouliquen's rule.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +23,9 @@ namespace cdpost {
 struct SeriesSettings {
   std::string manifest;
   RunSettings run;  // shared by every run; directory set per run
+  // Completes the settings of a run read from its raw outputs from what its folder records
+  // (the command line's run parameters); none: `run` as it is.
+  std::function<void(RunSettings&)> complete_run;
   double beta = 0.136;
   // The values at which the mu(I) rule is refitted with I0 held, and Pouliquen's rule with l
   // held (at beta): the rms residual against the held value shows what the runs determine.
