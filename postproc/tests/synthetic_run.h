@@ -91,7 +91,7 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const Syntheti
   write_file(dir / "packing.chunk", ave_chunk_text({"Coord1", "Ncount", "v_phi_of_grain"}, profile_steps, bins,
                                                    [&](size_t, size_t bin, size_t column) {
                                                      const double z = z_of(bin);
-                                                     if (column == 0) return z * run.d;
+                                                     if (column == 0) return z * run.d + run.y_top;
                                                      if (column == 1) return z < run.h ? 20.0 : 0.0;
                                                      return run.phi_of_z(z);
                                                    }));
