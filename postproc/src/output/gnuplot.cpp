@@ -35,6 +35,7 @@ void write_data_block(std::ostream& out, const std::string& name, const Curve& c
     if (curve.style == CurveStyle::ErrorBars) out << ' ' << curve.y_error[i];
     if (curve.style == CurveStyle::Circles || curve.style == CurveStyle::ShadedCircles)
       out << ' ' << curve.radius[i] << ' ' << curve.colour[i];
+    if (curve.style == CurveStyle::Map) out << ' ' << curve.colour[i];
     out << '\n';
   }
   out << "EOD\n";
@@ -53,6 +54,7 @@ std::string plot_clause(const Curve& curve, const std::string& block)
       with = "using 1:2:3:4 with circles lc palette fs transparent solid 0.3 noborder";
       break;
     case CurveStyle::Walls: with = "using 1:2 with lines lw 3 lc rgb 'black'"; break;
+    case CurveStyle::Map: with = "using 1:2:3 with image"; break;
   }
   return block + " " + with + (curve.title.empty() ? " notitle" : " title " + quoted(curve.title));
 }

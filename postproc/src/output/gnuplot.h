@@ -9,8 +9,9 @@
 
 namespace cdpost {
 
-// Walls: black lines; in Lines and Walls a NaN point breaks the line.
-enum class CurveStyle { Points, Lines, LinesPoints, ErrorBars, Circles, ShadedCircles, Walls };
+// Walls: black lines; in Lines and Walls a NaN point breaks the line. Map: a regular grid of
+// x, y coloured by `colour` (gnuplot's image), one NaN point between scans of constant x.
+enum class CurveStyle { Points, Lines, LinesPoints, ErrorBars, Circles, ShadedCircles, Walls, Map };
 
 struct Curve {
   std::string title;
@@ -18,7 +19,7 @@ struct Curve {
   std::vector<double> x, y;
   std::vector<double> y_error;  // ErrorBars
   std::vector<double> radius;   // Circles: radius in x-axis units
-  std::vector<double> colour;   // Circles: value mapped on the palette
+  std::vector<double> colour;   // Circles, Map: value mapped on the palette
 };
 
 struct Panel {
