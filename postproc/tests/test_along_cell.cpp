@@ -5,11 +5,13 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <random>
 
 #include "analysis/along_cell.h"
 #include "analysis/run_analysis.h"
+#include "analysis/series_analysis.h"
 #include "synthetic_run.h"
 
 namespace cdpost {
@@ -282,6 +284,48 @@ TEST_F(AlongCellRun, TooSparseAColumnIsNamed)
   EXPECT_FALSE(run.along_cell);
   ASSERT_EQ(run.warnings.size(), 1u);
   EXPECT_NE(run.warnings.front().find("column 3 is empty in 10"), std::string::npos) << run.warnings.front();
+}
+
+// A series of two raw runs (the manifest's L gives their cell length) and one published run
+// (its results.csv as `cdpost run` wrote it): each gets its verdict and coherence columns.
+TEST(AlongCellSeries, EveryRunGetsItsVerdictRawOrPublished)
+{
+  const auto dir = testing::scratch_dir();
+  std::ofstream manifest(dir / "series.csv");
+  manifest << "run,mu,theta,L\n";
+  for (int i = 1; i <= 3; ++i) {
+    testing::SyntheticRun run;
+    run.with_columns = true;
+    run.duration = 4;
+    run.relaxation = 0.1;
+    run.seed = static_cast<unsigned>(i);
+    run.u_final = 5.0 + i;
+    const std::string name = "run" + std::to_string(i);
+    testing::write_synthetic_run(dir / name, run);
+    manifest << name << ",0.5," << 21 + i << ",45\n";
+  }
+  manifest.close();
+  RunSettings published;
+  published.directory = (dir / "run3").string();
+  published.cell_length_d = 45;
+  auto analysed = analyse_run(published);
+  write_run_outputs(analysed, (dir / "run3").string(), "");  // results.csv at its top: read as published
+
+  SeriesSettings settings;
+  settings.manifest = (dir / "series.csv").string();
+  auto series = analyse_series(settings);
+  write_series_outputs(series, (dir / "post").string());
+  std::ifstream csv(dir / "post/along_cell.csv");
+  std::string line, text;
+  int rows = 0;
+  std::getline(csv, line);
+  EXPECT_EQ(line.rfind("run,mu,theta_deg,pattern,coherence_length,coherence_length_error,", 0), 0u) << line;
+  while (std::getline(csv, line)) ++rows, text += line + "\n";
+  EXPECT_EQ(rows, 3);
+  for (const char* run : {"run1,0.5,22,uniform,", "run2,0.5,23,uniform,", "run3,0.5,24,uniform,"})
+    EXPECT_NE(text.find(run), std::string::npos) << text;
+  EXPECT_TRUE(std::filesystem::exists(dir / "post/figures/coherence_vs_U.png") ||
+              std::filesystem::exists(dir / "post/figures/coherence_vs_U.gp"));
 }
 
 }  // namespace

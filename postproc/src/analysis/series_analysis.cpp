@@ -430,6 +430,7 @@ SeriesAnalysis analyse_series(const SeriesSettings& settings)
     progress.update(static_cast<double>(i) / entries.size(), entries[i].directory);
     RunSettings run_settings = settings.run;
     run_settings.directory = entries[i].directory;
+    if (entries[i].length_d) run_settings.cell_length_d = entries[i].length_d;
     try {
       series.runs.push_back({entries[i],
                              is_published_run(run_settings.directory) ? read_published_run(run_settings.directory)
