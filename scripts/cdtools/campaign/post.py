@@ -30,9 +30,10 @@ def run_logged(cmd, log):
 
 def postprocess_run(job, cdpost, args):
     """cdpost run on a finished run. Returns (ok, message); 'not stationary' is reported."""
-    # The deck's sample rate sets the spectra's grid even where a leg ran at a refined step throughout.
+    # The deck's sample rate sets the spectra's grid even where a leg ran at a refined step throughout;
+    # its cell length places the columns of columns.chunk.
     cmd = [cdpost, "run", job.folder, "--d", job.vars["d"], "--g", job.vars["g"],
-           "--sample-rate", job.vars["sample_rate"],
+           "--sample-rate", job.vars["sample_rate"], "--cell-length", job.vars["L"],
            "--z0", repr(wall_top(job.vars)), "--dump", os.path.join(job.folder, "dump.chute.gz")]
     return run_logged(cmd + args.cdpost_option, os.path.join(job.folder, "cdpost.log"))
 
@@ -90,7 +91,9 @@ def run_series(analysis, manifest_folder, runs, cdpost, args, out=None):
     for folder in (manifest_folder, out):
         os.makedirs(folder, exist_ok=True)
     manifest = write_manifest(manifest_folder, analysis, runs)
-    cmd = [cdpost, "series", manifest, "--z0", repr(wall_top(runs[0][2])), "--out", out] + args.cdpost_option
+    # The manifest's L, written where it varies, overrides --cell-length per run.
+    cmd = [cdpost, "series", manifest, "--z0", repr(wall_top(runs[0][2])), "--cell-length", runs[0][2]["L"],
+           "--out", out] + args.cdpost_option
     ok, message = run_logged(cmd, os.path.join(out, "cdpost.log"))
     print(f"series {analysis}: {len(runs)} runs, cdpost series {'done' if ok else 'failed: ' + message}", flush=True)
     return ok
