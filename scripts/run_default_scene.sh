@@ -18,6 +18,8 @@ cd "$out"
 summary=$(grep '^CHUTE ' log.lammps | tail -n 1)
 y_top=$(echo "$summary" | awk '{print $3}')
 t_end=$(echo "$summary" | awk '{print $5}')
+# The deck's cell length (d) places the columns of columns.chunk.
+cell_length=$(awk '$1 == "variable" && $2 == "L" {print $4; exit}' "$top/inputs/in.default_scene")
 cdpost=${CDPOST:-$build/postproc/cdpost}
 if [ ! -x "$cdpost" ]; then
   echo "default scene finished: outputs in $out (cdpost not built: no figures)"
@@ -25,9 +27,9 @@ if [ ! -x "$cdpost" ]; then
 fi
 # Segments of 0.25 s (4 Hz resolution) suit a run of a few seconds. A short run may not pass
 # the stationarity test; its second half is then analysed, and the report says so.
-if ! "$cdpost" run "$out" --z0 "$y_top" --dump "$out/dump.chute.gz" --segment 0.25; then
+if ! "$cdpost" run "$out" --z0 "$y_top" --cell-length "$cell_length" --dump "$out/dump.chute.gz" --segment 0.25; then
   t_start=$(awk -v t="$t_end" 'BEGIN {print t / 2}')
   echo "no stationary regime detected: analysing t >= $t_start s (run longer with -var duration)"
-  "$cdpost" run "$out" --z0 "$y_top" --dump "$out/dump.chute.gz" --segment 0.25 --t-start "$t_start"
+  "$cdpost" run "$out" --z0 "$y_top" --cell-length "$cell_length" --dump "$out/dump.chute.gz" --segment 0.25 --t-start "$t_start"
 fi
 echo "default scene finished: outputs in $out, report in $out/post/report.md"

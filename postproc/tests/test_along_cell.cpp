@@ -213,10 +213,15 @@ TEST(AlongCell, UnequalColumnsAreRefusedAndTooFewLeaveNoFit)
   auto field = field_of(8, 1, 0.1, [](double, double) { return 0.0; });
   field.columns[3].pop_back();
   EXPECT_THROW(space_time_spectrum(field, {}), AnalysisError);
-  const auto few = analyse(field_of(4, 1, 0.1, [](double, double) { return 0.0; }), 20, 1);
+  const auto few = analyse(field_of(4, 4, 0.1, [](double, double) { return 0.0; }), 20, 1);
   EXPECT_FALSE(few.along.fit);
   ASSERT_EQ(few.warnings.size(), 1u);
   EXPECT_NE(few.warnings.front().find("needs 4 distances"), std::string::npos) << few.warnings.front();
+  // A window of one segment has no jackknife: no fit, said in the report, not a warning.
+  const auto short_window = analyse(field_of(8, 1, 0.1, [](double, double) { return 0.0; }), 20, 1);
+  EXPECT_FALSE(short_window.along.fit);
+  EXPECT_TRUE(short_window.warnings.empty());
+  EXPECT_NE(along_cell_text(short_window.along).find("holds 1 segment(s)"), std::string::npos);
 }
 
 // Through the reader: a synthetic run folder with columns.chunk, the layer's oscillation in

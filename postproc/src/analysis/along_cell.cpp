@@ -16,7 +16,7 @@ constexpr double kTravellingBalance = 1.0 / 3;
 // Neighbouring columns are incoherent when their mean coherence is below twice the noise floor
 // (the mean of M pair estimates of incoherent columns scatters by ~floor / sqrt(M)).
 constexpr double kIncoherentNeighbours = 2;
-// The coherence is kept across the cell when its plateau is at least half its short-range value.
+// The coherence is kept across the cell when its plateau is at least half that of neighbours.
 constexpr double kCoherentPlateau = 0.5;
 // m = 0 dominates when it holds at least half the power at f: more than every other m together.
 constexpr double kUniformFraction = 0.5;
@@ -238,7 +238,7 @@ PatternVerdict judge_pattern(const std::vector<double>& band_power, int columns,
     headline = "local: no coherence even between neighbouring columns (" + number(coherence.coherence.front()) +
                " at r = " + number(coherence.distance.front()) + " d): coherence length below one column width";
   } else if (fit && fit->length && fit->length->value < cell_length_d / 2 &&
-             fit->plateau.value < kCoherentPlateau * fit->short_range.value) {
+             fit->plateau.value < kCoherentPlateau * coherence.coherence.front()) {
     verdict.pattern = OscillationPattern::Local;
     headline = "local: coherence length " + format_estimate(fit->length->value, fit->length->error) +
                " d, shorter than half the cell (" + number(cell_length_d / 2) + " d), the coherence falling from " +
@@ -304,11 +304,17 @@ AlongCell analyse_along_cell(const SpaceTimeField& field, const SpectralPeak& pe
   along.spectrum = space_time_spectrum(field, options);
   along.coherence = coherence_by_distance(field, options, peak.frequency_hz, peak.frequency_error_hz);
   along.band_power = band_power_by_m(along.spectrum, along.coherence.band);
-  try {
-    along.fit = fit_coherence(along.coherence);
-  } catch (const AnalysisError& e) {
-    warnings.push_back("coherence length not fitted: " + std::string(e.what()));
-  }
+  // A window of fewer than 3 segments has no jackknife: the report says so, as it says when the
+  // coherence does not decay; a fit that fails on enough data is a warning.
+  if (along.coherence.without_group.size() < 3)
+    along.no_fit_reason = "no coherence length: the window holds " + std::to_string(along.coherence.segments) +
+                          " segment(s), its error (a jackknife) needs 3";
+  else try {
+      along.fit = fit_coherence(along.coherence);
+    } catch (const AnalysisError& e) {
+      along.no_fit_reason = "coherence length not fitted: " + std::string(e.what());
+      warnings.push_back(along.no_fit_reason);
+    }
   along.verdict =
       judge_pattern(along.band_power, along.spectrum.columns, along.coherence, along.fit, field.cell_length);
   if (along.verdict.pattern == OscillationPattern::Travelling) {

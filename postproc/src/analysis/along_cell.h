@@ -61,7 +61,7 @@ struct PatternVerdict {
   std::string text;             // the verdict with its numbers, one line
 };
 // The verdict, in this order: local when neighbouring columns are no more coherent than twice
-// the noise floor, or when xi < L/2 and the plateau is below half of c0 (the two halves of the cell oscillate nearly
+// the noise floor, or when xi < L/2 and the plateau is below half the neighbours' coherence (the two halves of the cell oscillate nearly
 // independently); else uniform when m = 0 holds at least half the power at f; else travelling
 // when one direction of the dominant |m| holds at least twice the power of the other (|balance|
 // >= 1/3, and beyond twice its error), standing otherwise. band_power as band_power_by_m gives
@@ -73,8 +73,9 @@ PatternVerdict judge_pattern(const std::vector<double>& band_power, int columns,
 struct AlongCell {
   SpaceTimeSpectrum spectrum;       // v in sqrt(g d), lengths in d
   CoherenceByDistance coherence;    // distances in d
-  std::optional<CoherenceFit> fit;  // absent when the fit failed (a warning says why)
-  std::vector<double> band_power;   // per m, as band_power_by_m
+  std::optional<CoherenceFit> fit;  // absent when it could not be made, for no_fit_reason
+  std::string no_fit_reason;
+  std::vector<double> band_power;  // per m, as band_power_by_m
   PatternVerdict verdict;
   double frequency_hz = 0;                 // the layer's peak frequency
   std::optional<Estimate> phase_velocity;  // f L / m, sqrt(g d), > 0 along +x; when travelling

@@ -148,8 +148,9 @@ std::string along_cell_text(const AlongCell& along)
          "), averaged over the pairs at each periodic distance. Coherence length xi: the fit of "
          "C(r) = plateau + (c0 - plateau) exp(-2 r/xi), as its expected estimate C + (1 - C)^2 floor, over every "
          "distance (it uses every distance and separates a part coherent across the cell, where a 1/e crossing "
-         "rests on two points); errors by jackknife over groups of segments. Verdict: " +
-         along.verdict.text + ".";
+         "rests on two points); errors by jackknife over groups of segments" +
+         (along.no_fit_reason.empty() ? "" : " (" + along.no_fit_reason + ")") + ". Verdict: " + along.verdict.text +
+         ".";
 }
 
 }  // namespace cdpost
