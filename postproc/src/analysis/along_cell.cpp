@@ -26,13 +26,14 @@ std::string number(double value)
   return format_estimate(value, std::nullopt);
 }
 
-// The expected estimate, from n = 1/floor averages, of the true coherence
-// C(r) = plateau + (c0 - plateau) exp(-2 r / xi): C + (1 - C)^2 / n (Carter, Knapp & Nuttall
-// 1973, to first order in 1/n), the floor where C vanishes, nothing added where C = 1.
+// The expected estimate, from n = 1/floor averages, of the true coherence C(r) = gamma(r)^2
+// with the coherency gamma(r) = g_far + (g0 - g_far) exp(-r / xi): C + (1 - C)^2 / n (Carter,
+// Knapp & Nuttall 1973, to first order in 1/n), the floor where C vanishes, nothing added at 1.
 double expected_estimate(const std::vector<double>& parameters, double floor, double r)
 {
-  const double c0 = parameters[0], plateau = parameters[1], inverse_length = parameters[2];
-  const double c = plateau + (c0 - plateau) * std::exp(-2 * r * inverse_length);
+  const double g0 = parameters[0], g_far = parameters[1], inverse_length = parameters[2];
+  const double gamma = g_far + (g0 - g_far) * std::exp(-r * inverse_length);
+  const double c = gamma * gamma;
   return c + (1 - c) * (1 - c) * floor;
 }
 
@@ -123,16 +124,18 @@ SpaceTimeField field_from_chunks(const ChunkSeries& chunks, const std::vector<si
 
 double fitted_coherence(const CoherenceFit& fit, double floor, double distance)
 {
-  return expected_estimate({fit.short_range.value, fit.plateau.value, fit.inverse_length.value}, floor, distance);
+  return expected_estimate({std::sqrt(fit.short_range.value), std::sqrt(fit.plateau.value), fit.inverse_length.value},
+                           floor, distance);
 }
 
 namespace {
 
-// c0, plateau and 1/xi fitted to `measured` (see CoherenceFit).
+// The coherencies g0, g_far and 1/xi fitted to `measured` (see CoherenceFit).
 FitResult fit_decay(const std::vector<double>& r, const std::vector<double>& measured, double floor)
 {
   auto model = [&](const std::vector<double>& p, size_t i) { return expected_estimate(p, floor, r[i]); };
-  return fit_nonlinear(measured, model, {measured.front(), measured.back(), 2 / r.back()},
+  auto root = [](double c) { return std::sqrt(std::max(c, 0.0)); };
+  return fit_nonlinear(measured, model, {root(measured.front()), root(measured.back()), 1 / r.back()},
                        {"short_range", "plateau", "inverse_length"});
 }
 
@@ -164,8 +167,8 @@ CoherenceFit fit_coherence(const CoherenceByDistance& coherence)
   // The distances share the same segments, so the fit's residuals are correlated and its own
   // errors far too small: the errors are the jackknife's over the groups of segments.
   const double groups = double(coherence.without_group.size());
-  auto parameters = [](const FitResult& f) {
-    const double c0 = f["short_range"].value, plateau = f["plateau"].value;
+  auto parameters = [](const FitResult& f) {  // coherencies squared: coherences
+    const double c0 = std::pow(f["short_range"].value, 2), plateau = std::pow(f["plateau"].value, 2);
     return std::vector<double>{c0, plateau, f["inverse_length"].value, c0 - plateau};
   };
   std::vector<std::vector<double>> leave_one_out;
@@ -276,8 +279,9 @@ void add_results(const AlongCell& along, ResultTable& results)
               "coherence of v at f between columns " + number(c.distance.back()) + " d apart (the largest distance)");
   if (along.fit) {
     results.add("coherence_short_range", along.fit->short_range, "",
-                "c0 of the fit C(r) = plateau + (c0 - plateau) exp(-2 r / xi)");
-    results.add("coherence_plateau", along.fit->plateau, "", "the coherence left across the cell, of the same fit");
+                "c0 = g0^2 of the fit C(r) = (g_far + (g0 - g_far) exp(-r / xi))^2, the coherence at r -> 0");
+    results.add("coherence_plateau", along.fit->plateau, "",
+                "g_far^2 of the same fit: the coherence left across the cell");
     results.add("coherence_inverse_length", along.fit->inverse_length, "1/d", "1/xi of the coherence fit");
     if (along.fit->length)
       results.add("coherence_length", *along.fit->length, "d", "xi: the correlation of v at f decays as exp(-r/xi)");

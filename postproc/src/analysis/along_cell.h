@@ -35,17 +35,18 @@ SpaceTimeField field_from_chunks(const ChunkSeries& chunks, const std::vector<si
                                  const ColumnsLayout& layout, double velocity_factor, double sample_interval_s,
                                  double cell_length_d, size_t& filled);
 
-// C(r) = plateau + (c0 - plateau) exp(-2 r / xi): the coherence of a field whose correlation at
-// f decays as exp(-r / xi) (C is the correlation squared) on top of a part coherent across the
-// whole cell (the plateau: a uniform or a standing oscillation). c0 < 1 when each column carries
-// noise of its own. Fitted as the expected estimate from n averages, C + (1 - C)^2 / n (the
-// noise floor 1/n where C vanishes). 1/xi is fitted, so that no decay is a value like any
-// other; xi is given when 1/xi and c0 - plateau exceed twice their errors. The errors are the
-// jackknife's over the groups of segments (CoherenceByDistance::without_group): every distance
-// is measured on the same segments, so the scatter about the fit underestimates them.
+// C(r) = gamma(r)^2, gamma(r) = g_far + (g0 - g_far) exp(-r / xi): the coherence of a field
+// whose correlation at f is a part coherent across the whole cell (a uniform or standing
+// oscillation: the plateau C = g_far^2) plus a part decaying as exp(-r / xi) (for a pure
+// exponential, C = exp(-2 r / xi)). c0 = g0^2 < 1 when each column carries noise of its own.
+// Fitted as the expected estimate from n averages, C + (1 - C)^2 / n (the noise floor 1/n where C
+// vanishes). 1/xi is fitted, so that no decay is a value like any other; xi is given when 1/xi
+// and c0 - plateau exceed twice their errors. The errors are the jackknife's over the groups of
+// segments (CoherenceByDistance::without_group): every distance is measured on the same
+// segments, so the scatter about the fit underestimates them.
 struct CoherenceFit {
-  Estimate short_range;            // c0
-  Estimate plateau;                // the coherence left at every distance
+  Estimate short_range;            // c0, the coherence extrapolated to r = 0
+  Estimate plateau;                // g_far^2, the coherence left at every distance
   Estimate inverse_length;         // 1/xi, 1/d
   std::optional<Estimate> length;  // xi, d
   FitResult raw;

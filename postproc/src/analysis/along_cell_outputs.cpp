@@ -146,7 +146,8 @@ std::string along_cell_text(const AlongCell& along)
          std::to_string(c.band.size()) + " bins of the band at f = " + number(along.frequency_hz) + " Hz (" +
          number(c.averages) + " effective averages, noise floor " + number(c.noise_floor) +
          "), averaged over the pairs at each periodic distance. Coherence length xi: the fit of "
-         "C(r) = plateau + (c0 - plateau) exp(-2 r/xi), as its expected estimate C + (1 - C)^2 floor, over every "
+         "C(r) = (g_far + (g0 - g_far) exp(-r/xi))^2 (plateau g_far^2, c0 = g0^2), as its expected estimate "
+         "C + (1 - C)^2 floor, over every "
          "distance (it uses every distance and separates a part coherent across the cell, where a 1/e crossing "
          "rests on two points); errors by jackknife over groups of segments" +
          (along.no_fit_reason.empty() ? "" : " (" + along.no_fit_reason + ")") + ". Verdict: " + along.verdict.text +
