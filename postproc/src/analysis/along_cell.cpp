@@ -240,11 +240,12 @@ PatternVerdict judge_pattern(const std::vector<double>& band_power, int columns,
     verdict.pattern = OscillationPattern::Local;
     headline = "local: no coherence even between neighbouring columns (" + number(coherence.coherence.front()) +
                " at r = " + number(coherence.distance.front()) + " d): coherence length below one column width";
-  } else if (fit && fit->length && fit->length->value < cell_length_d / 2 &&
+  } else if (fit && fit->length && fit->length->value + 2 * fit->length->error.value_or(0) < cell_length_d / 2 &&
              fit->plateau.value < kCoherentPlateau * coherence.coherence.front()) {
     verdict.pattern = OscillationPattern::Local;
     headline = "local: coherence length " + format_estimate(fit->length->value, fit->length->error) +
-               " d, shorter than half the cell (" + number(cell_length_d / 2) + " d), the coherence falling from " +
+               " d, shorter than half the cell (" + number(cell_length_d / 2) +
+               " d) by more than twice its error, the coherence falling from " +
                format_estimate(fit->short_range.value, fit->short_range.error) + " to a plateau of " +
                format_estimate(fit->plateau.value, fit->plateau.error);
   } else if (verdict.uniform_fraction >= kUniformFraction) {

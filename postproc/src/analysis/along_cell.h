@@ -62,8 +62,8 @@ struct PatternVerdict {
   std::string text;             // the verdict with its numbers, one line
 };
 // The verdict, in this order: local when neighbouring columns are no more coherent than twice
-// the noise floor, or when xi < L/2 and the plateau is below half the neighbours' coherence (the two halves of the cell oscillate nearly
-// independently); else uniform when m = 0 holds at least half the power at f; else travelling
+// the noise floor, or when xi + 2 sigma < L/2 and the plateau is below half the neighbours'
+// coherence (the two halves of the cell oscillate nearly independently); else uniform when m = 0 holds at least half the power at f; else travelling
 // when one direction of the dominant |m| holds at least twice the power of the other (|balance|
 // >= 1/3, and beyond twice its error), standing otherwise. band_power as band_power_by_m gives
 // it for `columns` columns; the balance's error (1 - b^2) / sqrt(2 n) with n the coherence's
