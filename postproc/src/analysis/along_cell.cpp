@@ -124,8 +124,8 @@ SpaceTimeField field_from_chunks(const ChunkSeries& chunks, const std::vector<si
 
 double fitted_coherence(const CoherenceFit& fit, double floor, double distance)
 {
-  return expected_estimate({std::sqrt(fit.short_range.value), std::sqrt(fit.plateau.value), fit.inverse_length.value},
-                           floor, distance);
+  const auto& raw = fit.raw;
+  return expected_estimate({raw["g0"].value, raw["g_far"].value, raw["inverse_length"].value}, floor, distance);
 }
 
 namespace {
@@ -136,7 +136,7 @@ FitResult fit_decay(const std::vector<double>& r, const std::vector<double>& mea
   auto model = [&](const std::vector<double>& p, size_t i) { return expected_estimate(p, floor, r[i]); };
   auto root = [](double c) { return std::sqrt(std::max(c, 0.0)); };
   return fit_nonlinear(measured, model, {root(measured.front()), root(measured.back()), 1 / r.back()},
-                       {"short_range", "plateau", "inverse_length"});
+                       {"g0", "g_far", "inverse_length"});
 }
 
 // The jackknife standard error of each parameter: sqrt((G - 1)/G sum_g (p_g - mean p)^2).
@@ -168,7 +168,7 @@ CoherenceFit fit_coherence(const CoherenceByDistance& coherence)
   // errors far too small: the errors are the jackknife's over the groups of segments.
   const double groups = double(coherence.without_group.size());
   auto parameters = [](const FitResult& f) {  // coherencies squared: coherences
-    const double c0 = std::pow(f["short_range"].value, 2), plateau = std::pow(f["plateau"].value, 2);
+    const double c0 = std::pow(f["g0"].value, 2), plateau = std::pow(f["g_far"].value, 2);
     return std::vector<double>{c0, plateau, f["inverse_length"].value, c0 - plateau};
   };
   std::vector<std::vector<double>> leave_one_out;

@@ -49,7 +49,7 @@ struct CoherenceFit {
   Estimate plateau;                // g_far^2, the coherence left at every distance
   Estimate inverse_length;         // 1/xi, 1/d
   std::optional<Estimate> length;  // xi, d
-  FitResult raw;
+  FitResult raw;                   // g0, g_far, inverse_length
 };
 CoherenceFit fit_coherence(const CoherenceByDistance& coherence);                 // needs 4 distances, 3 groups
 double fitted_coherence(const CoherenceFit& fit, double floor, double distance);  // the expected estimate
