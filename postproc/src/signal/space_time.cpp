@@ -44,9 +44,9 @@ void for_each_segment(const SpaceTimeField& field, const WelchSegments& cut, con
   }
 }
 
-// |sum_n w_n w_{n+shift} e^{-2 pi i d n / N}| / sum_n w_n^2 with w_n^2 in place of the product
-// when shift = 0: the correlation of the transforms of white noise between segments `shift`
-// samples apart (d = 0) or between bins d apart (shift = 0).
+// |sum_n w_n w_{n+shift} exp(-2 pi i d n / N)| / sum_n w_n^2: the correlation of the transforms
+// of white noise between two segments `shift` samples apart (d = 0), or between two bins d apart
+// in one segment (shift = 0).
 double window_correlation(const std::vector<double>& w, size_t shift, size_t bin_distance)
 {
   const size_t n = w.size();
