@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -35,6 +36,13 @@ struct SyntheticRun {
   double y_top = 0;  // m: height of the wall tops, z = y - y_top
   bool with_chunks_and_dump = true;
   bool with_record = true;  // chute.params, as inputs/in.chute writes it
+  std::optional<double> recorded_length_d;  // L_d of chute.params (none: not recorded)
+  // columns.chunk: v of `columns` x-columns tiling the cell, each the layer's oscillation plus
+  // noise of its own (column_noise); one column empty every `empty_every` samples (0: never).
+  bool with_columns = false;
+  size_t columns = 30;
+  double column_noise = 0.1;  // sqrt(g d)
+  long empty_every = 40;
 
   double v0() const { return std::sqrt(g * d); }
   double u_of_t(double t) const { return u_final * (1 - std::exp(-t / relaxation)); }
@@ -71,6 +79,7 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const Syntheti
     record << "# inputs/in.chute: chute parameters, one name and value a line (SI)\ny_top_m " << run.y_top
            << "\nsample_rate_hz " << 1 / (run.dt * run.output_every) << "\nd_m " << run.d << "\ng_mps2 " << run.g
            << "\ntheta_deg 24\n";
+    if (run.recorded_length_d) record << "L_d " << *run.recorded_length_d << "\n";
     write_file(dir / "chute.params", record.str());
   }
   if (!run.with_chunks_and_dump) return;
@@ -108,6 +117,19 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const Syntheti
                const double depth_factor = std::exp((z - run.h) / 20.0);
                return (run.amplitude * depth_factor * std::sin(2 * M_PI * run.frequency * t) + 0.1 * gauss(rng)) * v0;
              }));
+
+  if (run.with_columns)
+    write_file(
+        dir / "columns.chunk",
+        ave_chunk_text(
+            {"Coord1", "Ncount", "vy"}, layer_steps, run.columns, [&](size_t block, size_t column, size_t value) {
+              const bool empty = run.empty_every > 0 && column == 2 && static_cast<long>(block) % run.empty_every == 0;
+              if (value == 0) return (column + 0.5) / run.columns;
+              if (value == 1) return empty ? 0.0 : 40.0;
+              if (empty) return 0.0;
+              const double t = layer_steps[block] * run.dt;
+              return (run.amplitude * std::sin(2 * M_PI * run.frequency * t) + run.column_noise * gauss(rng)) * v0;
+            }));
 
   std::vector<DumpAtom> atoms;
   for (long id = 1; id <= 300; ++id) {

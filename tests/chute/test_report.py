@@ -205,7 +205,7 @@ def main():
         # cdpost reads a run's chute.params; a run without one gets the campaign's variables.
         log = open(os.path.join(campaign, "runs", "mu0.5_theta23_L45", "cdpost.log")).read()
         check("--z0" not in log.splitlines()[0] and "parameters: z0 0.015 m, sample rate 1000 Hz, d 0.0005 m, g 9.81 "
-              "m/s^2 from " in log, "cdpost did not take the run's chute.params:\n" + log[:400])
+              "m/s^2, L 45 d from " in log, "cdpost did not take the run's chute.params:\n" + log[:400])
         log = open(os.path.join(campaign, "runs", UNRECORDED, "cdpost.log")).read()
         check("parameters: z0 0.015 m from --z0; sample rate 1000 Hz from --sample-rate; d 0.0005 m from --d; "
               "g 9.81 m/s^2 from --g" in log, "the run without chute.params did not get the campaign's variables:\n"

@@ -487,19 +487,23 @@ struct Analyser {
     run.results.add("f_scale", Estimate{x, 0.5 * x * U.error.value_or(0) / U.value}, "Hz", "(sqrt(g d)/U * g/d)^(1/2)");
   }
 
+  // The samples of a per-sample chunk file inside the window, on the time file's grid, and their interval (s).
+  std::pair<std::vector<size_t>, double> window_samples(const ChunkSeries& chunks) const
+  {
+    const auto blocks = uniform_blocks(chunks, window_blocks(chunks));
+    if (blocks.size() < 2) throw InputError(chunks.source, 0, "fewer than 2 samples inside the stationary window");
+    std::vector<double> times;
+    for (size_t b : blocks) times.push_back(time_of_step(run.series, chunks.timesteps[b]));
+    return {blocks, regular_interval(chunks.source, times)};
+  }
+
   void layer_spectra()
   {
     auto chunks = read_optional_chunks(settings.columns.layers_file, "no depth-resolved spectra");
     if (!chunks) return;
     const auto& c = settings.columns;
     const size_t coord = chunks->column_index(c.layers_coord), vz = chunks->column_index(c.layers_vz);
-    const auto blocks = uniform_blocks(*chunks, window_blocks(*chunks));
-    if (blocks.size() < 2) throw InputError(chunks->source, 0, "fewer than 2 samples inside the stationary window");
-    const double interval = regular_interval(chunks->source, [&] {
-      std::vector<double> times;
-      for (size_t b : blocks) times.push_back(time_of_step(run.series, chunks->timesteps[b]));
-      return times;
-    }());
+    const auto [blocks, interval] = window_samples(*chunks);
     const double to_reduced = units.velocity_unit_mps() / units.reduced_velocity_mps();
     for (size_t chunk = 0; chunk < chunks->chunks; ++chunk) {
       if (chunks->has(c.layers_count) && mean_count(*chunks, blocks, chunk) < 0.5) continue;  // empty layer
@@ -516,6 +520,33 @@ struct Analyser {
       run.layers.push_back(layer);
     }
     run.results.add("layers", static_cast<double>(run.layers.size()), "", "layers with a depth-resolved spectrum");
+  }
+
+  void along_cell()
+  {
+    const std::string consequence = "no space-time spectrum or coherence along the cell";
+    auto chunks = read_optional_chunks(settings.columns.columns_file, consequence);
+    if (!chunks) return;
+    if (!settings.cell_length_d) {
+      run.warnings.push_back(chunks->source + ": no cell length (--cell-length, the deck's L in d): " + consequence);
+      return;
+    }
+    const auto& c = settings.columns;
+    const ColumnsLayout layout{chunks->column_index(c.columns_coord), chunks->column_index(c.columns_v),
+                               chunks->column_index(c.columns_count)};
+    const auto [blocks, interval] = window_samples(*chunks);
+    try {
+      size_t filled = 0;
+      const double to_reduced = units.velocity_unit_mps() / units.reduced_velocity_mps();
+      const auto field =
+          field_from_chunks(*chunks, blocks, layout, to_reduced, interval, *settings.cell_length_d, filled);
+      run.along_cell =
+          analyse_along_cell(field, run.peak, settings.spectrum, units.reduced_rate_hz(), run.results, run.warnings);
+      run.results.add("column_samples_filled", static_cast<double>(filled), "",
+                      "samples of empty columns interpolated in time");
+    } catch (const AnalysisError& e) {
+      run.warnings.push_back(chunks->source + ": " + consequence + ": " + e.what());
+    }
   }
 
   double mean_count(const ChunkSeries& chunks, const std::vector<size_t>& blocks, size_t chunk) const
@@ -569,6 +600,7 @@ RunAnalysis analyse_run(const RunSettings& settings)
   analyser.packing();
   analyser.derived_rates();
   analyser.layer_spectra();
+  analyser.along_cell();
   return run;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/along_cell.h"
 #include "fit/packing_profile.h"
 #include "fit/profile_fits.h"
 #include "output/results.h"
@@ -51,6 +52,11 @@ struct RunColumns {
   std::string layers_coord = "Coord1";
   std::string layers_vz = "vy";
   std::string layers_count = "Ncount";  // optional
+  // fix ave/chunk of vy of the flowing layer per x-column, every sample; Coord1 = x / lx
+  std::string columns_file = "columns.chunk";
+  std::string columns_coord = "Coord1";
+  std::string columns_v = "vy";
+  std::string columns_count = "Ncount";
 };
 
 struct RunSettings {
@@ -72,6 +78,8 @@ struct RunSettings {
   double creep_depth_d = 30;       // the creep fit uses -creep_depth_d <= z < 0
   int averaging_blocks = 10;
   bool progress = false;
+  // The cell length L in d (--cell-length): the columns of columns.chunk tile it.
+  std::optional<double> cell_length_d;
 };
 
 // The samples of the time file on the grid of its sample rate. A run whose step follows the flow
@@ -117,6 +125,7 @@ struct RunAnalysis {
   std::optional<CreepFit> creep;
   std::optional<PackingProfile> packing;  // phi(z) over the window, every bin (packing.chunk)
   std::vector<LayerSpectrum> layers;
+  std::optional<AlongCell> along_cell;  // from columns.chunk
   ResultTable results;
   std::vector<std::string> warnings;
   double h_d = 0;  // the layer thickness used for I, U/h and Bagnold (0 if unknown)
@@ -138,7 +147,8 @@ struct ColumnSpectrum {
 ColumnSpectrum analyse_column_spectrum(const std::string& path, const std::string& column, const RunSettings& settings);
 
 // Writes OUT/results.{csv,json}, OUT/spectrum.csv, OUT/profile.csv, OUT/layers.csv,
-// the figures in OUT/figures and OUT/report.md. `dump` (optional) adds a snapshot.
+// OUT/space_time.csv and OUT/coherence.csv (with columns.chunk), the figures in OUT/figures
+// and OUT/report.md. `dump` (optional) adds a snapshot.
 void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::string& dump_path);
 
 }  // namespace cdpost

@@ -211,6 +211,7 @@ void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::
   std::vector<Figure> figures{time_series_figure(run), spectrum_figure(run)};
   if (run.profile) figures.push_back(profile_figure(run));
   if (!run.layers.empty()) figures.push_back(depth_figure(run));
+  if (run.along_cell) figures.push_back(along_cell_figure(*run.along_cell));
   if (!dump_path.empty()) {
     SnapshotRequest request;
     request.dump_path = dump_path;
@@ -222,6 +223,10 @@ void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::
   if (!run.settings.parameters.empty()) report.paragraph("Parameters: " + run.settings.parameters + ".");
   report.heading("Results");
   report.table(run.results);
+  if (run.along_cell) {
+    report.heading("Along the cell");
+    report.paragraph(along_cell_text(*run.along_cell));
+  }
   report.heading("Figures");
   for (const auto& figure : figures) {
     if (auto problem = render_figure(figure, figures_dir)) run.warnings.push_back(*problem);
@@ -229,6 +234,7 @@ void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::
   }
   report.warnings(run.warnings);
   write_tables(run, out_dir);
+  if (run.along_cell) write_along_cell_tables(*run.along_cell, out_dir);
   run.results.write_csv(out_dir + "/results.csv");
   run.results.write_json(out_dir + "/results.json", run.warnings);
   report.write(out_dir + "/report.md");

@@ -500,6 +500,7 @@ SeriesAnalysis analyse_series(const SeriesSettings& settings)
     progress.update(static_cast<double>(i) / entries.size(), entries[i].directory);
     RunSettings run_settings = settings.run;
     run_settings.directory = entries[i].directory;
+    if (entries[i].length_d) run_settings.cell_length_d = entries[i].length_d;
     try {
       const bool published = is_published_run(run_settings.directory);
       if (!published && settings.complete_run) settings.complete_run(run_settings);

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <set>
 
+#include "analysis/along_cell_series.h"
 #include "analysis/series_analysis.h"
 #include "io/ave_time.h"
 #include "output/gnuplot.h"
@@ -18,7 +19,8 @@ std::string label(double value)
   return format_estimate(value, std::nullopt);
 }
 
-// One curve per friction coefficient of result y (with its error bars if any) against x.
+}  // namespace
+
 std::vector<Curve> by_friction(const SeriesAnalysis& series, const std::string& x, const std::string& y)
 {
   std::set<double> mus;
@@ -40,6 +42,8 @@ std::vector<Curve> by_friction(const SeriesAnalysis& series, const std::string& 
   }
   return curves;
 }
+
+namespace {
 
 Panel panel(const std::string& title, const std::string& x_label, const std::string& y_label, std::vector<Curve> curves)
 {
@@ -530,6 +534,7 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
       "noise "
       "floor flattens the profile; the rms of ln a shows how far the profile is from one exponential.");
   depth_table(report, series);
+  along_cell_section(series, report, out_dir);
   report.heading("Figures");
   for (const auto& figure : series_figures(series)) {
     if (auto problem = render_figure(figure, figures_dir)) series.warnings.push_back(*problem);

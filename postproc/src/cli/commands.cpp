@@ -22,7 +22,7 @@ const char* const overview =
     "usage: cdpost COMMAND [ARGUMENTS] [OPTIONS]     (cdpost COMMAND --help for its options)\n"
     "\n"
     "commands:\n"
-    "  run DIR          analyse one run directory (flow.time, profile.chunk, layers.chunk)\n"
+    "  run DIR          analyse one run directory (flow.time, profile.chunk, layers.chunk, columns.chunk)\n"
     "  series MANIFEST  analyse the runs listed in a CSV (run,mu,theta[,L,stopped,h_stop]) and fit the flow rules\n"
     "  spectrum FILE    spectrum of one column of a fix ave/time file\n"
     "  snapshot DUMP    picture of one frame of a dump (grains coloured by x-velocity, walls)\n"
@@ -52,6 +52,8 @@ const std::vector<ColumnOption> column_options = {
     {"col-layers-z", &RunColumns::layers_coord, "its layer-centre column"},
     {"col-layers-v", &RunColumns::layers_vz, "its normal-velocity column"},
     {"col-layers-count", &RunColumns::layers_count, "its grain-count column (optional)"},
+    {"columns-file", &RunColumns::columns_file, "fix ave/chunk file of the layer's v per x-column"},
+    {"col-columns-v", &RunColumns::columns_v, "its normal-velocity column"},
 };
 
 std::vector<OptionSpec> unit_options()
@@ -86,6 +88,7 @@ std::vector<OptionSpec> analysis_options()
        "height of the wall tops in input length units, z = y - z0 (default: the run's chute.params; "
        "needed without one)"},
       {"creep-depth", "D", "the creep fit uses -D <= z < 0, in d (default 30)"},
+      {"cell-length", "D", "cell length L in d, the deck's L: needed for the columns of columns.chunk"},
       {"blocks", "N", "blocks for the standard error of means (default 10)"},
       {"out", "DIR", "output directory"}};
   specs.insert(specs.end(), more.begin(), more.end());
@@ -112,6 +115,8 @@ RunSettings settings_from(const ParsedOptions& options, const std::string& comma
   if (s.sample_rate_hz && !(*s.sample_rate_hz > 0)) throw UsageError(command + ": --sample-rate must be positive");
   s.z0 = options.number("z0").value_or(s.z0);  // else a run folder's record (run_parameters.h)
   s.creep_depth_d = options.number("creep-depth").value_or(s.creep_depth_d);
+  s.cell_length_d = options.number("cell-length");
+  if (s.cell_length_d && !(*s.cell_length_d > 0)) throw UsageError(command + ": --cell-length must be positive");
   s.averaging_blocks = static_cast<int>(options.integer("blocks").value_or(s.averaging_blocks));
   s.progress = options.flag("progress");
   for (const auto& c : column_options)

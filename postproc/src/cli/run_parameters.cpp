@@ -89,6 +89,11 @@ RunParameters run_parameters(const ParsedOptions& options, const std::string& co
   described.emplace_back("d " + number_text(p.units.d_m) + " m", source("d", recorded && recorded->find("d_m")));
   described.emplace_back("g " + number_text(p.units.g_mps2) + " m/s^2",
                          source("g", recorded && recorded->find("g_mps2")));
+  p.cell_length_d = options.number("cell-length");
+  if (!p.cell_length_d) p.cell_length_d = recorded_positive(recorded, "L_d");
+  if (p.cell_length_d)
+    described.emplace_back("L " + number_text(*p.cell_length_d) + " d",
+                           source("cell-length", recorded && recorded->find("L_d")));
   p.description = grouped_by_source(described);
   return p;
 }
@@ -99,6 +104,7 @@ void apply_run_parameters(RunSettings& settings, const ParsedOptions& options, c
   settings.units = p.units;
   settings.z0 = *p.z0;
   settings.sample_rate_hz = p.sample_rate_hz;
+  if (!settings.cell_length_d) settings.cell_length_d = p.cell_length_d;  // a series manifest's L comes first
   settings.parameters = p.description;
 }
 

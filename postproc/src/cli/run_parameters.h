@@ -1,5 +1,5 @@
 // The parameters a run folder records in chute.params (io/chute_record.h) and the command line
-// may give instead: d, g, the height z0 of the wall tops and the sample rate. A value given on
+// may give instead: d, g, the height z0 of the wall tops, the sample rate and the cell length. A value given on
 // the command line wins, then the record's, then the default.
 #pragma once
 
@@ -20,6 +20,7 @@ struct RunParameters {
   Units units;
   std::optional<double> z0;              // wall-top height, input length units
   std::optional<double> sample_rate_hz;  // of the uniform samples; none: the time file's longest interval
+  std::optional<double> cell_length_d;   // L in d: the columns of columns.chunk tile it
   bool recorded = false;                 // the folder holds a chute.params
   std::string description;               // one line: which values are used, and where from
 };
@@ -33,7 +34,7 @@ Units units_from(const ParsedOptions& options, const std::string& command, const
 RunParameters run_parameters(const ParsedOptions& options, const std::string& command, const std::string& directory,
                              WallTops wall_tops);
 
-// settings.units, z0, sample_rate_hz and parameters from run_parameters(..., settings.directory, required).
+// settings.units, z0, sample_rate_hz, cell_length_d and parameters from run_parameters(..., settings.directory, required).
 void apply_run_parameters(RunSettings& settings, const ParsedOptions& options, const std::string& command);
 
 }  // namespace cdpost

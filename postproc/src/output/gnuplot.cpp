@@ -35,6 +35,7 @@ void write_data_block(std::ostream& out, const std::string& name, const Curve& c
     if (curve.style == CurveStyle::ErrorBars || curve.style == CurveStyle::LinesBand) out << ' ' << curve.y_error[i];
     if (curve.style == CurveStyle::Circles || curve.style == CurveStyle::ShadedCircles)
       out << ' ' << curve.radius[i] << ' ' << curve.colour[i];
+    if (curve.style == CurveStyle::Map) out << ' ' << curve.colour[i];
     out << '\n';
   }
   out << "EOD\n";
@@ -60,6 +61,7 @@ std::string plot_clause(const Curve& curve, const std::string& block, size_t ind
       with = "using 1:($2-$3):($2+$3) with filledcurves fs transparent solid 0.2 noborder" + colour + " notitle, " +
              block + " using 1:2 with lines lw 2" + colour;
       break;
+    case CurveStyle::Map: with = "using 1:2:3 with image"; break;
   }
   return block + " " + with + (curve.title.empty() ? " notitle" : " title " + quoted(curve.title));
 }

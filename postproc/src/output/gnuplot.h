@@ -10,8 +10,10 @@
 namespace cdpost {
 
 // Walls: black lines; in Lines and Walls a NaN point breaks the line. LinesBand: a line with a
-// shaded band y ± y_error of the same colour (a fitted curve and its confidence band).
-enum class CurveStyle { Points, Lines, LinesPoints, ErrorBars, Circles, ShadedCircles, Walls, LinesBand };
+// shaded band y ± y_error of the same colour (a fitted curve and its confidence band). Map: a
+// regular grid of x, y coloured by `colour` (gnuplot's image), one NaN point between scans of
+// constant x.
+enum class CurveStyle { Points, Lines, LinesPoints, ErrorBars, Circles, ShadedCircles, Walls, LinesBand, Map };
 
 struct Curve {
   std::string title;
@@ -19,7 +21,7 @@ struct Curve {
   std::vector<double> x, y;
   std::vector<double> y_error;  // ErrorBars, LinesBand
   std::vector<double> radius;   // Circles: radius in x-axis units
-  std::vector<double> colour;   // Circles: value mapped on the palette
+  std::vector<double> colour;   // Circles, Map: value mapped on the palette
 };
 
 struct Panel {

@@ -1,107 +1,75 @@
 #include "signal/spectrum.h"
 
-#include <fftw3.h>
 #include <gsl/gsl_fit.h>
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <string>
 
+#include "signal/fft.h"
 #include "signal/statistics.h"
 
 namespace cdpost {
 
-namespace {
-
-struct FftwFree {
-  void operator()(void* p) const { fftw_free(p); }
-};
-struct PlanDestroy {
-  void operator()(fftw_plan_s* plan) const { fftw_destroy_plan(plan); }
-};
-
-// One real-to-complex transform of fixed length, reused for every segment.
-class RealTransform {
- public:
-  explicit RealTransform(size_t n)
-      : n_(n),
-        input_(fftw_alloc_real(n)),
-        output_(fftw_alloc_complex(n / 2 + 1)),
-        plan_(fftw_plan_dft_r2c_1d(static_cast<int>(n), input_.get(), output_.get(), FFTW_ESTIMATE))
-  {
+SegmentTaper::SegmentTaper(size_t length) : window_(length), sample_index_(length)
+{
+  for (size_t i = 0; i < length; ++i) {
+    window_[i] = 0.5 * (1.0 - std::cos(2.0 * M_PI * i / length));
+    window_sum_ += window_[i];
+    sample_index_[i] = static_cast<double>(i);
   }
-  double* input() { return input_.get(); }
-  void execute() { fftw_execute(plan_.get()); }
-  double magnitude(size_t k) const { return std::hypot(output_.get()[k][0], output_.get()[k][1]); }
-  size_t bins() const { return n_ / 2 + 1; }
-
- private:
-  size_t n_;
-  std::unique_ptr<double, FftwFree> input_;
-  std::unique_ptr<fftw_complex, FftwFree> output_;
-  std::unique_ptr<fftw_plan_s, PlanDestroy> plan_;
-};
-
-std::vector<double> hann_window(size_t n)
-{
-  std::vector<double> w(n);
-  for (size_t i = 0; i < n; ++i) w[i] = 0.5 * (1.0 - std::cos(2.0 * M_PI * i / n));
-  return w;
 }
 
-// Copies segment[start, start+n) into `out` with its fitted line removed, times the window.
-void prepare_segment(const double* segment, const std::vector<double>& window, const std::vector<double>& sample_index,
-                     double* out)
+void SegmentTaper::apply(const double* segment, double* out) const
 {
-  const size_t n = window.size();
+  const size_t n = window_.size();
   double intercept, slope, cov00, cov01, cov11, sumsq;
-  gsl_fit_linear(sample_index.data(), 1, segment, 1, n, &intercept, &slope, &cov00, &cov01, &cov11, &sumsq);
-  for (size_t i = 0; i < n; ++i) out[i] = window[i] * (segment[i] - intercept - slope * sample_index[i]);
+  gsl_fit_linear(sample_index_.data(), 1, segment, 1, n, &intercept, &slope, &cov00, &cov01, &cov11, &sumsq);
+  for (size_t i = 0; i < n; ++i) out[i] = window_[i] * (segment[i] - intercept - slope * sample_index_[i]);
 }
 
-size_t segment_length(size_t samples, double sample_interval_s, const SpectrumOptions& options)
+double one_sided_scale(size_t k, size_t n, double window_sum)
 {
-  auto wanted = static_cast<size_t>(std::lround(options.segment_duration_s / sample_interval_s));
-  return std::min(samples, std::max<size_t>(wanted, 8));
+  const bool edge = (k == 0) || (n % 2 == 0 && k == n / 2);
+  return (edge ? 1.0 : 2.0) / window_sum;
 }
 
-}  // namespace
+WelchSegments welch_segments(size_t samples, double sample_interval_s, const SpectrumOptions& options)
+{
+  if (samples < 16) throw AnalysisError("a spectrum needs at least 16 samples, got " + std::to_string(samples));
+  if (!(sample_interval_s > 0)) throw AnalysisError("the sample interval must be positive");
+  if (!(options.overlap >= 0 && options.overlap < 1)) throw AnalysisError("the segment overlap must be in [0, 1)");
+  WelchSegments segments;
+  const auto wanted = static_cast<size_t>(std::lround(options.segment_duration_s / sample_interval_s));
+  segments.length = std::min(samples, std::max<size_t>(wanted, 8));
+  segments.step = std::max<size_t>(1, static_cast<size_t>(std::lround(segments.length * (1.0 - options.overlap))));
+  segments.count = (samples - segments.length) / segments.step + 1;
+  return segments;
+}
 
 Spectrum amplitude_spectrum(const std::vector<double>& signal, double sample_interval_s, const SpectrumOptions& options)
 {
-  if (signal.size() < 16)
-    throw AnalysisError("a spectrum needs at least 16 samples, got " + std::to_string(signal.size()));
-  if (!(sample_interval_s > 0)) throw AnalysisError("the sample interval must be positive");
-  if (!(options.overlap >= 0 && options.overlap < 1)) throw AnalysisError("the segment overlap must be in [0, 1)");
-  const size_t n = segment_length(signal.size(), sample_interval_s, options);
-  const size_t step = std::max<size_t>(1, static_cast<size_t>(std::lround(n * (1.0 - options.overlap))));
-  const auto window = hann_window(n);
-  double window_sum = 0;
-  for (double w : window) window_sum += w;
-  std::vector<double> sample_index(n);
-  for (size_t i = 0; i < n; ++i) sample_index[i] = static_cast<double>(i);
-
+  const auto cut = welch_segments(signal.size(), sample_interval_s, options);
+  const size_t n = cut.length;
+  const SegmentTaper taper(n);
   RealTransform transform(n);
   std::vector<double> power(transform.bins(), 0.0);
-  int segments = 0;
-  for (size_t start = 0; start + n <= signal.size(); start += step, ++segments) {
-    prepare_segment(signal.data() + start, window, sample_index, transform.input());
+  for (size_t segment = 0; segment < cut.count; ++segment) {
+    taper.apply(signal.data() + segment * cut.step, transform.input());
     transform.execute();
     for (size_t k = 0; k < power.size(); ++k) {
-      bool edge = (k == 0) || (n % 2 == 0 && k == n / 2);
-      double a = (edge ? 1.0 : 2.0) * transform.magnitude(k) / window_sum;
+      const double a = one_sided_scale(k, n, taper.window_sum()) * transform.magnitude(k);
       power[k] += a * a;
     }
   }
 
   Spectrum spectrum;
-  spectrum.segments = segments;
+  spectrum.segments = static_cast<int>(cut.count);
   spectrum.segment_duration_s = n * sample_interval_s;
   spectrum.resolution_hz = 1.0 / spectrum.segment_duration_s;
   for (size_t k = 0; k < power.size(); ++k) {
     spectrum.frequency_hz.push_back(k * spectrum.resolution_hz);
-    spectrum.amplitude.push_back(std::sqrt(power[k] / segments));
+    spectrum.amplitude.push_back(std::sqrt(power[k] / spectrum.segments));
   }
   return spectrum;
 }

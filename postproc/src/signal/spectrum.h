@@ -11,6 +11,7 @@
 // analysed as a single segment of its own length.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 namespace cdpost {
@@ -30,6 +31,31 @@ struct Spectrum {
 
 Spectrum amplitude_spectrum(const std::vector<double>& signal, double sample_interval_s,
                             const SpectrumOptions& options);
+
+// The Welch segmentation of `samples` samples (as amplitude_spectrum cuts them): segment
+// `length` samples, starts `step` apart, `count` segments. Throws AnalysisError for fewer than
+// 16 samples, a non-positive interval or an overlap outside [0, 1).
+struct WelchSegments {
+  size_t length = 0, step = 0, count = 0;
+};
+WelchSegments welch_segments(size_t samples, double sample_interval_s, const SpectrumOptions& options);
+
+// A segment's preparation: its least-squares line removed, times a periodic Hann window.
+class SegmentTaper {
+ public:
+  explicit SegmentTaper(size_t length);
+  void apply(const double* segment, double* out) const;  // `length` values each
+  const std::vector<double>& window() const { return window_; }
+  double window_sum() const { return window_sum_; }
+
+ private:
+  std::vector<double> window_, sample_index_;
+  double window_sum_ = 0;
+};
+
+// The factor turning |X_k| of an n-point transform of a tapered segment into the one-sided
+// amplitude of bin k: 2 / sum(w), and 1 / sum(w) at 0 and at Nyquist.
+double one_sided_scale(size_t k, size_t n, double window_sum);
 
 // The highest amplitude in [fmin_hz, fmax_hz]. frequency_hz is refined by a parabola
 // through the maximum and its neighbours; frequency_error_hz is the half width at half

@@ -26,7 +26,7 @@ def recorded_options(folders, variables):
     if all(os.path.exists(os.path.join(folder, RUN_RECORD)) for folder in folders):
         return []
     return ["--d", variables["d"], "--g", variables["g"], "--sample-rate", variables["sample_rate"],
-            "--z0", repr(wall_top(variables))]
+            "--z0", repr(wall_top(variables)), "--cell-length", variables["L"]]
 
 
 def run_logged(cmd, log):
