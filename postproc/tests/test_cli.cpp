@@ -314,7 +314,7 @@ TEST(Cli, SeriesRecoversTheFlowRulesAndScalings)
   EXPECT_NE(slurp(dir / "post/fits.json").find("mu = 0.5: no stopped run, so beta and l are not determined separately"),
             std::string::npos);
   // Residuals: 10 runs in each of pouliquen, pouliquen_betafree, muI, phi_U and phi_I, plus the header;
-  // no packing reading, since these runs have no packing.chunk.
+  // no packing definition, since these runs have no packing.chunk.
   EXPECT_EQ(line_count(slurp(dir / "post/residuals.csv")), 51u);
   EXPECT_NE(slurp(dir / "post/fits.json").find("no run has I_packing"), std::string::npos);
   // phi = phi_c - 0.002 U is phi_c - 0.002 h^1.5 I at the runs' h.
@@ -326,7 +326,7 @@ TEST(Cli, SeriesRecoversTheFlowRulesAndScalings)
   std::istringstream held(slurp(dir / "post/held_fits.csv"));
   std::string row;
   std::getline(held, row);
-  EXPECT_EQ(row.rfind("reading,rule,held_parameter,held_value,mu,", 0), 0u) << row;
+  EXPECT_EQ(row.rfind("definition,rule,held_parameter,held_value,mu,", 0), 0u) << row;
   while (std::getline(held, row))
     if (row.rfind("surface,muI,I0,", 0) == 0) {
       std::vector<std::string> fields;
@@ -428,10 +428,10 @@ TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay)
   EXPECT_EQ(line_count(slurp(dir / "post/runs.csv")), 8u);
   const auto residuals = slurp(dir / "post/residuals.csv");
   EXPECT_NE(residuals.find("\nstopped21.5,0.5,21.5,pouliquen_betafree,tan_theta,"), std::string::npos) << residuals;
-  // Surface reading: pouliquen, betafree (5 + 3) at mu 0.5; muI, phi_U, phi_I over all. Packing reading (the
+  // Surface definition: pouliquen, betafree (5 + 3) at mu 0.5; muI, phi_U, phi_I over all. Packing definition (the
   // runs have packing.chunk): the same but betafree.
   EXPECT_EQ(line_count(residuals), 1u + (5 + 8 + 7 + 7 + 7) + (5 + 7 + 7 + 7));
-  // Both readings see h = 40 d (2 <z> and the half height of phi(z)): the same rule at fixed beta.
+  // Both definitions see h = 40 d (2 <z> and the half height of phi(z)): the same rule at fixed beta.
   EXPECT_NEAR(csv_value(fits, "packing_pouliquen_ell_mu0.5"), csv_value(fits, "pouliquen_ell_mu0.5"),
               0.03 * csv_value(fits, "pouliquen_ell_mu0.5"));
   EXPECT_NEAR(csv_value(fits, "packing_phi_c_mu0.5"), testing::SyntheticRun{}.phi_bulk, 1e-6);
@@ -532,7 +532,7 @@ TEST(Cli, SeriesFromPublishedRunsGivesTheSameFits)
     manifest << row << "\n";
   }
   manifest.close();
-  // The runs have packing.chunk: their published profile.csv carries phi(z), read back for the packing reading.
+  // The runs have packing.chunk: their published profile.csv carries phi(z), read back for the packing definition.
   EXPECT_EQ(slurp(dir / "published/run1/profile.csv").rfind("z_d,u_sqrt_gd,count,phi\n", 0), 0u);
   auto read = cdpost("series " + (dir / "published.csv").string() + " --out " + (dir / "post2").string());
   ASSERT_EQ(read.status, 0) << read.err;

@@ -98,11 +98,11 @@ Figure power_law_figure(const SeriesAnalysis& series, const std::string& name, c
           {panel("f against " + x_label, x_label, "f (Hz)", curves)}};
 }
 
-// phi against x (U or I) under one reading, with the fitted line of each friction and its band.
-Panel phi_panel(const SeriesAnalysis& series, const ReadingFits& fits, const std::string& x,
+// phi against x (U or I) under one definition, with the fitted line of each friction and its band.
+Panel phi_panel(const SeriesAnalysis& series, const DefinitionFits& fits, const std::string& x,
                 const std::optional<PhiFit>& law, const std::string& x_label)
 {
-  auto curves = by_friction(series, x, fits.reading.phi);
+  auto curves = by_friction(series, x, fits.definition.phi);
   if (law && !curves.empty()) {
     auto [x0, x1] = x_extent(curves);
     const auto slope = static_cast<size_t>(law->raw.parameters.size() - 1);
@@ -110,14 +110,14 @@ Panel phi_panel(const SeriesAnalysis& series, const ReadingFits& fits, const std
       curves.push_back(banded("phi_c - k x, mu = " + label(law->phi_c[m].first), x0, x1, law->raw,
                               [=](const std::vector<double>& p, double xv) { return p[m] - p[slope] * xv; }));
   }
-  auto p =
-      panel(fits.reading.phi + " against " + x_label + ", " + fits.reading.name, x_label, fits.reading.phi, curves);
+  auto p = panel(fits.definition.phi + " against " + x_label + ", " + fits.definition.name, x_label,
+                 fits.definition.phi, curves);
   p.key = "bottom left";
   return p;
 }
 
-// Side by side, one panel per reading.
-Figure readings_figure(const std::string& name, const std::string& caption, std::vector<Panel> panels)
+// Side by side, one panel per definition.
+Figure definitions_figure(const std::string& name, const std::string& caption, std::vector<Panel> panels)
 {
   for (size_t i = 0; i < panels.size(); ++i) {
     panels[i].width = 1.0 / panels.size();
@@ -129,13 +129,15 @@ Figure readings_figure(const std::string& name, const std::string& caption, std:
 std::vector<Figure> phi_figures(const SeriesAnalysis& series)
 {
   std::vector<Panel> against_u, against_i;
-  for (const auto& fits : series.readings) {
+  for (const auto& fits : series.definitions) {
     against_u.push_back(phi_panel(series, fits, "U", fits.phi_of_u, "U / sqrt(g d)"));
-    against_i.push_back(phi_panel(series, fits, fits.reading.inertial, fits.phi_of_i, fits.reading.inertial));
+    against_i.push_back(phi_panel(series, fits, fits.definition.inertial, fits.phi_of_i, fits.definition.inertial));
   }
   const std::string band = "; bands: one standard error of the fitted line (delta method, fit covariance)";
-  return {readings_figure("phi_vs_U", "phi against U with the linear law, per reading of h and phi" + band, against_u),
-          readings_figure("phi_vs_I", "phi against I with the linear law, per reading of h and phi" + band, against_i)};
+  return {definitions_figure("phi_vs_U", "phi against U with the linear law, per definition of h and phi" + band,
+                             against_u),
+          definitions_figure("phi_vs_I", "phi against I with the linear law, per definition of h and phi" + band,
+                             against_i)};
 }
 
 // Mean h (in d, result `thickness`) of the runs of one friction: the flow-rule curves are drawn for it.
@@ -160,7 +162,7 @@ std::optional<double> velocity(std::optional<double> inertial, double h)
   return *inertial * std::pow(h, 1.5);
 }
 
-Panel flow_rule_panel(const SeriesAnalysis& series, const ReadingFits& fits)
+Panel flow_rule_panel(const SeriesAnalysis& series, const DefinitionFits& fits)
 {
   auto curves = by_friction(series, "theta", "U");
   auto [t0, t1] = x_extent(curves);
@@ -169,7 +171,7 @@ Panel flow_rule_panel(const SeriesAnalysis& series, const ReadingFits& fits)
   const double top = 1.3 * u_max;  // the rules diverge at theta2
   const double beta = series.settings.beta;
   for (const auto& fit : fits.pouliquen) {
-    const double h = mean_thickness(series, fit.angles.mu, fits.reading.thickness);
+    const double h = mean_thickness(series, fit.angles.mu, fits.definition.thickness);
     curves.push_back(banded(
         "Pouliquen, mu = " + label(fit.angles.mu), fit.angles.theta1_deg.value, fit.angles.theta2_deg.value, fit.raw,
         [=](const std::vector<double>& p, double theta) {
@@ -181,7 +183,7 @@ Panel flow_rule_panel(const SeriesAnalysis& series, const ReadingFits& fits)
   if (fits.mu_of_i)
     for (size_t m = 0; m < fits.mu_of_i->angles.size(); ++m) {
       const auto& angles = fits.mu_of_i->angles[m];
-      const double h = mean_thickness(series, angles.mu, fits.reading.thickness);
+      const double h = mean_thickness(series, angles.mu, fits.definition.thickness);
       curves.push_back(banded(
           "mu(I), mu = " + label(angles.mu), angles.theta1_deg.value, angles.theta2_deg.value, fits.mu_of_i->raw,
           [=](const std::vector<double>& p, double theta) {
@@ -191,9 +193,9 @@ Panel flow_rule_panel(const SeriesAnalysis& series, const ReadingFits& fits)
           },
           top));
     }
-  auto p =
-      panel("U against tilt, " + fits.reading.name + " (curves at the mean " + fits.reading.thickness + " of each mu)",
-            "theta (deg)", "U / sqrt(g d)", curves);
+  auto p = panel(
+      "U against tilt, " + fits.definition.name + " (curves at the mean " + fits.definition.thickness + " of each mu)",
+      "theta (deg)", "U / sqrt(g d)", curves);
   p.x_range = std::make_pair(t0 - 1, t1 + 1);
   p.y_range = std::make_pair(0.0, top);
   return p;
@@ -202,11 +204,12 @@ Panel flow_rule_panel(const SeriesAnalysis& series, const ReadingFits& fits)
 Figure flow_rule_figure(const SeriesAnalysis& series)
 {
   std::vector<Panel> panels;
-  for (const auto& fits : series.readings) panels.push_back(flow_rule_panel(series, fits));
-  return readings_figure("U_vs_theta",
-                         "U against theta with Pouliquen's and the mu(I) rule, per reading of h and phi; bands: one "
-                         "standard error of the fitted curve (delta method, fit covariance)",
-                         panels);
+  for (const auto& fits : series.definitions) panels.push_back(flow_rule_panel(series, fits));
+  return definitions_figure(
+      "U_vs_theta",
+      "U against theta with Pouliquen's and the mu(I) rule, per definition of h and phi; bands: one "
+      "standard error of the fitted curve (delta method, fit covariance)",
+      panels);
 }
 
 std::optional<Figure> length_figure(const SeriesAnalysis& series)
@@ -373,10 +376,10 @@ void write_held_fits(const SeriesAnalysis& series, const std::string& path)
 {
   auto out = open_output(path);
   out.precision(10);
-  out << "reading,rule,held_parameter,held_value,mu,theta1_deg,theta1_error_deg,theta2_deg,theta2_error_deg,"
+  out << "definition,rule,held_parameter,held_value,mu,theta1_deg,theta1_error_deg,theta2_deg,theta2_error_deg,"
          "rms_residual_tan_theta,dof\n";
   for (const auto& h : series.held_fits) {
-    out << (h.reading.empty() ? "surface" : "packing") << ',' << h.rule << ',' << (h.rule == "muI" ? "I0" : "ell")
+    out << (h.definition.empty() ? "surface" : "packing") << ',' << h.rule << ',' << (h.rule == "muI" ? "I0" : "ell")
         << ',' << h.held << ',' << h.angles.mu;
     for (const auto* angle : {&h.angles.theta1_deg, &h.angles.theta2_deg}) {
       out << ',' << angle->value << ',';
@@ -386,16 +389,16 @@ void write_held_fits(const SeriesAnalysis& series, const std::string& path)
   }
 }
 
-// The held fits of one rule and reading as a table: a row per held value, the rms and each
+// The held fits of one rule and definition as a table: a row per held value, the rms and each
 // friction's θ1, θ2; the free fit's value and rms head the caption.
-void held_table(MarkdownReport& report, const SeriesAnalysis& series, const std::string& reading,
+void held_table(MarkdownReport& report, const SeriesAnalysis& series, const std::string& definition,
                 const std::string& rule)
 {
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> header{rule == "muI" ? "I0 held" : "l held", "mu", "theta1 (deg)", "theta2 (deg)",
                                   "rms residual (tan theta)"};
   for (const auto& h : series.held_fits)
-    if (h.reading == reading && h.rule == rule)
+    if (h.definition == definition && h.rule == rule)
       rows.push_back({label(h.held), label(h.angles.mu),
                       format_estimate(h.angles.theta1_deg.value, h.angles.theta1_deg.error),
                       format_estimate(h.angles.theta2_deg.value, h.angles.theta2_deg.error),
@@ -406,9 +409,9 @@ void held_table(MarkdownReport& report, const SeriesAnalysis& series, const std:
                                     ? std::vector<std::string>{"muI_I0", "muI_rms_residual"}
                                     : std::vector<std::string>{"pouliquen_ell_mu", "pouliquen_rms_residual_mu"})
     for (const auto& row : series.fits.rows())
-      if (row.name.rfind(reading + stem, 0) == 0)
+      if (row.name.rfind(definition + stem, 0) == 0)
         fitted.push_back(row.name + " = " + format_estimate(row.value, row.error));
-  report.paragraph((reading.empty() ? "Surface reading" : "Packing reading") + std::string(", ") +
+  report.paragraph((definition.empty() ? "Surface definition" : "Packing definition") + std::string(", ") +
                    (rule == "muI" ? "the mu(I) rule with I0 held (one joint fit per value, the rms over every run)"
                                   : "Pouliquen's rule with l held (beta = " + label(series.settings.beta) +
                                         ", one fit per friction and value)") +
@@ -498,10 +501,11 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
       "of freedom); over all runs and, when the series has several frictions, per mu (`_mu<mu>`). Per-run numbers: "
       "runs.csv.");
   report.paragraph(
-      "Two readings of the layer's thickness and packing (doc/scene.md): the surface one, h = 2 <z> over the grains "
+      "Two definitions of the layer's thickness and packing (doc/scene.md): the surface one, h = 2 <z> over the grains "
       "above the wall tops and phi = their area/(L h), gives the fits without prefix; the packing one, phi_bulk = the "
       "mean of phi(z) over 0.2 h-0.8 h and h_packing = the height where phi(z) falls to half phi_bulk (I_packing = U/"
-      "h_packing^1.5), gives those named `packing_*`. Each reading also fits phi = phi_c(mu) - k_I I (`phiI_*`). The "
+      "h_packing^1.5), gives those named `packing_*`. Under each, phi = phi_c(mu) - k_I I is fitted too (`phiI_*`). "
+      "The "
       "fitted curves of the figures carry one-standard-error bands from the fit's covariance (delta method: var y = "
       "g^T C g, g the curve's gradient in the parameters).");
   report.heading("Fitted numbers");
@@ -519,8 +523,8 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
       "cov/(sigma sigma) from the fit's covariance. Below, each rule refitted with that parameter held at several "
       "values, the others free (held_fits.csv): where the rms residual hardly changes, the runs do not determine the "
       "held parameter.");
-  for (const auto& fits : series.readings)
-    for (const std::string rule : {"muI", "pouliquen"}) held_table(report, series, fits.reading.prefix, rule);
+  for (const auto& fits : series.definitions)
+    for (const std::string rule : {"muI", "pouliquen"}) held_table(report, series, fits.definition.prefix, rule);
   report.heading("Decay of the oscillation with depth");
   report.paragraph(
       "The amplitude of v at each run's f per layer (layer_amplitudes.csv, figure amplitude_vs_depth), fitted as "
