@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <set>
 
-#include "analysis/series_analysis.h"
+#include "analysis/series_figures.h"
 #include "io/ave_time.h"
 #include "output/gnuplot.h"
 #include "output/report.h"
@@ -21,23 +21,8 @@ std::string label(double value)
 // One curve per friction coefficient of result y (with its error bars if any) against x.
 std::vector<Curve> by_friction(const SeriesAnalysis& series, const std::string& x, const std::string& y)
 {
-  std::set<double> mus;
-  for (const auto& run : series.runs) mus.insert(run.entry.mu);
   std::vector<Curve> curves;
-  for (double mu : mus) {
-    Curve curve;
-    curve.title = "mu = " + label(mu);
-    curve.style = CurveStyle::ErrorBars;
-    for (const auto& run : series.runs) {
-      auto xv = x == "theta" ? std::optional<Estimate>(Estimate{run.entry.theta_deg, {}}) : run.estimate(x);
-      auto yv = run.estimate(y);
-      if (run.entry.mu != mu || !xv || !yv) continue;
-      curve.x.push_back(xv->value);
-      curve.y.push_back(yv->value);
-      curve.y_error.push_back(yv->error.value_or(0));
-    }
-    if (!curve.x.empty()) curves.push_back(curve);
-  }
+  for (auto& points : points_by_friction(series, x, y)) curves.push_back(std::move(points.curve));
   return curves;
 }
 
@@ -49,14 +34,6 @@ Panel panel(const std::string& title, const std::string& x_label, const std::str
   p.y_label = y_label;
   p.curves = std::move(curves);
   return p;
-}
-
-std::pair<double, double> x_extent(const std::vector<Curve>& curves)
-{
-  double low = INFINITY, high = -INFINITY;
-  for (const auto& c : curves)
-    for (double x : c.x) low = std::min(low, x), high = std::max(high, x);
-  return {low, high};
 }
 
 // A fitted curve y(x) over [x0, x1] with its one-sigma band from the fit's covariance (delta
@@ -87,11 +64,7 @@ Figure power_law_figure(const SeriesAnalysis& series, const std::string& name, c
   auto curves = by_friction(series, x, "f");
   if (law && !curves.empty()) {
     auto [x0, x1] = x_extent(curves);
-    curves.push_back(banded("f = " + format_estimate(law->prefactor.value, law->prefactor.error) + " x^(" +
-                                format_estimate(law->exponent.value, law->exponent.error) + ")",
-                            x0, x1, law->line, [](const std::vector<double>& p, double xv) {
-                              return std::exp(p[0]) * std::pow(xv, p[1]);
-                            }));
+    curves.push_back(power_law_curve(*law, x0, x1));
   }
   return {name,
           "Oscillation frequency f against " + x_label + "; band: one standard error of the fitted law (delta method)",
@@ -105,10 +78,7 @@ Panel phi_panel(const SeriesAnalysis& series, const DefinitionFits& fits, const 
   auto curves = by_friction(series, x, fits.definition.phi);
   if (law && !curves.empty()) {
     auto [x0, x1] = x_extent(curves);
-    const auto slope = static_cast<size_t>(law->raw.parameters.size() - 1);
-    for (size_t m = 0; m < law->phi_c.size(); ++m)
-      curves.push_back(banded("phi_c - k x, mu = " + label(law->phi_c[m].first), x0, x1, law->raw,
-                              [=](const std::vector<double>& p, double xv) { return p[m] - p[slope] * xv; }));
+    for (auto& line : phi_law_curves(*law, x0, x1)) curves.push_back(std::move(line.curve));
   }
   auto p = panel(fits.definition.phi + " against " + x_label + ", " + fits.definition.name, x_label,
                  fits.definition.phi, curves);
@@ -169,30 +139,8 @@ Panel flow_rule_panel(const SeriesAnalysis& series, const DefinitionFits& fits)
   double u_max = 0;
   for (const auto& c : curves) u_max = std::max(u_max, *std::max_element(c.y.begin(), c.y.end()));
   const double top = 1.3 * u_max;  // the rules diverge at theta2
-  const double beta = series.settings.beta;
-  for (const auto& fit : fits.pouliquen) {
-    const double h = mean_thickness(series, fit.angles.mu, fits.definition.thickness);
-    curves.push_back(banded(
-        "Pouliquen, mu = " + label(fit.angles.mu), fit.angles.theta1_deg.value, fit.angles.theta2_deg.value, fit.raw,
-        [=](const std::vector<double>& p, double theta) {
-          auto h_stop = pouliquen_stop_thickness(tan_deg(theta), p[0], p[1], p[2]);
-          return velocity(h_stop ? std::optional<double>(beta / *h_stop) : std::nullopt, h);
-        },
-        top));
-  }
-  if (fits.mu_of_i)
-    for (size_t m = 0; m < fits.mu_of_i->angles.size(); ++m) {
-      const auto& angles = fits.mu_of_i->angles[m];
-      const double h = mean_thickness(series, angles.mu, fits.definition.thickness);
-      curves.push_back(banded(
-          "mu(I), mu = " + label(angles.mu), angles.theta1_deg.value, angles.theta2_deg.value, fits.mu_of_i->raw,
-          [=](const std::vector<double>& p, double theta) {
-            const double t = tan_deg(theta), tan1 = p[1 + 2 * m], tan2 = p[2 + 2 * m];
-            if (!(t > tan1 && t < tan2)) return std::optional<double>();
-            return velocity(p[0] * (t - tan1) / (tan2 - t), h);
-          },
-          top));
-    }
+  for (auto* rule : {pouliquen_curves, mu_of_i_curves})
+    for (auto& fitted : rule(series, fits, top)) curves.push_back(std::move(fitted.curve));
   auto p = panel(
       "U against tilt, " + fits.definition.name + " (curves at the mean " + fits.definition.thickness + " of each mu)",
       "theta (deg)", "U / sqrt(g d)", curves);
@@ -481,6 +429,94 @@ void depth_table(MarkdownReport& report, const SeriesAnalysis& series)
 }
 
 }  // namespace
+
+std::vector<FrictionCurve> points_by_friction(const SeriesAnalysis& series, const std::string& x, const std::string& y)
+{
+  std::set<double> mus;
+  for (const auto& run : series.runs) mus.insert(run.entry.mu);
+  std::vector<FrictionCurve> curves;
+  for (double mu : mus) {
+    Curve curve;
+    curve.title = "mu = " + label(mu);
+    curve.style = CurveStyle::ErrorBars;
+    for (const auto& run : series.runs) {
+      auto xv = x == "theta" ? std::optional<Estimate>(Estimate{run.entry.theta_deg, {}}) : run.estimate(x);
+      auto yv = run.estimate(y);
+      if (run.entry.mu != mu || !xv || !yv) continue;
+      curve.x.push_back(xv->value);
+      curve.y.push_back(yv->value);
+      curve.y_error.push_back(yv->error.value_or(0));
+    }
+    if (!curve.x.empty()) curves.push_back({mu, curve});
+  }
+  return curves;
+}
+
+std::vector<FrictionCurve> pouliquen_curves(const SeriesAnalysis& series, const DefinitionFits& fits, double u_max)
+{
+  std::vector<FrictionCurve> curves;
+  const double beta = series.settings.beta;
+  for (const auto& fit : fits.pouliquen) {
+    const double h = mean_thickness(series, fit.angles.mu, fits.definition.thickness);
+    curves.push_back({fit.angles.mu, banded(
+                                         "Pouliquen, mu = " + label(fit.angles.mu), fit.angles.theta1_deg.value,
+                                         fit.angles.theta2_deg.value, fit.raw,
+                                         [=](const std::vector<double>& p, double theta) {
+                                           auto h_stop = pouliquen_stop_thickness(tan_deg(theta), p[0], p[1], p[2]);
+                                           return velocity(
+                                               h_stop ? std::optional<double>(beta / *h_stop) : std::nullopt, h);
+                                         },
+                                         u_max)});
+  }
+  return curves;
+}
+
+std::vector<FrictionCurve> mu_of_i_curves(const SeriesAnalysis& series, const DefinitionFits& fits, double u_max)
+{
+  std::vector<FrictionCurve> curves;
+  if (!fits.mu_of_i) return curves;
+  for (size_t m = 0; m < fits.mu_of_i->angles.size(); ++m) {
+    const auto& angles = fits.mu_of_i->angles[m];
+    const double h = mean_thickness(series, angles.mu, fits.definition.thickness);
+    curves.push_back({angles.mu, banded(
+                                     "mu(I), mu = " + label(angles.mu), angles.theta1_deg.value,
+                                     angles.theta2_deg.value, fits.mu_of_i->raw,
+                                     [=](const std::vector<double>& p, double theta) {
+                                       const double t = tan_deg(theta), tan1 = p[1 + 2 * m], tan2 = p[2 + 2 * m];
+                                       if (!(t > tan1 && t < tan2)) return std::optional<double>();
+                                       return velocity(p[0] * (t - tan1) / (tan2 - t), h);
+                                     },
+                                     u_max)});
+  }
+  return curves;
+}
+
+std::vector<FrictionCurve> phi_law_curves(const PhiFit& law, double x0, double x1)
+{
+  std::vector<FrictionCurve> curves;
+  const auto slope = static_cast<size_t>(law.raw.parameters.size() - 1);
+  for (size_t m = 0; m < law.phi_c.size(); ++m)
+    curves.push_back(
+        {law.phi_c[m].first, banded("phi_c - k x, mu = " + label(law.phi_c[m].first), x0, x1, law.raw,
+                                    [=](const std::vector<double>& p, double xv) { return p[m] - p[slope] * xv; })});
+  return curves;
+}
+
+Curve power_law_curve(const PowerLaw& law, double x0, double x1)
+{
+  return banded("f = " + format_estimate(law.prefactor.value, law.prefactor.error) + " x^(" +
+                    format_estimate(law.exponent.value, law.exponent.error) + ")",
+                x0, x1, law.line,
+                [](const std::vector<double>& p, double xv) { return std::exp(p[0]) * std::pow(xv, p[1]); });
+}
+
+std::pair<double, double> x_extent(const std::vector<Curve>& curves)
+{
+  double low = INFINITY, high = -INFINITY;
+  for (const auto& c : curves)
+    for (double x : c.x) low = std::min(low, x), high = std::max(high, x);
+  return {low, high};
+}
 
 void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
 {
