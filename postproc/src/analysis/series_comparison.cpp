@@ -58,7 +58,7 @@ namespace {
 const double kEveryFriction = NAN;  // the friction of a curve drawn for every friction
 
 // How both series are drawn on one panel: a colour per friction (the same in both series), a
-// point type and a line dash per series, every title led by its series' label.
+// point type and a line dash per series, each title in the key led by its series' label.
 struct Styles {
   std::vector<double> frictions;  // of both series, ascending: line types 1, 2, ...
   std::array<std::string, 2> labels;
@@ -90,8 +90,10 @@ struct Styles {
       panel.curves.push_back(std::move(c.curve));
     }
   }
-  std::string legend() const
+  // What a caption says of the styles, with or without fitted curves.
+  std::string legend(bool with_curves = true) const
   {
+    if (!with_curves) return labels[0] + ": circles; " + labels[1] + ": squares; a colour per friction";
     return labels[0] + ": circles, solid curves; " + labels[1] +
            ": squares, dashed curves; a colour per friction; bands: one standard error of the fitted curve (delta "
            "method, fit covariance)";
@@ -126,10 +128,11 @@ Panel titled(Panel panel, const std::string& title, const std::string& x_label, 
   return panel;
 }
 
-// Panels in rows of `columns`, 700 x 650 px each.
+// Panels in rows of `columns`, 700 x 650 px each (no panel: an empty figure, not drawn).
 Figure grid(const std::string& name, const std::string& caption, std::vector<Panel> panels, size_t columns)
 {
-  const size_t rows = (panels.size() + columns - 1) / columns;
+  columns = std::max<size_t>(columns, 1);
+  const size_t rows = std::max<size_t>((panels.size() + columns - 1) / columns, 1);
   for (size_t i = 0; i < panels.size(); ++i) {
     panels[i].width = 1.0 / columns;
     panels[i].height = 1.0 / rows;
@@ -236,7 +239,7 @@ Figure amplitude_figure(const SeriesComparison& comparison, const Styles& styles
     panel.key = "top right";  // A falls as phi rises
     panels.push_back(panel);
   }
-  return grid("A_vs_phi", "Peak amplitude A against phi, a panel per definition of h and phi; " + styles.legend(),
+  return grid("A_vs_phi", "Peak amplitude A against phi, a panel per definition of h and phi; " + styles.legend(false),
               panels, panels.size());
 }
 
@@ -315,6 +318,7 @@ void write_comparison_outputs(SeriesComparison& comparison, const std::string& o
   auto warnings = comparison_warnings(comparison);
   report.heading("Figures");
   for (const auto& figure : comparison_figures(comparison)) {
+    if (figure.panels.empty()) continue;  // neither series has the quantities drawn
     if (auto problem = render_figure(figure, figures_dir)) warnings.push_back(*problem);
     else report.figure("figures", figure.name, figure.caption);
   }

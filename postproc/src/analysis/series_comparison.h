@@ -31,7 +31,8 @@ SeriesComparison compare_series(const SeriesSettings& settings, const std::strin
 struct ComparedFit {
   std::string name, unit;
   std::array<std::optional<Estimate>, 2> estimates;
-  // (second - first) / sqrt(error_first^2 + error_second^2), where both have a positive error.
+  // (second - first) / sqrt(error_first^2 + error_second^2), where both have an error and their
+  // combined error is positive.
   std::optional<double> difference_sigma;
 };
 
