@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <set>
 
+#include "analysis/series_analysis.h"
 #include "analysis/series_figures.h"
 #include "io/ave_time.h"
 #include "output/gnuplot.h"
