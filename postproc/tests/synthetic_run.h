@@ -35,7 +35,7 @@ struct SyntheticRun {
   unsigned seed = 1;
   double y_top = 0;  // m: height of the wall tops, z = y - y_top
   bool with_chunks_and_dump = true;
-  bool with_record = true;  // chute.params, as inputs/in.chute writes it
+  bool with_record = true;                  // chute.params, as inputs/in.chute writes it
   std::optional<double> recorded_length_d;  // L_d of chute.params (none: not recorded)
   // columns.chunk: v of `columns` x-columns tiling the cell, each the layer's oscillation plus
   // noise of its own (column_noise); one column empty every `empty_every` samples (0: never).

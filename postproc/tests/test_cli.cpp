@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "synthetic_run.h"
 
@@ -329,7 +330,7 @@ TEST(Cli, SeriesRecoversTheFlowRulesAndScalings)
   EXPECT_NE(slurp(dir / "post/fits.json").find("mu = 0.5: no stopped run, so beta and l are not determined separately"),
             std::string::npos);
   // Residuals: 10 runs in each of pouliquen, pouliquen_betafree, muI, phi_U and phi_I, plus the header;
-  // no packing reading, since these runs have no packing.chunk.
+  // no packing definition, since these runs have no packing.chunk.
   EXPECT_EQ(line_count(slurp(dir / "post/residuals.csv")), 51u);
   EXPECT_NE(slurp(dir / "post/fits.json").find("no run has I_packing"), std::string::npos);
   // phi = phi_c - 0.002 U is phi_c - 0.002 h^1.5 I at the runs' h.
@@ -341,7 +342,7 @@ TEST(Cli, SeriesRecoversTheFlowRulesAndScalings)
   std::istringstream held(slurp(dir / "post/held_fits.csv"));
   std::string row;
   std::getline(held, row);
-  EXPECT_EQ(row.rfind("reading,rule,held_parameter,held_value,mu,", 0), 0u) << row;
+  EXPECT_EQ(row.rfind("definition,rule,held_parameter,held_value,mu,", 0), 0u) << row;
   while (std::getline(held, row))
     if (row.rfind("surface,muI,I0,", 0) == 0) {
       std::vector<std::string> fields;
@@ -443,10 +444,10 @@ TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay)
   EXPECT_EQ(line_count(slurp(dir / "post/runs.csv")), 8u);
   const auto residuals = slurp(dir / "post/residuals.csv");
   EXPECT_NE(residuals.find("\nstopped21.5,0.5,21.5,pouliquen_betafree,tan_theta,"), std::string::npos) << residuals;
-  // Surface reading: pouliquen, betafree (5 + 3) at mu 0.5; muI, phi_U, phi_I over all. Packing reading (the
+  // Surface definition: pouliquen, betafree (5 + 3) at mu 0.5; muI, phi_U, phi_I over all. Packing definition (the
   // runs have packing.chunk): the same but betafree.
   EXPECT_EQ(line_count(residuals), 1u + (5 + 8 + 7 + 7 + 7) + (5 + 7 + 7 + 7));
-  // Both readings see h = 40 d (2 <z> and the half height of phi(z)): the same rule at fixed beta.
+  // Both definitions see h = 40 d (2 <z> and the half height of phi(z)): the same rule at fixed beta.
   EXPECT_NEAR(csv_value(fits, "packing_pouliquen_ell_mu0.5"), csv_value(fits, "pouliquen_ell_mu0.5"),
               0.03 * csv_value(fits, "pouliquen_ell_mu0.5"));
   EXPECT_NEAR(csv_value(fits, "packing_phi_c_mu0.5"), testing::SyntheticRun{}.phi_bulk, 1e-6);
@@ -547,7 +548,7 @@ TEST(Cli, SeriesFromPublishedRunsGivesTheSameFits)
     manifest << row << "\n";
   }
   manifest.close();
-  // The runs have packing.chunk: their published profile.csv carries phi(z), read back for the packing reading.
+  // The runs have packing.chunk: their published profile.csv carries phi(z), read back for the packing definition.
   EXPECT_EQ(slurp(dir / "published/run1/profile.csv").rfind("z_d,u_sqrt_gd,count,phi\n", 0), 0u);
   auto read = cdpost("series " + (dir / "published.csv").string() + " --out " + (dir / "post2").string());
   ASSERT_EQ(read.status, 0) << read.err;
@@ -583,6 +584,110 @@ TEST(Cli, SeriesFromPublishedRunsGivesTheSameFits)
   std::ofstream(layers) << "z_d,f_peak_Hz\n1,2\n";
   bad = cdpost("series " + (dir / "published.csv").string() + " --out " + (dir / "post3").string());
   EXPECT_NE(bad.err.find(layers.string() + ":1: expected the header z_d, f_peak_Hz"), std::string::npos) << bad.err;
+}
+
+// Rows of a CSV with a header: one map of column -> text per row.
+std::vector<std::map<std::string, std::string>> csv_rows(const std::filesystem::path& csv)
+{
+  std::istringstream lines(slurp(csv));
+  auto fields = [](const std::string& line) {
+    std::vector<std::string> cells;
+    std::istringstream cells_of(line + ",");  // a trailing empty field is a field
+    for (std::string cell; std::getline(cells_of, cell, ',');) cells.push_back(cell);
+    return cells;
+  };
+  std::string line;
+  std::getline(lines, line);
+  const auto header = fields(line);
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(lines, line)) {
+    const auto cells = fields(line);
+    EXPECT_EQ(cells.size(), header.size()) << line;
+    std::map<std::string, std::string> row;
+    for (size_t c = 0; c < std::min(cells.size(), header.size()); ++c) row[header[c]] = cells[c];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// Two series compared: the Pouliquen series (a) and the same runs without run2 and run6 (b, so
+// that its fits differ). Each series' fits in the comparison are those of `cdpost series` on it
+// alone; the difference is (b - a) over the combined error; the figures draw both.
+TEST(Cli, SeriesComparedWithAnotherKeepsEachOnesFits)
+{
+  auto dir = testing::scratch_dir();
+  std::filesystem::create_directories(dir / "a");
+  std::filesystem::create_directories(dir / "b");
+  write_pouliquen_series(dir / "a");
+  std::ofstream manifest(dir / "b/series.csv");
+  std::istringstream rows(slurp(dir / "a/series.csv"));
+  std::string row;
+  while (std::getline(rows, row))
+    if (row.rfind("run2,", 0) != 0 && row.rfind("run6,", 0) != 0)
+      manifest << (row.rfind("run,", 0) == 0 ? "" : "../a/") << row << "\n";
+  manifest.close();
+  for (const char* series : {"a", "b"}) {
+    const auto alone =
+        cdpost("series " + (dir / series / "series.csv").string() + " --out " + (dir / series / "post").string());
+    ASSERT_EQ(alone.status, 0) << alone.err;
+  }
+  auto compared = cdpost("series " + (dir / "a/series.csv").string() + " --compare " + (dir / "b/series.csv").string() +
+                         " --out " + (dir / "compared").string());
+  ASSERT_EQ(compared.status, 0) << compared.err;
+  EXPECT_NE(compared.err.find("cdpost: warning: b: "), std::string::npos) << compared.err;
+  // The labels are the manifests' folders.
+  EXPECT_EQ(slurp(dir / "compared/compared_fits.csv").rfind("name,unit,a,a_error,b,b_error,difference_sigma\n", 0), 0u);
+  const auto table = csv_rows(dir / "compared/compared_fits.csv");
+  const auto alone_a = csv_values(dir / "a/post/fits.csv"), alone_b = csv_values(dir / "b/post/fits.csv");
+  size_t in_a = 0, in_b = 0, differences = 0;
+  for (const auto& fit : table) {
+    const auto& name = fit.at("name");
+    for (auto [label, alone, count] : {std::tuple{"a", &alone_a, &in_a}, std::tuple{"b", &alone_b, &in_b}}) {
+      ASSERT_EQ(fit.at(label).empty(), alone->count(name) == 0) << label << " " << name;
+      if (fit.at(label).empty()) continue;
+      ++*count;
+      EXPECT_NEAR(std::stod(fit.at(label)), alone->at(name), 1e-9 * std::abs(alone->at(name))) << name;
+    }
+    if (fit.at("difference_sigma").empty()) continue;
+    ++differences;
+    const double a = std::stod(fit.at("a")), b = std::stod(fit.at("b"));
+    const double ea = std::stod(fit.at("a_error")), eb = std::stod(fit.at("b_error"));
+    // a and b are written to 10 digits: their difference to about 1e-10 (|a| + |b|).
+    const double rounding = 1e-9 * (std::abs(a) + std::abs(b)) / std::hypot(ea, eb);
+    EXPECT_NEAR(std::stod(fit.at("difference_sigma")), (b - a) / std::hypot(ea, eb), rounding + 1e-9) << name;
+  }
+  EXPECT_EQ(in_a, alone_a.size());
+  EXPECT_EQ(in_b, alone_b.size());
+  EXPECT_GT(differences, 20u);
+  // Both series on the same axes: per friction one colour (line type 1 for mu = 0.5), per series
+  // a point type (circles, squares) and a dash (b dashed).
+  const auto script = slurp(dir / "compared/figures/U_vs_theta.gp");
+  EXPECT_NE(script.find("with yerrorbars pt 7 lt 1 title 'a: mu = 0.5'"), std::string::npos) << script.substr(0, 3000);
+  EXPECT_NE(script.find("with yerrorbars pt 5 lt 1 title 'b: mu = 0.5'"), std::string::npos);
+  EXPECT_NE(script.find("with lines lw 2 lt 1 dt 2 notitle"), std::string::npos);
+  EXPECT_NE(script.find("with lines lw 2 lt 1 notitle"), std::string::npos);
+  for (const char* figure : {"U_vs_theta", "phi_vs_U", "phi_vs_I", "f_vs_scale", "f_vs_shear_rate", "A_vs_phi"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "compared/figures" / (std::string(figure) + ".png"))) << figure;
+  EXPECT_NE(slurp(dir / "compared/report.md").find("| `pouliquen_ell_mu0.5` |"), std::string::npos);
+
+  // A manifest that does not exist or lists no runs, and labels that cannot name two series.
+  const auto series_a = "series " + (dir / "a/series.csv").string() + " --out " + (dir / "bad").string();
+  auto bad = cdpost(series_a + " --compare " + (dir / "none.csv").string());
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_EQ(bad.err, "cdpost: error: " + (dir / "none.csv").string() + ": cannot open (no such file)\n");
+  std::ofstream(dir / "empty.csv") << "run,mu,theta\n";
+  bad = cdpost(series_a + " --compare " + (dir / "empty.csv").string());
+  EXPECT_EQ(bad.err, "cdpost: error: " + (dir / "empty.csv").string() + ":1: no runs listed\n");
+  bad = cdpost(series_a + " --compare " + (dir / "b/series.csv").string() + " --labels count");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(line_count(bad.err), 1u);
+  EXPECT_NE(bad.err.find("--labels takes two names separated by one comma, not 'count'"), std::string::npos);
+  bad = cdpost(series_a + " --compare " + (dir / "a/series.csv").string());
+  // One folder, one file name: no default labels.
+  EXPECT_NE(bad.err.find("both series are labelled 'series': give --labels A,B"), std::string::npos) << bad.err;
+  bad = cdpost(series_a + " --labels count,layer");
+  EXPECT_NE(bad.err.find("--labels names the series of --compare"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad"));
 }
 
 }  // namespace

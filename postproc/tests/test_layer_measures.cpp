@@ -28,9 +28,9 @@ struct Layer {
     for (double z = -19.5; z < 80; z += 1) p.z_d.push_back(z), p.phi.push_back(phi(z));
     return p;
   }
-  // The surface reading of the same profile: h = 2 <z> over the grain area above z = 0 and
+  // The surface definition of the same profile: h = 2 <z> over the grain area above z = 0 and
   // phi = that area / h (per unit length).
-  std::pair<double, double> surface_reading() const
+  std::pair<double, double> surface_definition() const
   {
     double area = 0, moment = 0;
     for (double z = 0.5; z < 80; z += 1) area += phi(z), moment += z * phi(z);
@@ -43,8 +43,8 @@ TEST(LayerMeasures, BulkPackingAndHalfHeightOfALayerWithADiluteSurface)
 {
   const Layer layer;
   const auto profile = layer.profile();
-  const auto [h, phi_surface] = layer.surface_reading();
-  // The surface reading weighs the denser transition to the bed: phi is 0.0015 above the bulk's.
+  const auto [h, phi_surface] = layer.surface_definition();
+  // The surface definition weighs the denser transition to the bed: phi is 0.0015 above the bulk's.
   EXPECT_GT(phi_surface - layer.phi_bulk, 1e-3);
   // Over 0.2 h-0.8 h (9.8-39.2 d) the tail departs from phi_b by phi_b erfc(8.1/3)/2 < 1e-4
   // relatively, the transition not at all.
@@ -58,15 +58,15 @@ TEST(LayerMeasures, BulkPackingAndHalfHeightOfALayerWithADiluteSurface)
   EXPECT_NEAR(half_packing_height(profile, bulk, h), layer.top, 0.01);
 }
 
-TEST(LayerMeasures, TheWidthOfTheSurfaceMovesTheSurfaceReadingOnly)
+TEST(LayerMeasures, TheWidthOfTheSurfaceMovesTheSurfaceDefinitionOnly)
 {
   // From a 1 d to a 6 d dilute surface about the same H: h = 2 <z> rises by 0.37 d and
   // phi = area/h falls by 0.006 (computed from the profiles), h_packing and phi_bulk stay.
   Layer narrow, wide;
   narrow.width = 1;
   wide.width = 6;
-  const auto [h_narrow, phi_narrow] = narrow.surface_reading();
-  const auto [h_wide, phi_wide] = wide.surface_reading();
+  const auto [h_narrow, phi_narrow] = narrow.surface_definition();
+  const auto [h_wide, phi_wide] = wide.surface_definition();
   EXPECT_GT(h_wide - h_narrow, 0.3);
   EXPECT_GT(phi_narrow - phi_wide, 5e-3);
   const double bulk_narrow = bulk_packing(narrow.profile(), h_narrow), bulk_wide = bulk_packing(wide.profile(), h_wide);
@@ -115,7 +115,7 @@ TEST(LayerMeasures, PackingFromCountsUsesTheMeanGrainArea)
 }
 
 // A published run without phi in profile.csv (as results/runs/<name> before the packing
-// reading): phi(z) from its counts with L and the dispersity of params.json.
+// definition): phi(z) from its counts with L and the dispersity of params.json.
 TEST(LayerMeasures, PublishedRunsEstimatePhiFromTheirCounts)
 {
   const auto dir = testing::scratch_dir();
@@ -127,7 +127,7 @@ TEST(LayerMeasures, PublishedRunsEstimatePhiFromTheirCounts)
   for (double z = -9.5; z < 60; z += 1)
     if (layer.phi(z) > 1e-6) profile += std::to_string(z) + ",1," + std::to_string(layer.phi(z) * length / area) + "\n";
   testing::write_file(dir / "profile.csv", profile);
-  // Without params.json: a warning, no packing reading.
+  // Without params.json: a warning, no packing definition.
   auto run = read_published_run(dir.string());
   EXPECT_FALSE(run.results.find("phi_bulk"));
   ASSERT_EQ(run.warnings.size(), 1u);

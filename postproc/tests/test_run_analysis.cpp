@@ -72,8 +72,9 @@ TEST_F(SyntheticRunTest, ExplicitWindowOverridesDetection)
   EXPECT_FALSE(run.window_stationary);
   EXPECT_GT(result(run, "stationary_drift"), run.settings.criterion.max_relative_drift);
   // One warning says so (the synthetic run has no columns.chunk: another says that).
-  const auto said = std::count_if(run.warnings.begin(), run.warnings.end(),
-                                  [](const std::string& w) { return w.find("is not stationary") != std::string::npos; });
+  const auto said = std::count_if(run.warnings.begin(), run.warnings.end(), [](const std::string& w) {
+    return w.find("is not stationary") != std::string::npos;
+  });
   ASSERT_EQ(said, 1) << run.warnings.size();
   EXPECT_NE(run.warnings[0].find("is not stationary: U drifts by"), std::string::npos) << run.warnings[0];
   EXPECT_EQ(window_name(run), "window (not stationary)");

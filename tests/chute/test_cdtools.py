@@ -23,7 +23,7 @@ import argparse
 import json
 
 from cdtools import lammps_files, logs, run, stats, text
-from cdtools.campaign import plan, report
+from cdtools.campaign import plan
 
 
 def check(condition, message):
@@ -217,27 +217,9 @@ def check_readings():
           "a changed word")
 
 
-def check_readings_table(work):
-    """The report's table of both readings: every fit the two analyses share, each reading's
-    value and error, and their difference in units of the combined error."""
-    folders = {}
-    for analysis, value in (("flow_rules", "1.0"), ("layer_flow_rules", "1.5")):
-        folders[analysis] = os.path.join(work, analysis)
-        os.makedirs(folders[analysis])
-        write(folders[analysis], "fits.csv", "name,value,error,unit,description\n"
-              f"phi_k,{value},0.3,1,slope\nonly_{analysis},1,0.1,1,x\n")
-    text = report.section_readings([], folders, work)
-    rows = [line for line in text.splitlines() if line.startswith("| phi_k |")]
-    check(rows == ["| phi_k | 1.00 ± 0.30 | 1.50 ± 0.30 | +1.2 | 1 |"], f"readings table rows {rows}")
-    check("only_" not in text, "a fit of one reading only is in the side-by-side table")
-    check(report.section_readings([], {"flow_rules": folders["flow_rules"]}, os.path.join(work, "none")) == "",
-          "a table with one reading")
-
-
 def main():
     with tempfile.TemporaryDirectory() as work:
         check_runs_older_than_a_variable(work)
-        check_readings_table(work)
         check_time_files(work)
         check_chunk_files(work)
         check_dumps(work)

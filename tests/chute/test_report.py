@@ -4,14 +4,15 @@
     test_report.py --cdpost build/postproc/cdpost --work DIR
 
 The campaign folder is written here as the runner leaves it (run folders with their spliced
-outputs and legs, DONE), for the mu = 0.5 series and its replica, with flows that follow a
-known mu(I) rule, phi(U) law and oscillation; one run of the series is left unstarted. The
-report must analyse every finished run with cdpost (from its chute.params, or the campaign's
-variables for a run made before the deck wrote one), recover the laws from the series fit,
-measure the replica scatter, list the unstarted run, hold no dump or restart, read a run whose
-raw outputs are gone back from what it published, use no run (its own or published) made with
-other deck variables than the report's, keep a hand-written discussion when it is made again,
-and show a rigid/soft comparison's table.
+outputs and legs, DONE), for the mu = 0.5 series, its replica and three runs of its layer
+reading (a thinner layer), with flows that follow a known mu(I) rule, phi(U) law and
+oscillation; one run of the series is left unstarted. The report must analyse every finished
+run with cdpost (from its chute.params, or the campaign's variables for a run made before the
+deck wrote one), recover the laws from the series fit, show both readings side by side (each
+reading's fits as its own series made them), measure the replica scatter, list the unstarted
+run, hold no dump or restart, read a run whose raw outputs are gone back from what it
+published, use no run (its own or published) made with other deck variables than the report's,
+keep a hand-written discussion when it is made again, and show a rigid/soft comparison's table.
 Standard library only.
 """
 
@@ -34,13 +35,15 @@ D, G = 5.0e-4, 9.81
 SQRT_GD = math.sqrt(G * D)
 Y_TOP = 30 * D                          # the deck's wall tops
 H = 40.0                                # flowing-layer thickness (d)
+H_LAYER = 30.0                          # and of the layer reading's runs
 THETA1, THETA2, I0 = 20.0, 32.0, 0.3    # the mu(I) rule the flows follow
 PHI_C, K = 0.82, 0.002                  # phi = PHI_C - K U/sqrt(g d)
 SAMPLE_RATE, DURATION, DT = 1000, 4.0, 1.0e-4
 REPLICA_SHIFT = 0.2                     # U of the replica run minus the original (sqrt(g d))
 STOPPED_U, H_STOP = 0.02, 30.0          # a layer that stopped (it creeps), and its thickness (d)
 UNRECORDED = "mu0.5_theta24_L45_seed20261123"  # a run made before the deck wrote chute.params
-SERIES_ARGS = ["--series", "mu0.5", "--series", "replicas", "--only", "mu0.5_*"]
+SERIES_ARGS = ["--series", "mu0.5", "--series", "replicas", "--series", "layer_mu0.5", "--only", "mu0.5_*"]
+LAYER_ANGLES = (23, 25, 27)             # the layer reading's finished runs
 
 
 class Failure(Exception):
@@ -52,11 +55,11 @@ def check(condition, message):
         raise Failure(message)
 
 
-def flow_velocity(theta):
-    """U/sqrt(g d) of the mu(I) rule at this tilt and h = H."""
+def flow_velocity(theta, h=H):
+    """U/sqrt(g d) of the mu(I) rule at this tilt and thickness h (d)."""
     t, t1, t2 = (math.tan(math.radians(a)) for a in (theta, THETA1, THETA2))
     inertial = I0 * (t - t1) / (t2 - t)
-    return inertial * H ** 1.5
+    return inertial * h ** 1.5
 
 
 def write_flow_time(folder, u, frequency, rng, h):
@@ -128,7 +131,7 @@ def write_run(campaign, name, theta, seed_shift, frequency, u=None, h=H, record=
     leg = os.path.join(folder, "legs", "00")
     os.makedirs(leg)
     rng = random.Random(name)
-    u = flow_velocity(theta) + seed_shift if u is None else u
+    u = flow_velocity(theta, h) + seed_shift if u is None else u
     write_flow_time(folder, u, frequency, rng, h)
     write_profile(folder, u)
     write_layers(folder, frequency)
@@ -151,6 +154,9 @@ def write_campaign(campaign):
     for theta in range(23, 28):
         write_run(campaign, f"mu0.5_theta{theta}_L45", theta, 0.0, 15.0 + theta - 22)
     write_run(campaign, UNRECORDED, 24, REPLICA_SHIFT, 17.0, record=False)
+    # The layer reading: a thinner layer on the same rule (the others of its series are unstarted).
+    for theta in LAYER_ANGLES:
+        write_run(campaign, f"mu0.5_theta{theta}_L45_layer", theta, 0.0, 15.0 + theta - 22, h=H_LAYER)
 
 
 def read_csv(path):
@@ -184,6 +190,34 @@ def check_within(fits, name, truth, sigmas=3.0):
           f"{name} = {value} ± {error}, expected {truth}")
 
 
+def check_readings(results, readme):
+    """Both readings side by side: each reading's fits as its own series analysis made them, the
+    difference in units of the combined error, and the comparison's figures in the README."""
+    fits = {name: read_csv(os.path.join(results, "series", analysis, "fits.csv"))
+            for name, analysis in (("count", "flow_rules"), ("layer", "layer_flow_rules"))}
+    with open(os.path.join(results, "series", "readings", "compared_fits.csv"), newline="") as src:
+        compared = {row["name"]: row for row in csv.DictReader(src)}
+    for reading, own in fits.items():
+        check(set(own) <= set(compared), f"the comparison lacks {reading} fits: {sorted(set(own) - set(compared))}")
+        for name, row in own.items():
+            check(float(compared[name][reading]) == float(row["value"]),
+                  f"{name}: {reading} {compared[name][reading]} in the comparison, {row['value']} alone")
+    # The layer's runs follow the same phi(U) law: k within the errors of both.
+    row = compared["phi_k"]
+    count, layer = float(row["count"]), float(row["layer"])
+    combined = math.hypot(float(row["count_error"]), float(row["layer_error"]))
+    difference = (layer - count) / combined
+    rounding = 1e-9 * (abs(count) + abs(layer)) / combined      # of values written to 10 digits
+    check(abs(float(row["difference_sigma"]) - difference) < rounding and abs(difference) < 3,
+          f"phi_k differs by {row['difference_sigma']} sigma, expected {difference!r} (same law)")
+    section = readme[readme.find("## Two readings of the 45 d cell"):]
+    line = next((r for r in section.splitlines() if r.startswith("| phi_k |")), "")
+    check(f"| {difference:+.1f} |" in line, "the readings' table has no phi_k with its difference:\n" + section[:1500])
+    check("![U_vs_theta](series/readings/figures/U_vs_theta.png)" in section
+          and "![phi_vs_I](series/readings/figures/phi_vs_I.png)" in section,
+          "the readings' figures are not shown:\n" + section[:1500])
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--cdpost", required=True)
@@ -197,7 +231,7 @@ def main():
         readme = report(os.path.abspath(args.cdpost), campaign, results)
 
         analysed = sorted(os.listdir(os.path.join(results, "runs")))
-        check(len(analysed) == 7, f"results/runs holds {analysed}, expected the 7 finished runs")
+        check(len(analysed) == 10, f"results/runs holds {analysed}, expected the 10 finished runs")
         for name in analysed:
             check(os.path.exists(os.path.join(results, "runs", name, "results.csv")), f"{name}: no results.csv")
         check("| mu0.5_theta28_L45 |" in readme and "not started" in readme,
@@ -225,6 +259,8 @@ def main():
         check_within(fits, "phi_k", K)
         check_within(fits, "phi_c_mu0.5", PHI_C)
         check("![U_vs_theta](series/flow_rules/figures/U_vs_theta.png)" in readme, "the flow-rule figure is not shown")
+
+        check_readings(results, readme)
 
         # The replica pair differs by REPLICA_SHIFT in U (each run's own noise is ~1e-3 of it).
         line = next((row for row in readme.splitlines() if row.startswith("| U |")), None)
@@ -302,8 +338,8 @@ def main():
     except Failure as failure:
         print(f"FAILED report: {failure}")
         return 1
-    print("report: 7 runs analysed, mu(I) and phi(U) recovered, replica scatter measured, discussion kept, "
-          "rigid/soft table shown")
+    print("report: 10 runs analysed, mu(I) and phi(U) recovered, both readings compared, replica scatter measured, "
+          "discussion kept, rigid/soft table shown")
     return 0
 
 

@@ -137,19 +137,19 @@ namespace {
 struct SeriesFitter {
   SeriesAnalysis& series;
 
-  // The runs that have I (and phi, where they do) under `reading`.
-  std::vector<FlowPoint> flow_points(const LayerReading& reading) const
+  // The runs that have I (and phi, where they do) under `definition`.
+  std::vector<FlowPoint> flow_points(const LayerDefinition& definition) const
   {
     std::vector<FlowPoint> points;
     for (const auto& run : series.runs) {
-      if (!run.estimate(reading.inertial)) continue;
+      if (!run.estimate(definition.inertial)) continue;
       FlowPoint p;
       p.run = run.entry.name;
       p.mu = run.entry.mu;
       p.theta_deg = run.entry.theta_deg;
-      p.inertial_number = run.value(reading.inertial);
+      p.inertial_number = run.value(definition.inertial);
       p.velocity = run.value("U");
-      if (auto phi = run.estimate(reading.phi)) p.phi = phi->value;
+      if (auto phi = run.estimate(definition.phi)) p.phi = phi->value;
       points.push_back(p);
     }
     return points;
@@ -196,9 +196,9 @@ struct SeriesFitter {
     }
   }
 
-  void pouliquen_fixed(const std::vector<FlowPoint>& points, double mu, ReadingFits& fits)
+  void pouliquen_fixed(const std::vector<FlowPoint>& points, double mu, DefinitionFits& fits)
   {
-    const std::string suffix = "_mu" + mu_label(mu), name = fits.reading.prefix + "pouliquen";
+    const std::string suffix = "_mu" + mu_label(mu), name = fits.definition.prefix + "pouliquen";
     attempt(scope(fits) + "Pouliquen's rule for mu = " + mu_label(mu), [&] {
       auto fit = fit_pouliquen(points, series.settings.beta);
       auto& r = series.fits;
@@ -214,7 +214,7 @@ struct SeriesFitter {
         attempt(scope(fits) + "Pouliquen's rule with l held at " + label(ell) + " for mu = " + mu_label(mu), [&] {
           auto held = fit_pouliquen_held_ell(points, series.settings.beta, ell);
           series.held_fits.push_back(
-              {fits.reading.prefix, "pouliquen", ell, held.angles, held.raw.rms_residual(), held.raw.dof});
+              {fits.definition.prefix, "pouliquen", ell, held.angles, held.raw.rms_residual(), held.raw.dof});
         });
       fits.pouliquen.push_back(fit);
     });
@@ -264,20 +264,20 @@ struct SeriesFitter {
     return kept;
   }
 
-  // What a description of the packing reading's fits ends with, and what its warnings start
-  // with; both "" for the surface reading, whose names carry no prefix either.
-  static std::string of(const ReadingFits& fits)
+  // What a description of the packing definition's fits ends with, and what its warnings start
+  // with; both "" for the surface definition, whose names carry no prefix either.
+  static std::string of(const DefinitionFits& fits)
   {
-    return fits.reading.prefix.empty() ? "" : "; " + fits.reading.description;
+    return fits.definition.prefix.empty() ? "" : "; " + fits.definition.description;
   }
-  static std::string scope(const ReadingFits& fits)
+  static std::string scope(const DefinitionFits& fits)
   {
-    return fits.reading.prefix.empty() ? "" : "with h_packing and phi_bulk: ";
+    return fits.definition.prefix.empty() ? "" : "with h_packing and phi_bulk: ";
   }
 
-  void mu_of_i(const std::vector<FlowPoint>& points, ReadingFits& fits)
+  void mu_of_i(const std::vector<FlowPoint>& points, DefinitionFits& fits)
   {
-    const std::string name = fits.reading.prefix + "muI";
+    const std::string name = fits.definition.prefix + "muI";
     attempt(scope(fits) + "the mu(I) rule", [&] {
       const auto kept = points_at_enough_angles(points, kMuOfIAngles, scope(fits) + "the mu(I) rule");
       auto fit = fit_mu_of_i(kept);
@@ -296,15 +296,15 @@ struct SeriesFitter {
         attempt(scope(fits) + "the mu(I) rule with I0 held at " + label(i0), [&] {
           auto held = fit_mu_of_i_held_i0(kept, i0);
           for (const auto& a : held.angles)
-            series.held_fits.push_back({fits.reading.prefix, "muI", i0, a, held.raw.rms_residual(), held.raw.dof});
+            series.held_fits.push_back({fits.definition.prefix, "muI", i0, a, held.raw.rms_residual(), held.raw.dof});
         });
       fits.mu_of_i = fit;
     });
   }
 
-  void phi_laws(const std::vector<FlowPoint>& points, ReadingFits& fits)
+  void phi_laws(const std::vector<FlowPoint>& points, DefinitionFits& fits)
   {
-    const std::string& prefix = fits.reading.prefix;
+    const std::string& prefix = fits.definition.prefix;
     attempt(scope(fits) + "phi = phi_c(mu) - k U/sqrt(g d)", [&] {
       auto fit = fit_phi_velocity(points);
       series.fits.add(prefix + "phi_k", fit.k, "",
@@ -326,29 +326,29 @@ struct SeriesFitter {
 
   void flow_rules()
   {
-    for (const auto& reading : {kSurfaceReading, kPackingReading}) {
-      const auto points = flow_points(reading);
+    for (const auto& definition : {kSurfaceDefinition, kPackingDefinition}) {
+      const auto points = flow_points(definition);
       if (points.empty()) {
-        series.warnings.push_back("no run has " + reading.inertial + ": no fit with " + reading.description);
+        series.warnings.push_back("no run has " + definition.inertial + ": no fit with " + definition.description);
         continue;
       }
       if (points.size() < series.runs.size())
         series.warnings.push_back(std::to_string(series.runs.size() - points.size()) + " runs without " +
-                                  reading.inertial + " left out of the fits with " + reading.description);
-      ReadingFits fits{reading, {}, std::nullopt, std::nullopt, std::nullopt};
+                                  definition.inertial + " left out of the fits with " + definition.description);
+      DefinitionFits fits{definition, {}, std::nullopt, std::nullopt, std::nullopt};
       const auto mus = friction_values(points);
       for (double mu : mus) {
         pouliquen_fixed(points_with_mu(points, mu), mu, fits);
-        if (reading.prefix.empty()) pouliquen_free(points_with_mu(points, mu), mu);
+        if (definition.prefix.empty()) pouliquen_free(points_with_mu(points, mu), mu);
       }
-      if (reading.prefix.empty())
+      if (definition.prefix.empty())
         for (const auto& entry : series.stopped)
           if (std::find(mus.begin(), mus.end(), entry.mu) == mus.end())
             series.warnings.push_back("stopped run " + entry.directory + " (mu = " + mu_label(entry.mu) +
                                       ") not used: no flowing run at that mu");
       mu_of_i(points, fits);
       phi_laws(points, fits);
-      series.readings.push_back(fits);
+      series.definitions.push_back(fits);
     }
   }
 

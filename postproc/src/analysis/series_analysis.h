@@ -58,28 +58,29 @@ struct SeriesRun {
 struct SeriesResidual {
   std::string run;  // the run's directory, as in runs.csv
   double mu = 0, theta_deg = 0;
-  std::string fit;       // pouliquen, pouliquen_betafree, muI, phi_U or phi_I, packing_ before the packing reading's
+  std::string fit;       // pouliquen, pouliquen_betafree, muI, phi_U or phi_I, packing_ before the packing definition's
   std::string quantity;  // tan_theta or phi
   double value = 0;      // observed − fitted
 };
 
-// A reading of the layer's thickness and packing (doc/scene.md): each run's I and phi under it.
-struct LayerReading {
-  std::string name;         // "surface reading", "packing reading"
+// A definition of the layer's thickness and packing (doc/scene.md): each run's I and phi under it.
+struct LayerDefinition {
+  std::string name;         // "surface definition", "packing definition"
   std::string prefix;       // of its fits' names: "" (surface), "packing_"
   std::string inertial;     // the runs' result holding I under it
   std::string phi;          // phi
   std::string thickness;    // and h
   std::string description;  // the definitions, for reports
 };
-const LayerReading kSurfaceReading{"surface reading", "", "I", "phi", "h", "h = 2 <z>, phi = grain area/(L h)"};
-const LayerReading kPackingReading{
-    "packing reading", "packing_",  "I_packing",
-    "phi_bulk",        "h_packing", "h = h_packing (phi(z) at half phi_bulk), phi = phi_bulk (0.2 h-0.8 h)"};
+const LayerDefinition kSurfaceDefinition{
+    "surface definition", "", "I", "phi", "h", "h = 2 <z>, phi = grain area/(L h)"};
+const LayerDefinition kPackingDefinition{
+    "packing definition", "packing_",  "I_packing",
+    "phi_bulk",           "h_packing", "h = h_packing (phi(z) at half phi_bulk), phi = phi_bulk (0.2 h-0.8 h)"};
 
-// The flow rules and phi laws fitted under one reading.
-struct ReadingFits {
-  LayerReading reading;
+// The flow rules and phi laws fitted under one definition.
+struct DefinitionFits {
+  LayerDefinition definition;
   std::vector<PouliquenFit> pouliquen;  // at the fixed beta
   std::optional<MuIFit> mu_of_i;
   std::optional<PhiFit> phi_of_u, phi_of_i;  // phi = phi_c(mu) - k U/sqrt(g d), - k_I I
@@ -87,8 +88,8 @@ struct ReadingFits {
 
 // A rule refitted with one parameter held: one row per friction.
 struct HeldFit {
-  std::string reading;  // its prefix: "" or "packing_"
-  std::string rule;     // muI (I0 held) or pouliquen (l held)
+  std::string definition;  // its prefix: "" or "packing_"
+  std::string rule;        // muI (I0 held) or pouliquen (l held)
   double held = 0;
   AngleBounds angles;       // of one friction
   double rms_residual = 0;  // in tan theta, over the fit's runs (every friction for muI)
@@ -99,8 +100,8 @@ struct SeriesAnalysis {
   SeriesSettings settings;
   std::vector<SeriesRun> runs;                   // the flowing runs, analysed
   std::vector<ManifestEntry> stopped;            // the runs that stopped
-  std::vector<ReadingFits> readings;             // surface, then packing (when the runs have it)
-  std::vector<PouliquenFreeFit> pouliquen_free;  // surface reading
+  std::vector<DefinitionFits> definitions;       // surface, then packing (when the runs have it)
+  std::vector<PouliquenFreeFit> pouliquen_free;  // surface definition
   std::vector<HeldFit> held_fits;
   std::optional<PowerLaw> f_vs_scale, f_vs_shear_rate;
   std::vector<SeriesResidual> residuals;

@@ -6,6 +6,7 @@
 
 #include "analysis/along_cell_series.h"
 #include "analysis/series_analysis.h"
+#include "analysis/series_figures.h"
 #include "io/ave_time.h"
 #include "output/gnuplot.h"
 #include "output/report.h"
@@ -23,23 +24,8 @@ std::string label(double value)
 
 std::vector<Curve> by_friction(const SeriesAnalysis& series, const std::string& x, const std::string& y)
 {
-  std::set<double> mus;
-  for (const auto& run : series.runs) mus.insert(run.entry.mu);
   std::vector<Curve> curves;
-  for (double mu : mus) {
-    Curve curve;
-    curve.title = "mu = " + label(mu);
-    curve.style = CurveStyle::ErrorBars;
-    for (const auto& run : series.runs) {
-      auto xv = x == "theta" ? std::optional<Estimate>(Estimate{run.entry.theta_deg, {}}) : run.estimate(x);
-      auto yv = run.estimate(y);
-      if (run.entry.mu != mu || !xv || !yv) continue;
-      curve.x.push_back(xv->value);
-      curve.y.push_back(yv->value);
-      curve.y_error.push_back(yv->error.value_or(0));
-    }
-    if (!curve.x.empty()) curves.push_back(curve);
-  }
+  for (auto& points : points_by_friction(series, x, y)) curves.push_back(std::move(points.curve));
   return curves;
 }
 
@@ -53,14 +39,6 @@ Panel panel(const std::string& title, const std::string& x_label, const std::str
   p.y_label = y_label;
   p.curves = std::move(curves);
   return p;
-}
-
-std::pair<double, double> x_extent(const std::vector<Curve>& curves)
-{
-  double low = INFINITY, high = -INFINITY;
-  for (const auto& c : curves)
-    for (double x : c.x) low = std::min(low, x), high = std::max(high, x);
-  return {low, high};
 }
 
 // A fitted curve y(x) over [x0, x1] with its one-sigma band from the fit's covariance (delta
@@ -91,37 +69,30 @@ Figure power_law_figure(const SeriesAnalysis& series, const std::string& name, c
   auto curves = by_friction(series, x, "f");
   if (law && !curves.empty()) {
     auto [x0, x1] = x_extent(curves);
-    curves.push_back(banded("f = " + format_estimate(law->prefactor.value, law->prefactor.error) + " x^(" +
-                                format_estimate(law->exponent.value, law->exponent.error) + ")",
-                            x0, x1, law->line, [](const std::vector<double>& p, double xv) {
-                              return std::exp(p[0]) * std::pow(xv, p[1]);
-                            }));
+    curves.push_back(power_law_curve(*law, x0, x1));
   }
   return {name,
           "Oscillation frequency f against " + x_label + "; band: one standard error of the fitted law (delta method)",
           {panel("f against " + x_label, x_label, "f (Hz)", curves)}};
 }
 
-// phi against x (U or I) under one reading, with the fitted line of each friction and its band.
-Panel phi_panel(const SeriesAnalysis& series, const ReadingFits& fits, const std::string& x,
+// phi against x (U or I) under one definition, with the fitted line of each friction and its band.
+Panel phi_panel(const SeriesAnalysis& series, const DefinitionFits& fits, const std::string& x,
                 const std::optional<PhiFit>& law, const std::string& x_label)
 {
-  auto curves = by_friction(series, x, fits.reading.phi);
+  auto curves = by_friction(series, x, fits.definition.phi);
   if (law && !curves.empty()) {
     auto [x0, x1] = x_extent(curves);
-    const auto slope = static_cast<size_t>(law->raw.parameters.size() - 1);
-    for (size_t m = 0; m < law->phi_c.size(); ++m)
-      curves.push_back(banded("phi_c - k x, mu = " + label(law->phi_c[m].first), x0, x1, law->raw,
-                              [=](const std::vector<double>& p, double xv) { return p[m] - p[slope] * xv; }));
+    for (auto& line : phi_law_curves(*law, x0, x1)) curves.push_back(std::move(line.curve));
   }
-  auto p =
-      panel(fits.reading.phi + " against " + x_label + ", " + fits.reading.name, x_label, fits.reading.phi, curves);
+  auto p = panel(fits.definition.phi + " against " + x_label + ", " + fits.definition.name, x_label,
+                 fits.definition.phi, curves);
   p.key = "bottom left";
   return p;
 }
 
-// Side by side, one panel per reading.
-Figure readings_figure(const std::string& name, const std::string& caption, std::vector<Panel> panels)
+// Side by side, one panel per definition.
+Figure definitions_figure(const std::string& name, const std::string& caption, std::vector<Panel> panels)
 {
   for (size_t i = 0; i < panels.size(); ++i) {
     panels[i].width = 1.0 / panels.size();
@@ -133,13 +104,15 @@ Figure readings_figure(const std::string& name, const std::string& caption, std:
 std::vector<Figure> phi_figures(const SeriesAnalysis& series)
 {
   std::vector<Panel> against_u, against_i;
-  for (const auto& fits : series.readings) {
+  for (const auto& fits : series.definitions) {
     against_u.push_back(phi_panel(series, fits, "U", fits.phi_of_u, "U / sqrt(g d)"));
-    against_i.push_back(phi_panel(series, fits, fits.reading.inertial, fits.phi_of_i, fits.reading.inertial));
+    against_i.push_back(phi_panel(series, fits, fits.definition.inertial, fits.phi_of_i, fits.definition.inertial));
   }
   const std::string band = "; bands: one standard error of the fitted line (delta method, fit covariance)";
-  return {readings_figure("phi_vs_U", "phi against U with the linear law, per reading of h and phi" + band, against_u),
-          readings_figure("phi_vs_I", "phi against I with the linear law, per reading of h and phi" + band, against_i)};
+  return {definitions_figure("phi_vs_U", "phi against U with the linear law, per definition of h and phi" + band,
+                             against_u),
+          definitions_figure("phi_vs_I", "phi against I with the linear law, per definition of h and phi" + band,
+                             against_i)};
 }
 
 // Mean h (in d, result `thickness`) of the runs of one friction: the flow-rule curves are drawn for it.
@@ -164,40 +137,18 @@ std::optional<double> velocity(std::optional<double> inertial, double h)
   return *inertial * std::pow(h, 1.5);
 }
 
-Panel flow_rule_panel(const SeriesAnalysis& series, const ReadingFits& fits)
+Panel flow_rule_panel(const SeriesAnalysis& series, const DefinitionFits& fits)
 {
   auto curves = by_friction(series, "theta", "U");
   auto [t0, t1] = x_extent(curves);
   double u_max = 0;
   for (const auto& c : curves) u_max = std::max(u_max, *std::max_element(c.y.begin(), c.y.end()));
   const double top = 1.3 * u_max;  // the rules diverge at theta2
-  const double beta = series.settings.beta;
-  for (const auto& fit : fits.pouliquen) {
-    const double h = mean_thickness(series, fit.angles.mu, fits.reading.thickness);
-    curves.push_back(banded(
-        "Pouliquen, mu = " + label(fit.angles.mu), fit.angles.theta1_deg.value, fit.angles.theta2_deg.value, fit.raw,
-        [=](const std::vector<double>& p, double theta) {
-          auto h_stop = pouliquen_stop_thickness(tan_deg(theta), p[0], p[1], p[2]);
-          return velocity(h_stop ? std::optional<double>(beta / *h_stop) : std::nullopt, h);
-        },
-        top));
-  }
-  if (fits.mu_of_i)
-    for (size_t m = 0; m < fits.mu_of_i->angles.size(); ++m) {
-      const auto& angles = fits.mu_of_i->angles[m];
-      const double h = mean_thickness(series, angles.mu, fits.reading.thickness);
-      curves.push_back(banded(
-          "mu(I), mu = " + label(angles.mu), angles.theta1_deg.value, angles.theta2_deg.value, fits.mu_of_i->raw,
-          [=](const std::vector<double>& p, double theta) {
-            const double t = tan_deg(theta), tan1 = p[1 + 2 * m], tan2 = p[2 + 2 * m];
-            if (!(t > tan1 && t < tan2)) return std::optional<double>();
-            return velocity(p[0] * (t - tan1) / (tan2 - t), h);
-          },
-          top));
-    }
-  auto p =
-      panel("U against tilt, " + fits.reading.name + " (curves at the mean " + fits.reading.thickness + " of each mu)",
-            "theta (deg)", "U / sqrt(g d)", curves);
+  for (auto* rule : {pouliquen_curves, mu_of_i_curves})
+    for (auto& fitted : rule(series, fits, top)) curves.push_back(std::move(fitted.curve));
+  auto p = panel(
+      "U against tilt, " + fits.definition.name + " (curves at the mean " + fits.definition.thickness + " of each mu)",
+      "theta (deg)", "U / sqrt(g d)", curves);
   p.x_range = std::make_pair(t0 - 1, t1 + 1);
   p.y_range = std::make_pair(0.0, top);
   return p;
@@ -206,11 +157,12 @@ Panel flow_rule_panel(const SeriesAnalysis& series, const ReadingFits& fits)
 Figure flow_rule_figure(const SeriesAnalysis& series)
 {
   std::vector<Panel> panels;
-  for (const auto& fits : series.readings) panels.push_back(flow_rule_panel(series, fits));
-  return readings_figure("U_vs_theta",
-                         "U against theta with Pouliquen's and the mu(I) rule, per reading of h and phi; bands: one "
-                         "standard error of the fitted curve (delta method, fit covariance)",
-                         panels);
+  for (const auto& fits : series.definitions) panels.push_back(flow_rule_panel(series, fits));
+  return definitions_figure(
+      "U_vs_theta",
+      "U against theta with Pouliquen's and the mu(I) rule, per definition of h and phi; bands: one "
+      "standard error of the fitted curve (delta method, fit covariance)",
+      panels);
 }
 
 std::optional<Figure> length_figure(const SeriesAnalysis& series)
@@ -377,10 +329,10 @@ void write_held_fits(const SeriesAnalysis& series, const std::string& path)
 {
   auto out = open_output(path);
   out.precision(10);
-  out << "reading,rule,held_parameter,held_value,mu,theta1_deg,theta1_error_deg,theta2_deg,theta2_error_deg,"
+  out << "definition,rule,held_parameter,held_value,mu,theta1_deg,theta1_error_deg,theta2_deg,theta2_error_deg,"
          "rms_residual_tan_theta,dof\n";
   for (const auto& h : series.held_fits) {
-    out << (h.reading.empty() ? "surface" : "packing") << ',' << h.rule << ',' << (h.rule == "muI" ? "I0" : "ell")
+    out << (h.definition.empty() ? "surface" : "packing") << ',' << h.rule << ',' << (h.rule == "muI" ? "I0" : "ell")
         << ',' << h.held << ',' << h.angles.mu;
     for (const auto* angle : {&h.angles.theta1_deg, &h.angles.theta2_deg}) {
       out << ',' << angle->value << ',';
@@ -390,29 +342,29 @@ void write_held_fits(const SeriesAnalysis& series, const std::string& path)
   }
 }
 
-// The held fits of one rule and reading as a table: a row per held value, the rms and each
+// The held fits of one rule and definition as a table: a row per held value, the rms and each
 // friction's θ1, θ2; the free fit's value and rms head the caption.
-void held_table(MarkdownReport& report, const SeriesAnalysis& series, const std::string& reading,
+void held_table(MarkdownReport& report, const SeriesAnalysis& series, const std::string& definition,
                 const std::string& rule)
 {
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> header{rule == "muI" ? "I0 held" : "l held", "mu", "theta1 (deg)", "theta2 (deg)",
                                   "rms residual (tan theta)"};
   for (const auto& h : series.held_fits)
-    if (h.reading == reading && h.rule == rule)
+    if (h.definition == definition && h.rule == rule)
       rows.push_back({label(h.held), label(h.angles.mu),
                       format_estimate(h.angles.theta1_deg.value, h.angles.theta1_deg.error),
                       format_estimate(h.angles.theta2_deg.value, h.angles.theta2_deg.error),
                       format_estimate(h.rms_residual, std::nullopt)});
   if (rows.empty()) return;
   std::vector<std::string> fitted;  // the free fit's parameter and rms residual
-  for (const std::string stem : rule == "muI"
-                                    ? std::vector<std::string>{"muI_I0", "muI_rms_residual"}
-                                    : std::vector<std::string>{"pouliquen_ell_mu", "pouliquen_rms_residual_mu"})
+  for (const std::string& stem : rule == "muI"
+                                     ? std::vector<std::string>{"muI_I0", "muI_rms_residual"}
+                                     : std::vector<std::string>{"pouliquen_ell_mu", "pouliquen_rms_residual_mu"})
     for (const auto& row : series.fits.rows())
-      if (row.name.rfind(reading + stem, 0) == 0)
+      if (row.name.rfind(definition + stem, 0) == 0)
         fitted.push_back(row.name + " = " + format_estimate(row.value, row.error));
-  report.paragraph((reading.empty() ? "Surface reading" : "Packing reading") + std::string(", ") +
+  report.paragraph((definition.empty() ? "Surface definition" : "Packing definition") + std::string(", ") +
                    (rule == "muI" ? "the mu(I) rule with I0 held (one joint fit per value, the rms over every run)"
                                   : "Pouliquen's rule with l held (beta = " + label(series.settings.beta) +
                                         ", one fit per friction and value)") +
@@ -483,6 +435,94 @@ void depth_table(MarkdownReport& report, const SeriesAnalysis& series)
 
 }  // namespace
 
+std::vector<FrictionCurve> points_by_friction(const SeriesAnalysis& series, const std::string& x, const std::string& y)
+{
+  std::set<double> mus;
+  for (const auto& run : series.runs) mus.insert(run.entry.mu);
+  std::vector<FrictionCurve> curves;
+  for (double mu : mus) {
+    Curve curve;
+    curve.title = "mu = " + label(mu);
+    curve.style = CurveStyle::ErrorBars;
+    for (const auto& run : series.runs) {
+      auto xv = x == "theta" ? std::optional<Estimate>(Estimate{run.entry.theta_deg, {}}) : run.estimate(x);
+      auto yv = run.estimate(y);
+      if (run.entry.mu != mu || !xv || !yv) continue;
+      curve.x.push_back(xv->value);
+      curve.y.push_back(yv->value);
+      curve.y_error.push_back(yv->error.value_or(0));
+    }
+    if (!curve.x.empty()) curves.push_back({mu, curve});
+  }
+  return curves;
+}
+
+std::vector<FrictionCurve> pouliquen_curves(const SeriesAnalysis& series, const DefinitionFits& fits, double u_max)
+{
+  std::vector<FrictionCurve> curves;
+  const double beta = series.settings.beta;
+  for (const auto& fit : fits.pouliquen) {
+    const double h = mean_thickness(series, fit.angles.mu, fits.definition.thickness);
+    curves.push_back({fit.angles.mu, banded(
+                                         "Pouliquen, mu = " + label(fit.angles.mu), fit.angles.theta1_deg.value,
+                                         fit.angles.theta2_deg.value, fit.raw,
+                                         [=](const std::vector<double>& p, double theta) {
+                                           auto h_stop = pouliquen_stop_thickness(tan_deg(theta), p[0], p[1], p[2]);
+                                           return velocity(
+                                               h_stop ? std::optional<double>(beta / *h_stop) : std::nullopt, h);
+                                         },
+                                         u_max)});
+  }
+  return curves;
+}
+
+std::vector<FrictionCurve> mu_of_i_curves(const SeriesAnalysis& series, const DefinitionFits& fits, double u_max)
+{
+  std::vector<FrictionCurve> curves;
+  if (!fits.mu_of_i) return curves;
+  for (size_t m = 0; m < fits.mu_of_i->angles.size(); ++m) {
+    const auto& angles = fits.mu_of_i->angles[m];
+    const double h = mean_thickness(series, angles.mu, fits.definition.thickness);
+    curves.push_back({angles.mu, banded(
+                                     "mu(I), mu = " + label(angles.mu), angles.theta1_deg.value,
+                                     angles.theta2_deg.value, fits.mu_of_i->raw,
+                                     [=](const std::vector<double>& p, double theta) {
+                                       const double t = tan_deg(theta), tan1 = p[1 + 2 * m], tan2 = p[2 + 2 * m];
+                                       if (!(t > tan1 && t < tan2)) return std::optional<double>();
+                                       return velocity(p[0] * (t - tan1) / (tan2 - t), h);
+                                     },
+                                     u_max)});
+  }
+  return curves;
+}
+
+std::vector<FrictionCurve> phi_law_curves(const PhiFit& law, double x0, double x1)
+{
+  std::vector<FrictionCurve> curves;
+  const auto slope = static_cast<size_t>(law.raw.parameters.size() - 1);
+  for (size_t m = 0; m < law.phi_c.size(); ++m)
+    curves.push_back(
+        {law.phi_c[m].first, banded("phi_c - k x, mu = " + label(law.phi_c[m].first), x0, x1, law.raw,
+                                    [=](const std::vector<double>& p, double xv) { return p[m] - p[slope] * xv; })});
+  return curves;
+}
+
+Curve power_law_curve(const PowerLaw& law, double x0, double x1)
+{
+  return banded("f = " + format_estimate(law.prefactor.value, law.prefactor.error) + " x^(" +
+                    format_estimate(law.exponent.value, law.exponent.error) + ")",
+                x0, x1, law.line,
+                [](const std::vector<double>& p, double xv) { return std::exp(p[0]) * std::pow(xv, p[1]); });
+}
+
+std::pair<double, double> x_extent(const std::vector<Curve>& curves)
+{
+  double low = INFINITY, high = -INFINITY;
+  for (const auto& c : curves)
+    for (double x : c.x) low = std::min(low, x), high = std::max(high, x);
+  return {low, high};
+}
+
 void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
 {
   const std::string figures_dir = out_dir + "/figures";
@@ -502,10 +542,11 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
       "of freedom); over all runs and, when the series has several frictions, per mu (`_mu<mu>`). Per-run numbers: "
       "runs.csv.");
   report.paragraph(
-      "Two readings of the layer's thickness and packing (doc/scene.md): the surface one, h = 2 <z> over the grains "
+      "Two definitions of the layer's thickness and packing (doc/scene.md): the surface one, h = 2 <z> over the grains "
       "above the wall tops and phi = their area/(L h), gives the fits without prefix; the packing one, phi_bulk = the "
       "mean of phi(z) over 0.2 h-0.8 h and h_packing = the height where phi(z) falls to half phi_bulk (I_packing = U/"
-      "h_packing^1.5), gives those named `packing_*`. Each reading also fits phi = phi_c(mu) - k_I I (`phiI_*`). The "
+      "h_packing^1.5), gives those named `packing_*`. Under each, phi = phi_c(mu) - k_I I is fitted too (`phiI_*`). "
+      "The "
       "fitted curves of the figures carry one-standard-error bands from the fit's covariance (delta method: var y = "
       "g^T C g, g the curve's gradient in the parameters).");
   report.heading("Fitted numbers");
@@ -523,8 +564,8 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
       "cov/(sigma sigma) from the fit's covariance. Below, each rule refitted with that parameter held at several "
       "values, the others free (held_fits.csv): where the rms residual hardly changes, the runs do not determine the "
       "held parameter.");
-  for (const auto& fits : series.readings)
-    for (const std::string rule : {"muI", "pouliquen"}) held_table(report, series, fits.reading.prefix, rule);
+  for (const auto& fits : series.definitions)
+    for (const std::string rule : {"muI", "pouliquen"}) held_table(report, series, fits.definition.prefix, rule);
   report.heading("Decay of the oscillation with depth");
   report.paragraph(
       "The amplitude of v at each run's f per layer (layer_amplitudes.csv, figure amplitude_vs_depth), fitted as "

@@ -6,6 +6,7 @@
 
 #include "analysis/run_analysis.h"
 #include "analysis/series_analysis.h"
+#include "analysis/series_comparison.h"
 #include "analysis/snapshot.h"
 #include "cli/options.h"
 #include "cli/run_parameters.h"
@@ -171,21 +172,65 @@ int command_run(const std::vector<std::string>& arguments)
   return 0;
 }
 
+// The parameters line of each run of a series that has one, led by `prefix`.
+void print_run_parameters(const SeriesAnalysis& series, const std::string& prefix)
+{
+  for (const auto& run : series.runs)
+    if (!run.analysis.settings.parameters.empty())
+      std::cout << prefix << run.entry.name << ": parameters: " << run.analysis.settings.parameters << '\n';
+}
+
+// The names of the two series of --compare: --labels A,B, else default_labels.
+std::array<std::string, 2> comparison_labels(const ParsedOptions& options, const std::string& other)
+{
+  const auto given = options.text("labels");
+  const auto comma = given ? given->find(',') : std::string::npos;
+  if (given && (comma == std::string::npos || given->find(',', comma + 1) != std::string::npos))
+    throw UsageError("cdpost series: --labels takes two names separated by one comma, not '" + *given + "'");
+  auto labels = given ? std::array<std::string, 2>{given->substr(0, comma), given->substr(comma + 1)}
+                      : default_labels(options.positional[0], other);
+  for (const auto& label : labels)
+    if (label.empty() || label.find_first_of(",\"\n") != std::string::npos)
+      throw UsageError("cdpost series: a series label must be a non-empty name without commas or quotes, not '" +
+                       label + "' (--labels A,B)");
+  if (labels[0] == labels[1])
+    throw UsageError("cdpost series: both series are labelled '" + labels[0] + "': give --labels A,B");
+  return labels;
+}
+
+int command_compare(const ParsedOptions& options, const SeriesSettings& series, const std::string& other)
+{
+  const auto labels = comparison_labels(options, other);
+  auto out =
+      options.text("out").value_or((std::filesystem::path(series.manifest).parent_path() / "series-compare").string());
+  auto comparison = compare_series(series, other, labels);
+  for (size_t s = 0; s < 2; ++s) print_run_parameters(comparison.series[s], labels[s] + ": ");
+  write_comparison_outputs(comparison, out);
+  std::cout << "compared " << labels[0] << " and " << labels[1] << ": " << out << "/compared_fits.csv, report: " << out
+            << "/report.md\n";
+  print_warnings(comparison_warnings(comparison));
+  return 0;
+}
+
 int command_series(const std::vector<std::string>& arguments)
 {
+  auto specs = analysis_options();
+  specs.insert(specs.end(),
+               {{"compare", "MANIFEST", "analyse this series too, as alone, and compare both"},
+                {"labels", "A,B", "names of the series with --compare (default: the manifests' folders)"}});
   auto options =
-      parse_or_help("cdpost series", "cdpost series MANIFEST.csv [options]", arguments, analysis_options(), 1);
+      parse_or_help("cdpost series", "cdpost series MANIFEST.csv [--compare OTHER.csv] [options]", arguments, specs, 1);
   if (!options) return 0;
   SeriesSettings series;
   series.run = settings_from(*options, "cdpost series");
   series.manifest = options->positional[0];
   series.complete_run = [&](RunSettings& run) { apply_run_parameters(run, *options, "cdpost series"); };
+  if (auto other = options->text("compare")) return command_compare(*options, series, *other);
+  if (options->text("labels")) throw UsageError("cdpost series: --labels names the series of --compare");
   auto out =
       options->text("out").value_or((std::filesystem::path(series.manifest).parent_path() / "series-post").string());
   auto result = analyse_series(series);
-  for (const auto& run : result.runs)
-    if (!run.analysis.settings.parameters.empty())
-      std::cout << run.entry.name << ": parameters: " << run.analysis.settings.parameters << '\n';
+  print_run_parameters(result, "");
   write_series_outputs(result, out);
   std::cout << result.fits.text() << "results: " << out << "/fits.csv, " << out << "/runs.csv, " << out
             << "/residuals.csv, " << out << "/depth_decay.csv, report: " << out << "/report.md\n";

@@ -41,17 +41,20 @@ void write_data_block(std::ostream& out, const std::string& name, const Curve& c
   out << "EOD\n";
 }
 
-// The curve at position `index` of its panel; a LinesBand takes the line type index + 1 for both
-// its band and its line.
+// The curve at position `index` of its panel: its own line type, else (a LinesBand, for both its
+// band and its line) the line type index + 1; other styles take gnuplot's by position.
 std::string plot_clause(const Curve& curve, const std::string& block, size_t index)
 {
   std::string with;
-  const std::string colour = " lt " + std::to_string(index + 1);
+  const std::string colour = " lt " + std::to_string(curve.line_type ? curve.line_type : index + 1);
+  const std::string own_colour = curve.line_type ? colour : "";
+  const std::string point = " pt " + std::to_string(curve.point_type ? curve.point_type : 7);
+  const std::string dash = curve.dashed ? " dt 2" : "";
   switch (curve.style) {
-    case CurveStyle::Points: with = "using 1:2 with points pt 7 ps 1"; break;
-    case CurveStyle::Lines: with = "using 1:2 with lines lw 2"; break;
-    case CurveStyle::LinesPoints: with = "using 1:2 with linespoints pt 7 lw 1.5"; break;
-    case CurveStyle::ErrorBars: with = "using 1:2:3 with yerrorbars pt 7"; break;
+    case CurveStyle::Points: with = "using 1:2 with points" + point + " ps 1" + own_colour; break;
+    case CurveStyle::Lines: with = "using 1:2 with lines lw 2" + own_colour + dash; break;
+    case CurveStyle::LinesPoints: with = "using 1:2 with linespoints" + point + " lw 1.5" + own_colour; break;
+    case CurveStyle::ErrorBars: with = "using 1:2:3 with yerrorbars" + point + own_colour; break;
     case CurveStyle::Circles: with = "using 1:2:3:4 with circles lc palette fs solid 1.0 noborder"; break;
     case CurveStyle::ShadedCircles:
       with = "using 1:2:3:4 with circles lc palette fs transparent solid 0.3 noborder";
@@ -59,7 +62,7 @@ std::string plot_clause(const Curve& curve, const std::string& block, size_t ind
     case CurveStyle::Walls: with = "using 1:2 with lines lw 3 lc rgb 'black'"; break;
     case CurveStyle::LinesBand:
       with = "using 1:($2-$3):($2+$3) with filledcurves fs transparent solid 0.2 noborder" + colour + " notitle, " +
-             block + " using 1:2 with lines lw 2" + colour;
+             block + " using 1:2 with lines lw 2" + colour + dash;
       break;
     case CurveStyle::Map: with = "using 1:2:3 with image"; break;
   }

@@ -22,6 +22,9 @@ struct Curve {
   std::vector<double> y_error;  // ErrorBars, LinesBand
   std::vector<double> radius;   // Circles: radius in x-axis units
   std::vector<double> colour;   // Circles, Map: value mapped on the palette
+  // gnuplot's line type (its colour) and point type; 0: by the curve's position, filled circles.
+  int line_type = 0, point_type = 0;
+  bool dashed = false;  // Lines, LinesBand
 };
 
 struct Panel {

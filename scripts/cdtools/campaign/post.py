@@ -107,6 +107,19 @@ def run_series(analysis, manifest_folder, runs, cdpost, args, out=None):
     return ok
 
 
+def run_comparison(manifests, labels, cdpost, args, out):
+    """cdpost series on the first manifest with --compare the second (the two series side by side,
+    each fitted as alone), labelled `labels`, its outputs and log in `out`. Returns whether it
+    succeeded."""
+    os.makedirs(out, exist_ok=True)
+    cmd = [cdpost, "series", manifests[0], "--compare", manifests[1], "--labels", ",".join(labels),
+           "--out", out] + args.cdpost_option
+    ok, message = run_logged(cmd, os.path.join(out, "cdpost.log"))
+    print(f"comparison {' / '.join(labels)}: cdpost series --compare {'done' if ok else 'failed: ' + message}",
+          flush=True)
+    return ok
+
+
 def postprocess_series(jobs, cdpost, args):
     """cdpost series on every analysis (ANALYSES) that has two analysed runs, from their raw
     outputs (the campaign's own progress view; --report makes the published series)."""

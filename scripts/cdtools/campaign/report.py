@@ -1,6 +1,6 @@
 """results/ from a chute campaign (--report DIR): per run its cdpost results and commands, per
-series the cdpost fits and figures, the replica scatter, the rigid/soft comparisons, and
-README.md.
+series the cdpost fits and figures, the two readings of the 45 d cell side by side, the replica
+scatter, the rigid/soft comparisons, and README.md.
 
 Every finished run is analysed (cdpost run) and published in results/runs/<name>; a run whose
 raw outputs are not here is read back from what an earlier report published there. The series
@@ -25,7 +25,7 @@ from ..text import markdown_table, number, with_error
 from .jobs import read_json
 from .legs import run_cost
 from .plan import ANALYSES, build_jobs, changed_vars, reading
-from .post import postprocess_run, run_series, window_bounds
+from .post import postprocess_run, run_comparison, run_series, window_bounds
 from .schedule import campaign_cdpost
 
 DISCUSSION_BEGIN = "<!-- discussion: kept when the report is regenerated -->"
@@ -35,6 +35,7 @@ DISCUSSION_END = "<!-- end of discussion -->"
 RUN_FILES = ("results.csv", "results.json", "spectrum.csv", "profile.csv", "layers.csv")
 SERIES_FILES = ("*.csv", "*.json", "report.md", "figures/*.png", "figures/*.svg")
 COMPARISON_FILES = ("table.csv", "fits.csv", "report.md", "commands.txt", "figures/*.png", "figures/*.svg")
+READINGS_FILES = ("compared_fits.csv", "report.md", "figures/*.png", "figures/*.svg")
 
 # The per-run columns of the tables: (result name, heading).
 FLOW_COLUMNS = (("U", "U (√(gd))"), ("phi", "φ"), ("h", "h (d)"), ("I", "I"))
@@ -245,28 +246,39 @@ def section_fits(title, folder, prefixes, figures, destination):
     return text
 
 
-# The series analysis of each reading of the 45 d cell (doc/scene.md), in the order shown.
+# The series analysis of each reading of the 45 d cell (doc/scene.md), in the order compared.
 READINGS = (("count", "flow_rules"), ("layer", "layer_flow_rules"))
-# Per-run quantities shown per friction beside the fits: (result name, heading).
+# The comparison's figures shown, and the per-run quantities shown per friction beside its table.
+READING_FIGURES = ("U_vs_theta", "phi_vs_U", "phi_vs_I", "f_vs_scale", "f_vs_shear_rate", "A_vs_phi")
 READING_MEANS = (("h", "h (d)"), ("phi", "φ"), ("creep_lambda", "creep length λ (d)"),
                  ("bagnold_amplitude", "Bagnold a (√(gd)/d^1.5)"))
 
 
-def reading_fits(copied_series, destination):
-    """{reading: its series fits} for the readings whose series analysis exists."""
-    fits = {}
-    for name, analysis in READINGS:
-        folder = copied_series.get(analysis, os.path.join(destination, "series", analysis))
-        if read_fits(folder):
-            fits[name] = read_fits(folder)
-    return fits
+def publish_readings(copied_series, cdpost, args):
+    """results/series/readings/: both readings' series side by side (cdpost series --compare on
+    their published manifests), when both series analyses are published. Returns (its folder,
+    whether the comparison succeeded), or None without both series."""
+    folders = [copied_series.get(analysis, os.path.join(args.report, "series", analysis)) for _, analysis in READINGS]
+    if not all(read_fits(folder) for folder in folders):
+        return None
+    work = os.path.join(args.out, "series", "readings")
+    ok = run_comparison([os.path.join(folder, "manifest.csv") for folder in folders],
+                        [name for name, _ in READINGS], cdpost, args, work)
+    target = os.path.join(args.report, "series", "readings")
+    if ok:
+        copy_matching(work, READINGS_FILES, target)
+    return target, ok
 
 
-def difference_text(a, b):
-    """(b − a) in units of the combined error, '–' where either has no error."""
-    if not (a and b and a[1] and b[1]):
-        return "–"
-    return f"{(b[0] - a[0]) / (a[1] ** 2 + b[1] ** 2) ** 0.5:+.1f}"
+def read_compared_fits(path):
+    """cdpost's compared_fits.csv -> [(name, {reading: (value, error)}, difference in sigma or None, unit)]."""
+    def estimate(row, reading):
+        value, error = row[reading], row[reading + "_error"]
+        return (float(value), float(error) if error else None) if value else None
+    with open(path, newline="") as src:
+        return [(row["name"], {name: estimate(row, name) for name, _ in READINGS},
+                 float(row["difference_sigma"]) if row["difference_sigma"] else None, row["unit"])
+                for row in csv.DictReader(src)]
 
 
 def series_means(records, name):
@@ -278,20 +290,28 @@ def series_means(records, name):
     return {key: (sum(v) / len(v), len(v)) for key, v in groups.items()}
 
 
-def section_readings(records, copied_series, destination):
-    """Both readings of the 45 d cell side by side: every series fit, and the per-friction means
-    of the layer's thickness, packing, creep length and Bagnold amplitude."""
-    fits = reading_fits(copied_series, destination)
-    if len(fits) < 2:
+def section_readings(records, readings, destination):
+    """Both readings of the 45 d cell side by side (publish_readings): every series fit with the
+    difference, the figures, and the per-friction means of the layer's thickness, packing, creep
+    length and Bagnold amplitude."""
+    if readings is None:
         return ""
-    names = [n for n in fits["count"] if n in fits["layer"]]
-    rows = [[n, result_text(fits["count"][n]), result_text(fits["layer"][n]),
-             difference_text(fits["count"][n], fits["layer"][n]), fits["count"][n][2]] for n in names]
-    text = ("## Two readings of the 45 d cell\n\nEvery series fit of the count reading (3967 grains) "
-            "and of the layer reading (3290 grains, a 40–49 d layer; `doc/scene.md`), from "
-            "`series/flow_rules` and `series/layer_flow_rules`; the difference is layer − count in units "
-            "of the combined error.\n\n"
-            + markdown_table(["fit", "count", "layer", "difference (σ)", "unit"], rows) + "\n")
+    folder, ok = readings
+    relative = os.path.relpath(folder, destination)
+    text = "## Two readings of the 45 d cell\n\n"
+    if not ok:
+        return text + ("The comparison of `series/flow_rules` and `series/layer_flow_rules` (cdpost series "
+                       "--compare) failed: its log is `series/readings/cdpost.log` in the campaign folder.\n")
+    rows = [[name, result_text(values["count"]), result_text(values["layer"]),
+             "–" if difference is None else f"{difference:+.1f}", unit]
+            for name, values, difference, unit in read_compared_fits(os.path.join(folder, "compared_fits.csv"))]
+    text += ("Every series fit of the count reading (3967 grains) and of the layer reading (3290 grains, a "
+             "40–49 d layer; `doc/scene.md`), each made by `series/flow_rules` and `series/layer_flow_rules` "
+             f"alone, side by side in [{relative}]({relative}/report.md) (`cdpost series --compare`); the "
+             "difference is layer − count in units of the combined error.\n\n"
+             + markdown_table(["fit", "count", "layer", "difference (σ)", "unit"], rows) + "\n")
+    shown = [f for f in READING_FIGURES if os.path.exists(os.path.join(folder, "figures", f + ".png"))]
+    text += "".join(f"![{f}]({relative}/figures/{f}.png) " for f in shown) + "\n"
     mean_rows = []
     for name, heading in READING_MEANS:
         means = series_means(records, name)
@@ -441,7 +461,7 @@ def section_changes(changes):
             "history of results/.\n\n" + markdown_table(["file", "name", "was", "now"], rows))
 
 
-def write_report(records, copied_series, destination, command, changes):
+def write_report(records, copied_series, readings, destination, command, changes):
     """Writes results/README.md (see the module's docstring); returns its path."""
     pairs = replica_pairs(records)
     readme = os.path.join(destination, "README.md")
@@ -468,7 +488,7 @@ def write_report(records, copied_series, destination, command, changes):
                            "creep length λ of u ∝ exp(z/λ) below the wall tops.", records, PROFILE_COLUMNS),
         section_fits("Cell length", length, ("correlation", "f_vs_L", "A_vs_L", "A_mean_vs_L"), ("L_series",),
                      destination),
-        section_readings(records, copied_series, destination),
+        section_readings(records, readings, destination),
         section_replicas(pairs, replica_scatter(pairs)),
         section_comparisons(destination),
         section_snapshots(records, destination),
@@ -503,9 +523,10 @@ def write_results(args):
         if r.local:
             write_run(r, args.report, changes)
     series = publish_series(records, cdpost, args, changes)
+    readings = publish_readings(series, cdpost, args)
     command = " ".join(shlex.quote(a) for a in ["scripts/chute_campaign.py"] + args.argv)
     publish_comparisons(args.comparison, args.report)
-    readme = write_report(records, series, args.report, command, changes)
+    readme = write_report(records, series, readings, args.report, command, changes)
     for path, entries in sorted(changes.items()):
         print(f"{path}: {len(entries)} published numbers changed, dropped or added (README, 'Changed by this report')",
               flush=True)
