@@ -31,8 +31,9 @@ from .schedule import campaign_cdpost
 DISCUSSION_BEGIN = "<!-- discussion: kept when the report is regenerated -->"
 DISCUSSION_END = "<!-- end of discussion -->"
 
-# Per-run files of cdpost run that results/ keeps (figures: only those the README shows).
-RUN_FILES = ("results.csv", "results.json", "spectrum.csv", "profile.csv", "layers.csv")
+# Per-run files of cdpost run that results/ keeps (figures: the along-cell map and those the README shows).
+RUN_FILES = ("results.csv", "results.json", "spectrum.csv", "profile.csv", "layers.csv", "coherence.csv",
+             "figures/along_cell.png")   # space_time.csv (0.5 MB a run) stays with the raw outputs
 SERIES_FILES = ("*.csv", "*.json", "report.md", "figures/*.png", "figures/*.svg")
 COMPARISON_FILES = ("table.csv", "fits.csv", "report.md", "commands.txt", "figures/*.png", "figures/*.svg")
 READINGS_FILES = ("compared_fits.csv", "report.md", "figures/*.png", "figures/*.svg")
