@@ -19,12 +19,14 @@ namespace cdref {
 
 namespace fs = std::filesystem;
 
-std::optional<double> ComparedRun::wall_per_physical_second() const {
+std::optional<double> ComparedRun::wall_per_physical_second() const
+{
   if (!loop_seconds || !physical_seconds || *physical_seconds <= 0) return std::nullopt;
   return *loop_seconds / *physical_seconds;
 }
 
-std::optional<double> ComparedRun::cpu_per_physical_second() const {
+std::optional<double> ComparedRun::cpu_per_physical_second() const
+{
   auto wall = wall_per_physical_second();
   if (!wall) return std::nullopt;
   if (process_cpu_share) return *wall * std::min(1.0, *process_cpu_share);
@@ -34,7 +36,8 @@ std::optional<double> ComparedRun::cpu_per_physical_second() const {
 
 namespace {
 
-std::string make_label(const ComparedRun& run) {
+std::string make_label(const ComparedRun& run)
+{
   if (run.model == "rigid") {
     auto tolerance = run.info.text("tolerance");
     return "rigid" + (tolerance ? " tol " + *tolerance : std::string());
@@ -47,7 +50,8 @@ std::string make_label(const ComparedRun& run) {
 
 // Chooses the analysis window: the settings' override, else the detected stationary regime,
 // else (flagged) the second half of the run.
-void choose_window(ComparedRun& run, cdpost::RunSettings& s, const Samples& samples) {
+void choose_window(ComparedRun& run, cdpost::RunSettings& s, const Samples& samples)
+{
   if (s.t_start || s.t_end) {
     run.window_note = "given on the command line";
     return;
@@ -58,21 +62,23 @@ void choose_window(ComparedRun& run, cdpost::RunSettings& s, const Samples& samp
   } catch (const cdpost::AnalysisError& e) {
     run.stationary = false;
     s.t_start = samples.time[samples.time.size() / 2];
-    run.window_note = std::string("NOT STATIONARY (") + e.what() + "): analysed over the second half, t >= " +
-                      short_number(*s.t_start);
+    run.window_note = std::string("NOT STATIONARY (") + e.what() +
+                      "): analysed over the second half, t >= " + short_number(*s.t_start);
   }
 }
 
 // The highest bin in [lo, hi] if it is a peak: a bin inside the band, not at one of its ends
 // (the maximum of a spectrum that only falls through the band sits at its lower end).
-std::optional<cdpost::SpectralPeak> band_peak(const cdpost::Spectrum& spectrum, double lo, double hi) {
+std::optional<cdpost::SpectralPeak> band_peak(const cdpost::Spectrum& spectrum, double lo, double hi)
+{
   if (!(lo < hi)) return std::nullopt;
   const auto& f = spectrum.frequency_hz;
   const auto& a = spectrum.amplitude;
   size_t first = static_cast<size_t>(std::lower_bound(f.begin(), f.end(), lo) - f.begin());
   size_t end = static_cast<size_t>(std::upper_bound(f.begin(), f.end(), hi) - f.begin());
   if (end < first + 3) return std::nullopt;
-  size_t top = static_cast<size_t>(std::max_element(a.begin() + static_cast<long>(first), a.begin() + static_cast<long>(end)) - a.begin());
+  size_t top = static_cast<size_t>(
+      std::max_element(a.begin() + static_cast<long>(first), a.begin() + static_cast<long>(end)) - a.begin());
   if (top == first || top == end - 1) return std::nullopt;
   return cdpost::find_peak(spectrum, lo, hi);
 }
@@ -86,7 +92,8 @@ struct BandExcess {
   double ratio = 0;
   double frequency_hz = 0;
 };
-std::optional<BandExcess> band_excess(const cdpost::Spectrum& spectrum, double lo, double hi, double smoothing) {
+std::optional<BandExcess> band_excess(const cdpost::Spectrum& spectrum, double lo, double hi, double smoothing)
+{
   const auto& f = spectrum.frequency_hz;
   const auto& a = spectrum.amplitude;
   std::vector<double> x, y;
@@ -120,7 +127,8 @@ std::optional<BandExcess> band_excess(const cdpost::Spectrum& spectrum, double l
   return best;
 }
 
-void find_band_peaks(ComparedRun& run, const CompareSettings& settings) {
+void find_band_peaks(ComparedRun& run, const CompareSettings& settings)
+{
   const auto& spectrum = run.analysis.spectrum;
   const double nyquist = spectrum.frequency_hz.back();
   const double fmin = run.analysis.settings.peak_fmin_hz;
@@ -134,10 +142,12 @@ void find_band_peaks(ComparedRun& run, const CompareSettings& settings) {
   if (excess->ratio < settings.peak_excess) return;
   // The peak itself: the highest bin within the smoothing bandwidth of the feature.
   const double half = std::max(settings.smoothing * excess->frequency_hz, 2.5 * spectrum.resolution_hz);
-  run.contact_peak = cdpost::find_peak(spectrum, std::max(lo, excess->frequency_hz - half), std::min(hi, excess->frequency_hz + half));
+  run.contact_peak =
+      cdpost::find_peak(spectrum, std::max(lo, excess->frequency_hz - half), std::min(hi, excess->frequency_hz + half));
 }
 
-ComparedRun analyse_one(const std::string& dir, const CompareSettings& settings, std::vector<std::string>& warnings) {
+ComparedRun analyse_one(const std::string& dir, const CompareSettings& settings, std::vector<std::string>& warnings)
+{
   ComparedRun run;
   run.directory = dir;
   if (!fs::is_directory(dir)) throw cdpost::InputError(dir, 0, "not a directory");
@@ -171,7 +181,8 @@ ComparedRun analyse_one(const std::string& dir, const CompareSettings& settings,
   return run;
 }
 
-void make_labels_unique(std::vector<ComparedRun>& runs) {
+void make_labels_unique(std::vector<ComparedRun>& runs)
+{
   std::map<std::string, int> seen;
   for (const auto& r : runs) ++seen[r.label];
   for (auto& r : runs)
@@ -180,7 +191,8 @@ void make_labels_unique(std::vector<ComparedRun>& runs) {
 
 // How the soft runs' peaks move with k: f = c k^n per code and model, for the contact-band
 // peak and the flow-band peak.
-void fit_peak_shifts(Comparison& comparison) {
+void fit_peak_shifts(Comparison& comparison)
+{
   std::map<std::string, std::vector<const ComparedRun*>> groups;
   for (const auto& r : comparison.runs)
     if (r.soft() && r.k_eff_n_per_m) groups[r.code + "_" + r.model].push_back(&r);
@@ -215,7 +227,8 @@ void fit_peak_shifts(Comparison& comparison) {
 
 }  // namespace
 
-Comparison compare_runs(const CompareSettings& settings) {
+Comparison compare_runs(const CompareSettings& settings)
+{
   if (settings.run_dirs.empty()) throw cdpost::AnalysisError("no run directory to compare");
   Comparison comparison;
   for (const auto& dir : settings.run_dirs) {

@@ -17,7 +17,8 @@ using cdpost::Panel;
 
 namespace {
 
-Curve curve(const std::string& title, CurveStyle style, std::vector<double> x, std::vector<double> y) {
+Curve curve(const std::string& title, CurveStyle style, std::vector<double> x, std::vector<double> y)
+{
   Curve c;
   c.title = title;
   c.style = style;
@@ -27,7 +28,8 @@ Curve curve(const std::string& title, CurveStyle style, std::vector<double> x, s
 }
 
 // Spectra of v(t) on log-log axes, with a vertical line at each soft run's contact frequency.
-Figure spectra_figure(const std::vector<const ComparedRun*>& runs, const std::string& name, const std::string& title) {
+Figure spectra_figure(const std::vector<const ComparedRun*>& runs, const std::string& name, const std::string& title)
+{
   Panel panel;
   panel.title = title;
   panel.x_label = "f (Hz)";
@@ -50,12 +52,13 @@ Figure spectra_figure(const std::vector<const ComparedRun*>& runs, const std::st
   if (hi > 0)
     for (const auto* r : runs)
       if (r->f_contact_hz)
-        panel.curves.push_back(curve("f_c " + r->label + " = " + short_number(*r->f_contact_hz) + " Hz", CurveStyle::Lines,
-                                     {*r->f_contact_hz, *r->f_contact_hz}, {lo, hi}));
+        panel.curves.push_back(curve("f_c " + r->label + " = " + short_number(*r->f_contact_hz) + " Hz",
+                                     CurveStyle::Lines, {*r->f_contact_hz, *r->f_contact_hz}, {lo, hi}));
   return {name, title, {panel}, 1200, 650};
 }
 
-Figure peaks_figure(const Comparison& c) {
+Figure peaks_figure(const Comparison& c)
+{
   Panel panel;
   panel.title = "Spectral peaks against stiffness (lines: sqrt(2k/m)/(2 pi); rigid runs drawn flat)";
   panel.x_label = "k / (m g / d)";
@@ -91,7 +94,8 @@ Figure peaks_figure(const Comparison& c) {
   }
   if (k_to_f && kmax > 0) {
     std::vector<double> k{kmin / 2, kmax * 2};
-    panel.curves.push_back(curve("sqrt(2k/m)/(2 pi)", CurveStyle::Lines, k, {*k_to_f * std::sqrt(k[0]), *k_to_f * std::sqrt(k[1])}));
+    panel.curves.push_back(
+        curve("sqrt(2k/m)/(2 pi)", CurveStyle::Lines, k, {*k_to_f * std::sqrt(k[0]), *k_to_f * std::sqrt(k[1])}));
     for (const auto& r : c.runs)
       if (r.model == "rigid" && r.flow_peak)
         panel.curves.push_back(curve(r.label + ": flow-band peak", CurveStyle::Lines, k,
@@ -100,7 +104,8 @@ Figure peaks_figure(const Comparison& c) {
   return {"peaks_vs_k", "Where the spectral peaks sit as k changes", {panel}, 1100, 650};
 }
 
-Figure bulk_figure(const Comparison& c) {
+Figure bulk_figure(const Comparison& c)
+{
   Figure figure{"bulk_vs_k", "U, phi and h of every run against stiffness (rigid runs drawn flat)", {}, 900, 1000};
   const char* names[3] = {"U", "phi", "h"};
   const char* labels[3] = {"U / sqrt(g d)", "phi", "h / d"};
@@ -141,18 +146,22 @@ Figure bulk_figure(const Comparison& c) {
   return figure;
 }
 
-Figure profiles_figure(const Comparison& c) {
+Figure profiles_figure(const Comparison& c)
+{
   Panel panel;
   panel.title = "Velocity profiles u(z) over each run's window";
   panel.x_label = "u / sqrt(g d)";
   panel.y_label = "z / d";
   panel.key = "outside right top";
   for (const auto& r : c.runs)
-    if (r.analysis.profile) panel.curves.push_back(curve(r.label, CurveStyle::LinesPoints, r.analysis.profile->u_reduced, r.analysis.profile->z_d));
+    if (r.analysis.profile)
+      panel.curves.push_back(
+          curve(r.label, CurveStyle::LinesPoints, r.analysis.profile->u_reduced, r.analysis.profile->z_d));
   return {"profiles", "u(z) of every run", {panel}, 1100, 700};
 }
 
-Figure u_t_figure(const Comparison& c) {
+Figure u_t_figure(const Comparison& c)
+{
   Panel panel;
   panel.title = "U(t): mean x-velocity of the grains with z > 0";
   panel.x_label = "t / sqrt(d/g)";
@@ -172,7 +181,8 @@ Figure u_t_figure(const Comparison& c) {
   return {"u_t", "U(t) of every run", {panel}, 1100, 600};
 }
 
-Figure cost_figure(const Comparison& c) {
+Figure cost_figure(const Comparison& c)
+{
   Panel panel;
   panel.title = "Cost per physical second: wall time, and wall time x the process's CPU share (rigid: flat lines)";
   panel.x_label = "k / (m g / d)";
@@ -194,7 +204,9 @@ Figure cost_figure(const Comparison& c) {
       auto cost = (r.*cost_of)();
       if (!cost) continue;
       if (!r.k_reduced) {
-        if (kmax > 0) panel.curves.push_back(curve(r.label + " " + metric, CurveStyle::Lines, {kmin / 2, kmax * 2}, {*cost, *cost}));
+        if (kmax > 0)
+          panel.curves.push_back(
+              curve(r.label + " " + metric, CurveStyle::Lines, {kmin / 2, kmax * 2}, {*cost, *cost}));
         continue;
       }
       groups[code_name(r.code) + " " + r.model].push_back({*r.k_reduced, *cost});
@@ -222,7 +234,8 @@ std::vector<Figure> comparison_figures(const Comparison& comparison)
     all.push_back(&r);
     if (r.model != "rigid") by_code[r.code].push_back(&r);
   }
-  std::vector<Figure> figures{spectra_figure(all, "spectra", "Spectra of v(t), every run (vertical lines: contact frequencies)")};
+  std::vector<Figure> figures{
+      spectra_figure(all, "spectra", "Spectra of v(t), every run (vertical lines: contact frequencies)")};
   for (auto& [code, runs] : by_code) {
     std::vector<const ComparedRun*> with_rigid;
     for (const auto& r : comparison.runs)

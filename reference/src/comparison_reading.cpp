@@ -12,7 +12,8 @@ namespace cdref {
 
 namespace fs = std::filesystem;
 
-Samples read_samples(const cdpost::RunSettings& s) {
+Samples read_samples(const cdpost::RunSettings& s)
+{
   auto table = cdpost::read_ave_time((fs::path(s.directory) / s.columns.time_file).string());
   Samples samples;
   samples.timestep = table.column(s.columns.timestep);
@@ -29,14 +30,16 @@ Samples read_samples(const cdpost::RunSettings& s) {
 
 namespace {
 
-std::optional<std::string> find_log(const std::string& dir) {
+std::optional<std::string> find_log(const std::string& dir)
+{
   for (const char* name : {"log.lammps", "log.liggghts", "log.cd"})
     if (fs::exists(fs::path(dir) / name)) return (fs::path(dir) / name).string();
   return std::nullopt;
 }
 
 // (user + sys)/wall of a process from run_comparison.sh's timing.txt ("wall user sys").
-std::optional<double> process_share(const fs::path& dir) {
+std::optional<double> process_share(const fs::path& dir)
+{
   const auto timing = dir / "timing.txt";
   if (!fs::exists(timing)) return std::nullopt;
   cdpost::LineSource source(timing.string());
@@ -52,14 +55,16 @@ std::optional<double> process_share(const fs::path& dir) {
 
 }  // namespace
 
-void read_cost(ComparedRun& run, const Samples& samples, double time_unit_s, std::vector<std::string>& warnings) {
+void read_cost(ComparedRun& run, const Samples& samples, double time_unit_s, std::vector<std::string>& warnings)
+{
   if (samples.timestep.size() < 2) return;
-  const double seconds_per_step = (samples.time.back() - samples.time.front()) /
-                                  (samples.timestep.back() - samples.timestep.front()) * time_unit_s;
+  const double seconds_per_step =
+      (samples.time.back() - samples.time.front()) / (samples.timestep.back() - samples.timestep.front()) * time_unit_s;
   double wall = 0, cpu = 0, physical = 0;
   bool cpu_known = true;
   for (int part = 1;; ++part) {
-    const fs::path dir = part == 1 ? fs::path(run.directory) : fs::path(run.directory) / ("part" + std::to_string(part));
+    const fs::path dir =
+        part == 1 ? fs::path(run.directory) : fs::path(run.directory) / ("part" + std::to_string(part));
     if (part > 1 && !fs::is_directory(dir)) break;
     auto log = find_log(dir.string());
     auto loops = log ? read_loop_times(*log) : std::vector<LoopTime>{};
@@ -72,10 +77,8 @@ void read_cost(ComparedRun& run, const Samples& samples, double time_unit_s, std
     physical += flow.steps * seconds_per_step;
     auto share = process_share(dir);
     if (!share && flow.cpu_percent) share = std::min(1.0, *flow.cpu_percent / 100);
-    if (share)
-      cpu += flow.seconds * *share;
-    else
-      cpu_known = false;
+    if (share) cpu += flow.seconds * *share;
+    else cpu_known = false;
     if (part == 1) run.cpu_percent = flow.cpu_percent;
   }
   run.loop_seconds = wall;
@@ -83,8 +86,9 @@ void read_cost(ComparedRun& run, const Samples& samples, double time_unit_s, std
   if (cpu_known && wall > 0) run.process_cpu_share = cpu / wall;
 }
 
-void read_overlaps(ComparedRun& run, const CompareSettings& settings, const cdpost::RunSettings& s, const Samples& samples,
-                   std::vector<std::string>& warnings) {
+void read_overlaps(ComparedRun& run, const CompareSettings& settings, const cdpost::RunSettings& s,
+                   const Samples& samples, std::vector<std::string>& warnings)
+{
   const auto dump = fs::path(run.directory) / settings.dump_name;
   if (!fs::exists(dump)) {
     warnings.push_back(run.label + ": no " + settings.dump_name + ": overlaps not measured");

@@ -21,7 +21,7 @@ Samples read_samples(const cdpost::RunSettings& s);
 void read_cost(ComparedRun& run, const Samples& samples, double time_unit_s, std::vector<std::string>& warnings);
 
 // The overlaps of the dump frames inside the run's analysis window (a warning when there is no dump).
-void read_overlaps(ComparedRun& run, const CompareSettings& settings, const cdpost::RunSettings& s, const Samples& samples,
-                   std::vector<std::string>& warnings);
+void read_overlaps(ComparedRun& run, const CompareSettings& settings, const cdpost::RunSettings& s,
+                   const Samples& samples, std::vector<std::string>& warnings);
 
 }  // namespace cdref
