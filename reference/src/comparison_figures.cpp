@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <string>
+#include <utility>
 
 #include "comparison_tables.h"
 
@@ -104,17 +105,25 @@ Figure peaks_figure(const Comparison& c)
   return {"peaks_vs_k", "Where the spectral peaks sit as k changes", {panel}, 1100, 650};
 }
 
-Figure bulk_figure(const Comparison& c)
+// The smallest and largest reduced stiffness of the runs that have one (INFINITY and 0 when none
+// has): flat lines of runs without k are drawn over [kmin / 2, 2 kmax].
+std::pair<double, double> k_span(const Comparison& c)
 {
-  Figure figure{"bulk_vs_k", "U, phi and h of every run against stiffness (rigid runs drawn flat)", {}, 900, 1000};
-  const char* names[3] = {"U", "phi", "h"};
-  const char* labels[3] = {"U / sqrt(g d)", "phi", "h / d"};
   double kmin = INFINITY, kmax = 0;
   for (const auto& r : c.runs)
     if (r.k_reduced) {
       kmin = std::min(kmin, *r.k_reduced);
       kmax = std::max(kmax, *r.k_reduced);
     }
+  return {kmin, kmax};
+}
+
+Figure bulk_figure(const Comparison& c)
+{
+  Figure figure{"bulk_vs_k", "U, phi and h of every run against stiffness (rigid runs drawn flat)", {}, 900, 1000};
+  const char* names[3] = {"U", "phi", "h"};
+  const char* labels[3] = {"U / sqrt(g d)", "phi", "h / d"};
+  const auto [kmin, kmax] = k_span(c);
   if (!(kmax > 0)) return figure;
   for (int i = 0; i < 3; ++i) {
     Panel p;
@@ -189,12 +198,7 @@ Figure cost_figure(const Comparison& c)
   panel.y_label = "s / physical s";
   panel.log_x = panel.log_y = true;
   panel.key = "outside right top";
-  double kmin = INFINITY, kmax = 0;
-  for (const auto& r : c.runs)
-    if (r.k_reduced) {
-      kmin = std::min(kmin, *r.k_reduced);
-      kmax = std::max(kmax, *r.k_reduced);
-    }
+  const auto [kmin, kmax] = k_span(c);
   using Metric = std::optional<double> (ComparedRun::*)() const;
   const std::pair<const char*, Metric> metrics[2] = {{"wall", &ComparedRun::wall_per_physical_second},
                                                      {"CPU", &ComparedRun::cpu_per_physical_second}};
