@@ -1,9 +1,13 @@
 #include "fix_contact_dynamics.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <string>
+#include <utility>
 
 #include "atom.h"
 #include "comm.h"
@@ -35,6 +39,9 @@ constexpr double uniform_ratio_tolerance = 1.0e-6;
 // Default alert distance, in mean diameters: pairs this close are solved even when their free
 // motion does not close them (see cd::is_candidate).
 constexpr double default_alert_fraction = 0.01;
+// Largest max_contacts: each atom carries 1 + 3 max_contacts doubles. A disk of radius R touches
+// at most pi / asin(r / (R + r)) disks of radius r: about 300 at a size ratio R/r of 100.
+constexpr int max_contacts_limit = 1000;
 // Overlaps deeper than this, in mean diameters, at the start of a run are reported.
 constexpr double initial_overlap_warning = 0.01;
 // Subdomains narrower than this many contact cutoffs are reported: there every grain is a
@@ -108,19 +115,51 @@ int FixContactDynamics::setmask()
 
 namespace {
 
+// The whole of `text` as a finite number; anything else (trailing characters, overflow,
+// underflow) is refused naming the keyword.
 double number_for(const char* keyword, const char* text, Error* error)
 {
-  if (!utils::is_double(text)) error->all(FLERR, "Fix contact/dynamics: {} expects a number, got '{}'", keyword, text);
-  const double value = std::stod(text);
-  if (!std::isfinite(value)) error->all(FLERR, "Fix contact/dynamics: {} must be finite, got '{}'", keyword, text);
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(text, &end);
+  if (end == text || *end != '\0' || !utils::is_double(text))
+    error->all(FLERR, "Fix contact/dynamics: {} expects a number, got '{}'", keyword, text);
+  if (errno == ERANGE || !std::isfinite(value))
+    error->all(FLERR, "Fix contact/dynamics: {} '{}' is outside the range of a double", keyword, text);
   return value;
 }
 
+// The whole of `text` as an int.
 int integer_for(const char* keyword, const char* text, Error* error)
 {
-  if (!utils::is_integer(text))
+  char* end = nullptr;
+  errno = 0;
+  const long value = std::strtol(text, &end, 10);
+  if (end == text || *end != '\0' || !utils::is_integer(text))
     error->all(FLERR, "Fix contact/dynamics: {} expects an integer, got '{}'", keyword, text);
-  return std::stoi(text);
+  if (errno == ERANGE || value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max())
+    error->all(FLERR, "Fix contact/dynamics: {} must fit an int, got '{}'", keyword, text);
+  return static_cast<int>(value);
+}
+
+// An atom type or a range of them, as LAMMPS writes it (N, *, *N, N*, M*N), within 1..ntypes.
+std::pair<int, int> type_range_for(const char* keyword, const std::string& text, int ntypes, Error* error)
+{
+  const std::size_t star = text.find('*');
+  auto bound = [&](const std::string& part, int open_end) {
+    return part.empty() ? open_end : integer_for(keyword, part.c_str(), error);
+  };
+  int low, high;
+  if (star == std::string::npos) {
+    low = high = integer_for(keyword, text.c_str(), error);
+  } else {
+    low = bound(text.substr(0, star), 1);
+    high = bound(text.substr(star + 1), ntypes);
+  }
+  if (low < 1 || high > ntypes || low > high)
+    error->all(FLERR, "Fix contact/dynamics: {} type '{}' is not a type or range of types within 1-{}", keyword, text,
+               ntypes);
+  return {low, high};
 }
 
 void require_values(const char* keyword, int iarg, int count, int narg, Error* error)
@@ -228,7 +267,9 @@ void FixContactDynamics::parse_arguments(int narg, char** arg)
       pair_forces = yes_or_no("pair_forces", value, error);
     } else if (keyword == "max_contacts") {
       max_contacts = integer_for("max_contacts", value, error);
-      if (max_contacts < 1) error->all(FLERR, "Fix contact/dynamics: max_contacts must be >= 1, got {}", max_contacts);
+      if (max_contacts < 1 || max_contacts > max_contacts_limit)
+        error->all(FLERR, "Fix contact/dynamics: max_contacts must be in [1,{}], got {}", max_contacts_limit,
+                   max_contacts);
     } else if (keyword == "alert") {
       alert_distance = number_for("alert", value, error);
       alert_given = true;
@@ -268,9 +309,8 @@ void FixContactDynamics::parse_arguments(int narg, char** arg)
 void FixContactDynamics::parse_type_law(const char* keyword, int iarg, int narg, char** arg, bool friction)
 {
   require_values(keyword, iarg, 3, narg, error);
-  int ilo, ihi, jlo, jhi;
-  utils::bounds(FLERR, arg[iarg + 1], 1, law_types, ilo, ihi, error);
-  utils::bounds(FLERR, arg[iarg + 2], 1, law_types, jlo, jhi, error);
+  const auto [ilo, ihi] = type_range_for(keyword, arg[iarg + 1], law_types, error);
+  const auto [jlo, jhi] = type_range_for(keyword, arg[iarg + 2], law_types, error);
   const double value = number_for(keyword, arg[iarg + 3], error);
   if (friction) check_friction(keyword, value, error);
   else check_restitution(keyword, value, error);
@@ -336,7 +376,8 @@ void FixContactDynamics::init()
   if (!comm->ghost_velocity)
     error->all(FLERR, "Fix contact/dynamics requires ghost velocities: use comm_modify vel yes");
   if (atom->map_style == Atom::MAP_NONE)
-    error->all(FLERR, "Fix contact/dynamics requires an atom map: use atom_modify map array");
+    error->all(FLERR, "Fix contact/dynamics requires an atom map: use atom_modify map hash");
+  check_insertion_map();
   // The per-step displacement limit (half the skin) keeps every contact in the list only if
   // the list is rebuilt as soon as a grain has moved that far.
   if (neighbor->every != 1 || neighbor->delay != 0 || !neighbor->dist_check)
@@ -391,6 +432,22 @@ void FixContactDynamics::request_neighbor_list()
 void FixContactDynamics::init_list(int, NeighList* ptr)
 {
   list = ptr;
+}
+
+// fix pour in this LAMMPS (29 Sep 2021) resizes the atom map after an insertion step only when
+// the last grain it tried fitted: a step that places fewer grains than it asked for (a crowded
+// insertion region) leaves an array map too short for the new atom IDs, and Atom::map_set
+// writes past its end (a segmentation fault). A hash map grows by itself; `map yes` is an array
+// below a million atom IDs.
+void FixContactDynamics::check_insertion_map()
+{
+  if (atom->map_style == Atom::MAP_HASH) return;
+  for (int f = 0; f < modify->nfix; f++)
+    if (utils::strmatch(modify->fix[f]->style, "^pour"))
+      error->all(FLERR,
+                 "Fix contact/dynamics: fix {} (pour) crashes this LAMMPS with an array atom map (map array "
+                 "or yes) when an insertion falls short; use atom_modify map hash",
+                 modify->fix[f]->id);
 }
 
 void FixContactDynamics::check_integrators()

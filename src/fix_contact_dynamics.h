@@ -159,6 +159,7 @@ class FixContactDynamics : public Fix {
   void parse_arguments(int narg, char** arg);
   int parse_wall(int iarg, int narg, char** arg);
   void parse_type_law(const char* keyword, int iarg, int narg, char** arg, bool friction);
+  void check_insertion_map();
   void check_integrators();
   void check_pair_style();
   void survey_group();

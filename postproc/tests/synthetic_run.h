@@ -1,10 +1,12 @@
 // A synthetic run directory in the layout the chute decks write (SI units), with known
-// U, phi, h, oscillation frequency and amplitude, Bagnold profile and creep length.
+// U, phi, h, oscillation frequency and amplitude, Bagnold profile and creep length, and a packing
+// profile of known bulk phi and half-height.
 #pragma once
 
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -26,8 +28,13 @@ struct SyntheticRun {
   double amplitude = 0.2;     // sqrt(g d)
   double noise = 0.3;         // sqrt(g d), white noise on v(t)
   double creep_lambda = 3.0;  // d
+  double phi_bed = 0.82;      // packing below the wall tops
+  double phi_bulk = 0.80;     // packing of the layer's bulk, falling to half of it at z = h
+  double tail_width = 2.0;    // d, width of the dilute surface: phi = phi_bulk erfc((z - h)/w)/2
   unsigned seed = 1;
+  double y_top = 0;  // m: height of the wall tops, z = y - y_top
   bool with_chunks_and_dump = true;
+  bool with_record = true;  // chute.params, as inputs/in.chute writes it
 
   double v0() const { return std::sqrt(g * d); }
   double u_of_t(double t) const { return u_final * (1 - std::exp(-t / relaxation)); }
@@ -38,6 +45,8 @@ struct SyntheticRun {
     if (z < 0) return slip * std::exp(z / creep_lambda);
     return slip + (surface - slip) * (std::pow(h, 1.5) - std::pow(h - std::min(z, h), 1.5)) / std::pow(h, 1.5);
   }
+  // Antisymmetric about z = h: on bins centred h ± 0.5 d, linear interpolation finds h exactly.
+  double phi_of_z(double z) const { return z < 0 ? phi_bed : 0.5 * phi_bulk * std::erfc((z - h) / tail_width); }
 };
 
 inline void write_synthetic_run(const std::filesystem::path& dir, const SyntheticRun& run)
@@ -57,6 +66,13 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const Syntheti
   }
   write_file(dir / "flow.time",
              ave_time_text({"TimeStep", "v_time", "v_u_all", "v_u_flow", "v_v_flow", "v_phi_flow", "v_h"}, rows));
+  if (run.with_record) {
+    std::ostringstream record;
+    record << "# inputs/in.chute: chute parameters, one name and value a line (SI)\ny_top_m " << run.y_top
+           << "\nsample_rate_hz " << 1 / (run.dt * run.output_every) << "\nd_m " << run.d << "\ng_mps2 " << run.g
+           << "\ntheta_deg 24\n";
+    write_file(dir / "chute.params", record.str());
+  }
   if (!run.with_chunks_and_dump) return;
 
   std::vector<long> profile_steps;
@@ -67,17 +83,25 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const Syntheti
              ave_chunk_text({"Coord1", "Ncount", "vx"}, profile_steps, bins, [&](size_t, size_t bin, size_t column) {
                const double z = z_of(bin);
                const bool occupied = z < run.h;
-               if (column == 0) return z * run.d;
+               if (column == 0) return z * run.d + run.y_top;
                if (column == 1) return occupied ? 20.0 : 0.0;
                return occupied ? run.u_of_z(z) * v0 * std::exp(0.02 * gauss(rng)) : 0.0;
              }));
+
+  write_file(dir / "packing.chunk", ave_chunk_text({"Coord1", "Ncount", "v_phi_of_grain"}, profile_steps, bins,
+                                                   [&](size_t, size_t bin, size_t column) {
+                                                     const double z = z_of(bin);
+                                                     if (column == 0) return z * run.d;
+                                                     if (column == 1) return z < run.h ? 20.0 : 0.0;
+                                                     return run.phi_of_z(z);
+                                                   }));
 
   std::vector<long> layer_steps;
   for (long step = run.output_every; step <= steps; step += run.output_every) layer_steps.push_back(step);
   write_file(dir / "layers.chunk",
              ave_chunk_text({"Coord1", "Ncount", "vy"}, layer_steps, 6, [&](size_t block, size_t layer, size_t column) {
                const double z = -5.0 + 10.0 * layer;  // -5 ... 45 d; the top layer is empty
-               if (column == 0) return z * run.d;
+               if (column == 0) return z * run.d + run.y_top;
                if (column == 1) return z < run.h ? 30.0 : 0.0;
                if (z >= run.h) return 0.0;
                const double t = layer_steps[block] * run.dt;
@@ -88,10 +112,10 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const Syntheti
   std::vector<DumpAtom> atoms;
   for (long id = 1; id <= 300; ++id) {
     const double x = (id % 30 + 0.5) * run.d * 1.5, z = ((id / 30) - 3.0) * run.d * 1.5;
-    atoms.push_back({id, x, z, run.u_of_z(z / run.d) * v0, 0, 0.5 * run.d});
+    atoms.push_back({id, x, z + run.y_top, run.u_of_z(z / run.d) * v0, 0, 0.5 * run.d});
   }
-  write_gzip(dir / "dump.chute.gz",
-             dump_frame_text(0, 45 * run.d, 60 * run.d, atoms) + dump_frame_text(steps, 45 * run.d, 60 * run.d, atoms));
+  write_gzip(dir / "dump.chute.gz", dump_frame_text(0, 45 * run.d, 60 * run.d + run.y_top, atoms) +
+                                        dump_frame_text(steps, 45 * run.d, 60 * run.d + run.y_top, atoms));
 }
 
 }  // namespace cdpost::testing

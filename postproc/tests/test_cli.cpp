@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -34,6 +35,8 @@ Outcome cdpost(const std::string& arguments)
   int status = std::system(command.c_str());
   return {WEXITSTATUS(status), slurp(dir / "out.txt"), slurp(dir / "err.txt")};
 }
+
+std::map<std::string, double> csv_values(const std::filesystem::path& csv);
 
 size_t line_count(const std::string& text)
 {
@@ -113,6 +116,117 @@ TEST(Cli, RunWritesResultsFiguresAndReport)
     EXPECT_TRUE(std::filesystem::exists(dir / "post/figures" / (std::string(figure) + ".svg"))) << figure;
     EXPECT_NE(slurp(dir / "post/report.md").find("figures/" + std::string(figure) + ".png"), std::string::npos);
   }
+}
+
+// A run whose wall tops stand 10 d above the floor: its chute.params gives z0, the sample rate,
+// d and g. u(z) is Bagnold above z = 0 on a slip of 0.3 sqrt(g d) and u0 exp(z/3 d) below, with
+// u0 = the slip; measured from the floor (z0 = 0) every bin sits 10 d too high and the creep
+// fit reads u0 = 0.3 exp(-10/3) instead.
+constexpr double kWallTopsD = 10;
+
+std::filesystem::path run_with_wall_tops(const std::string& name, testing::SyntheticRun& truth)
+{
+  auto dir = testing::scratch_dir() / name;
+  truth.duration = 4.0;
+  truth.y_top = kWallTopsD * truth.d;
+  testing::write_synthetic_run(dir, truth);
+  return dir;
+}
+
+TEST(Cli, RunTakesTheWallTopsAndSampleRateFromTheRunFolder)
+{
+  testing::SyntheticRun truth;
+  auto dir = run_with_wall_tops("run", truth);
+  auto outcome = cdpost("run " + dir.string() + " --dump " + (dir / "dump.chute.gz").string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const std::string said =
+      "parameters: z0 0.005 m, sample rate 1000 Hz, d 0.0005 m, g 9.81 m/s^2 from " + (dir / "chute.params").string();
+  EXPECT_EQ(outcome.out.substr(0, outcome.out.find('\n')), said);
+  EXPECT_NE(slurp(dir / "post/report.md").find("Parameters: z0 0.005 m, sample rate 1000 Hz"), std::string::npos);
+  const auto values = csv_values(dir / "post/results.csv");
+  // Profile bins carry 2 % noise: the fitted u0 within 5 % of the slip.
+  EXPECT_NEAR(values.at("creep_u0"), 0.3, 0.05 * 0.3);
+  EXPECT_NEAR(values.at("creep_lambda"), truth.creep_lambda, 0.1 * truth.creep_lambda);
+  EXPECT_GT(values.at("bagnold_r2"), 0.99);
+
+  // The command line wins over the record, and says so.
+  outcome = cdpost("run " + dir.string() + " --z0 0 --sample-rate 500 --out " + (dir / "floor").string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_EQ(outcome.out.substr(0, outcome.out.find('\n')),
+            "parameters: z0 0 m from --z0; sample rate 500 Hz from --sample-rate; d 0.0005 m, g 9.81 m/s^2 from " +
+                (dir / "chute.params").string());
+  EXPECT_NEAR(csv_value(dir / "floor/results.csv", "creep_u0"), 0.3 * std::exp(-kWallTopsD / truth.creep_lambda),
+              0.05 * 0.3 * std::exp(-kWallTopsD / truth.creep_lambda));
+
+  // A dump's snapshot takes the wall tops from the record beside it.
+  outcome = cdpost("snapshot " + (dir / "dump.chute.gz").string() + " --out " + (dir / "snap").string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_EQ(outcome.out.rfind("parameters: z0 0.005 m,", 0), 0u) << outcome.out;
+}
+
+TEST(Cli, RunFolderRecordingNothingNeedsZ0)
+{
+  testing::SyntheticRun truth;
+  truth.with_record = false;
+  auto dir = run_with_wall_tops("run", truth);
+  auto refused = cdpost("run " + dir.string());
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_EQ(refused.err, "cdpost: error: " + dir.string() +
+                             ": no chute.params (inputs/in.chute writes it): give --z0, the height of the wall tops "
+                             "that z is measured from\n");
+  EXPECT_FALSE(std::filesystem::exists(dir / "post"));
+
+  auto given = cdpost("run " + dir.string() + " --z0 0.005");
+  ASSERT_EQ(given.status, 0) << given.err;
+  EXPECT_EQ(given.out.substr(0, given.out.find('\n')),
+            "parameters: z0 0.005 m from --z0; sample rate none given or recorded (the time file's longest "
+            "interval); d 0.0005 m, g 9.81 m/s^2 by default");
+  EXPECT_NEAR(csv_value(dir / "post/results.csv", "creep_u0"), 0.3, 0.05 * 0.3);
+
+  // A series reads each run's record: the same folder in a manifest fails on its line.
+  std::ofstream(dir.parent_path() / "series.csv") << "run,mu,theta\nrun,0.5,24\n";
+  auto series = cdpost("series " + (dir.parent_path() / "series.csv").string());
+  EXPECT_EQ(series.status, 1);
+  EXPECT_NE(series.err.find("series.csv:2: run failed: " + dir.string() + ": no chute.params"), std::string::npos)
+      << series.err;
+  EXPECT_NE(series.err.find("give --z0"), std::string::npos) << series.err;
+  EXPECT_EQ(line_count(series.err), 1u) << series.err;
+
+  testing::write_file(dir / "chute.params", "y_top_m 0.005\nsample_rate_hz fast\n");
+  auto malformed = cdpost("run " + dir.string());
+  EXPECT_EQ(malformed.err,
+            "cdpost: error: " + (dir / "chute.params").string() + ":2: bad number 'fast' for sample_rate_hz\n");
+}
+
+// U(t) relaxes as 1 - exp(-t / 0.4 s): a window from t = 0 drifts by most of U, one from 2.5 s
+// by 10 exp(-6.25) = 0.02 sqrt(g d) of 10, well within 2 %.
+TEST(Cli, ForcedWindowThatDriftsIsLabelledEverywhere)
+{
+  testing::SyntheticRun truth;
+  auto dir = run_with_wall_tops("run", truth);
+  auto outcome = cdpost("run " + dir.string() + " --t-start 0");
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_EQ(line_count(outcome.err), 1u) << outcome.err;
+  EXPECT_EQ(outcome.err.rfind("cdpost: warning: the window t = 0.001 to ", 0), 0u) << outcome.err;
+  EXPECT_NE(outcome.err.find(" sqrt(d/g)) is not stationary: U drifts by "), std::string::npos) << outcome.err;
+  EXPECT_NE(outcome.err.find("above the 2% the stationarity test allows (--max-drift)"), std::string::npos);
+  const auto json = slurp(dir / "post/results.json");
+  EXPECT_NE(json.find("\"warnings\": [\"the window t = 0.001 to "), std::string::npos) << json;
+  const auto report = slurp(dir / "post/report.md");
+  EXPECT_NE(report.find("Window given on the command line, not stationary: U drifts by"), std::string::npos);
+  EXPECT_NE(report.find("*Spectrum of v(t) over the window (not stationary)*"), std::string::npos);
+  EXPECT_NE(report.find("## Warnings\n\n- the window t = 0.001 to "), std::string::npos);
+  EXPECT_EQ(report.find("stationary window"), std::string::npos);
+  EXPECT_NE(slurp(dir / "post/figures/u_t.gp").find("shaded: window (not stationary)"), std::string::npos);
+  EXPECT_NE(slurp(dir / "post/results.csv").find("start of the given window (not stationary)"), std::string::npos);
+
+  outcome = cdpost("run " + dir.string() + " --t-start 2.5 --out " + (dir / "late").string());
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_EQ(outcome.err, "");
+  EXPECT_LT(csv_value(dir / "late/results.csv", "stationary_drift"), 0.02);
+  EXPECT_NE(slurp(dir / "late/report.md").find("Stationary window given on the command line, U drifts by"),
+            std::string::npos);
+  EXPECT_NE(slurp(dir / "late/figures/u_t.gp").find("shaded: stationary window"), std::string::npos);
 }
 
 TEST(Cli, BrokenInputGivesOneLineNamingFileAndLine)
@@ -199,8 +313,31 @@ TEST(Cli, SeriesRecoversTheFlowRulesAndScalings)
   EXPECT_EQ(slurp(fits).find("pouliquen_betafree_beta_mu"), std::string::npos);
   EXPECT_NE(slurp(dir / "post/fits.json").find("mu = 0.5: no stopped run, so beta and l are not determined separately"),
             std::string::npos);
-  // Residuals: 10 runs in each of pouliquen, pouliquen_betafree, muI and phi_U, plus the header.
-  EXPECT_EQ(line_count(slurp(dir / "post/residuals.csv")), 41u);
+  // Residuals: 10 runs in each of pouliquen, pouliquen_betafree, muI, phi_U and phi_I, plus the header;
+  // no packing reading, since these runs have no packing.chunk.
+  EXPECT_EQ(line_count(slurp(dir / "post/residuals.csv")), 51u);
+  EXPECT_NE(slurp(dir / "post/fits.json").find("no run has I_packing"), std::string::npos);
+  // phi = phi_c - 0.002 U is phi_c - 0.002 h^1.5 I at the runs' h.
+  const double h15 = std::pow(testing::SyntheticRun{}.h, 1.5);
+  EXPECT_NEAR(csv_value(fits, "phiI_k"), 0.002 * h15, 0.0003 * h15);
+  // I0 and theta2 trade off; held at 0.1 ... 0.5, the rms residual is smallest at the true 0.3.
+  EXPECT_GT(csv_value(fits, "muI_corr_I0_theta2_mu0.5"), 0.9);
+  std::map<double, double> rms_of_held;
+  std::istringstream held(slurp(dir / "post/held_fits.csv"));
+  std::string row;
+  std::getline(held, row);
+  EXPECT_EQ(row.rfind("reading,rule,held_parameter,held_value,mu,", 0), 0u) << row;
+  while (std::getline(held, row))
+    if (row.rfind("surface,muI,I0,", 0) == 0) {
+      std::vector<std::string> fields;
+      std::istringstream cells(row);
+      for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
+      rms_of_held[std::stod(fields[3])] = std::stod(fields[9]);
+    }
+  ASSERT_EQ(rms_of_held.size(), 6u);
+  auto best = std::min_element(rms_of_held.begin(), rms_of_held.end(),
+                               [](const auto& a, const auto& b) { return a.second < b.second; });
+  EXPECT_EQ(best->first, 0.3);
   EXPECT_GT(csv_value(fits, "muI_rms_residual"), 0);
   // Significance overall and per friction (5 runs each).
   EXPECT_EQ(csv_value(fits, "f_vs_scale_n"), 10);
@@ -291,7 +428,13 @@ TEST(Cli, SeriesWithStoppedRunsFitsBetaAndTheDepthDecay)
   EXPECT_EQ(line_count(slurp(dir / "post/runs.csv")), 8u);
   const auto residuals = slurp(dir / "post/residuals.csv");
   EXPECT_NE(residuals.find("\nstopped21.5,0.5,21.5,pouliquen_betafree,tan_theta,"), std::string::npos) << residuals;
-  EXPECT_EQ(line_count(residuals), 1u + 5 + 8 + 7 + 7);  // pouliquen, betafree (5 + 3) at mu 0.5; muI, phi_U over all
+  // Surface reading: pouliquen, betafree (5 + 3) at mu 0.5; muI, phi_U, phi_I over all. Packing reading (the
+  // runs have packing.chunk): the same but betafree.
+  EXPECT_EQ(line_count(residuals), 1u + (5 + 8 + 7 + 7 + 7) + (5 + 7 + 7 + 7));
+  // Both readings see h = 40 d (2 <z> and the half height of phi(z)): the same rule at fixed beta.
+  EXPECT_NEAR(csv_value(fits, "packing_pouliquen_ell_mu0.5"), csv_value(fits, "pouliquen_ell_mu0.5"),
+              0.03 * csv_value(fits, "pouliquen_ell_mu0.5"));
+  EXPECT_NEAR(csv_value(fits, "packing_phi_c_mu0.5"), testing::SyntheticRun{}.phi_bulk, 1e-6);
   EXPECT_EQ(line_count(slurp(dir / "post/layer_amplitudes.csv")), 1u + 7 * 5);  // 5 filled layers per run
   const auto json = slurp(dir / "post/fits.json");
   EXPECT_NE(json.find("correlation of A with U (mu = 2): 2 runs, no correlation or p-value (they need 3)"),
@@ -389,6 +532,8 @@ TEST(Cli, SeriesFromPublishedRunsGivesTheSameFits)
     manifest << row << "\n";
   }
   manifest.close();
+  // The runs have packing.chunk: their published profile.csv carries phi(z), read back for the packing reading.
+  EXPECT_EQ(slurp(dir / "published/run1/profile.csv").rfind("z_d,u_sqrt_gd,count,phi\n", 0), 0u);
   auto read = cdpost("series " + (dir / "published.csv").string() + " --out " + (dir / "post2").string());
   ASSERT_EQ(read.status, 0) << read.err;
   const auto expected = csv_values(dir / "post/fits.csv"), found = csv_values(dir / "post2/fits.csv");

@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <tuple>
 
 #include "fit/flow_rules.h"
 #include "fit/profile_fits.h"
@@ -246,6 +248,121 @@ TEST(FlowRules, PhiVelocityHasOneSlopeAndOnePhiCPerFriction)
   ASSERT_EQ(fit.phi_c.size(), 3u);
   expect_recovers(fit.phi_c[2].second, 0.78, "phi_c(2)");
   EXPECT_EQ(fit.raw.points, 15);
+}
+
+TEST(FlowRules, PhiInertialHasOneSlopeAndOnePhiCPerFriction)
+{
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0, 0.001);
+  std::vector<FlowPoint> points;
+  for (double mu : {0.05, 2.0})
+    for (double i : {0.03, 0.05, 0.07, 0.09, 0.11}) {
+      FlowPoint p;
+      p.mu = mu;
+      p.inertial_number = i;
+      p.velocity = 1000 * i * i;  // any other abscissa must not enter
+      p.phi = (mu == 0.05 ? 0.83 : 0.79) - 0.7 * i + noise(rng);
+      points.push_back(p);
+    }
+  auto fit = fit_phi_inertial(points);
+  expect_recovers(fit.k, 0.7, "k_I");
+  expect_recovers(fit.phi_c[0].second, 0.83, "phi_c(0.05)");
+  expect_recovers(fit.phi_c[1].second, 0.79, "phi_c(2)");
+  EXPECT_NEAR(fit.residuals[3].value, *points[3].phi - (fit.phi_c[0].second.value - fit.k.value * 0.09), 1e-12);
+}
+
+// The delta method on a line y = a + b x: var y = C_aa + 2 x C_ab + x² C_bb exactly.
+TEST(LinearFits, PropagatedErrorOfALineIsItsAnalyticBand)
+{
+  std::mt19937 rng(8);
+  std::normal_distribution<double> noise(0, 0.1);
+  Eigen::MatrixXd design(12, 2);
+  std::vector<double> y;
+  for (int i = 0; i < 12; ++i) {
+    design(i, 0) = 1, design(i, 1) = i;
+    y.push_back(2 + 0.5 * i + noise(rng));
+  }
+  auto fit = fit_linear(design, y, {"a", "b"});
+  for (double x : {-3.0, 4.0, 20.0}) {
+    auto error = propagated_error(fit, [&](const std::vector<double>& p) { return p[0] + p[1] * x; });
+    const auto& c = fit.covariance;
+    ASSERT_TRUE(error);
+    EXPECT_NEAR(*error, std::sqrt(c(0, 0) + 2 * x * c(0, 1) + x * x * c(1, 1)), 1e-6 * *error);
+  }
+  auto corr = parameter_correlation(fit, "a", "b");
+  ASSERT_TRUE(corr);
+  EXPECT_NEAR(*corr, fit.covariance(0, 1) / (*fit.parameters[0].error * *fit.parameters[1].error), 1e-12);
+  EXPECT_LT(*corr, 0);  // x > 0 throughout: a steeper line must start lower
+  // Undefined where the quantity is: no error.
+  EXPECT_FALSE(propagated_error(fit, [](const std::vector<double>&) { return std::optional<double>(); }));
+}
+
+// Two frictions following the mu(I) rule with I0 = 0.3 (θ1, θ2 = 21°, 33° and 15°, 26°) at
+// I = 0.03–0.11, as in the series, with 1 % noise on I: there the rule is nearly
+// tan θ1 + (tan θ2 − tan θ1) I/I0, and only the slope (tan θ2 − tan θ1)/I0 is well determined.
+std::vector<FlowPoint> mu_of_i_runs(unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0, 0.01);
+  std::vector<FlowPoint> points;
+  for (auto [mu, theta1, theta2] : {std::tuple{0.5, 21.0, 33.0}, {0.05, 15.0, 26.0}})
+    for (double i = 0.03; i < 0.1101; i += 0.01) {
+      FlowPoint p;
+      p.mu = mu;
+      p.inertial_number = i * (1 + noise(rng));
+      p.theta_deg =
+          std::atan(mu_of_i_tan(i, std::tan(theta1 * M_PI / 180), std::tan(theta2 * M_PI / 180), 0.3)) * 180 / M_PI;
+      points.push_back(p);
+    }
+  return points;
+}
+
+TEST(FlowRules, MuOfII0AndTheta2TradeOffAndHeldI0RefitsFindTheTruth)
+{
+  const auto points = mu_of_i_runs(21);
+  auto fit = fit_mu_of_i(points);
+  // A larger I0 is made up by a larger θ2 (same slope): strongly positive.
+  for (const std::string theta2 : {"tan_theta2_0", "tan_theta2_1"}) {
+    auto corr = parameter_correlation(fit.raw, "I0", theta2);
+    ASSERT_TRUE(corr);
+    EXPECT_GT(*corr, 0.95) << theta2;
+  }
+  // Held at each value, the rms residual is smallest at the true I0 (0.3) and grows away from it.
+  std::vector<double> rms;
+  const std::vector<double> held{0.1, 0.15, 0.2, 0.3, 0.4, 0.5};
+  for (double i0 : held) {
+    auto refit = fit_mu_of_i_held_i0(points, i0);
+    EXPECT_EQ(refit.raw.parameters.size(), 4u);  // θ1, θ2 of each friction
+    EXPECT_EQ(refit.i0.value, i0);
+    EXPECT_FALSE(refit.i0.error);
+    rms.push_back(refit.raw.rms_residual());
+  }
+  EXPECT_EQ(std::min_element(rms.begin(), rms.end()) - rms.begin(), 3);
+  EXPECT_GT(rms.front(), 2 * rms[3]);
+  EXPECT_THROW(fit_mu_of_i_held_i0(points, 0), AnalysisError);
+}
+
+TEST(FlowRules, PouliquenTheta2AndEllTradeOffAndHeldEllRefitsFindTheTruth)
+{
+  // θ1 = 20°, θ2 = 33°, ℓ = 1.5 at β = 0.136: I = β/(ℓ ln((tan θ2 − tan θ1)/(tan θ − tan θ1))).
+  const double tan1 = std::tan(20 * M_PI / 180), tan2 = std::tan(33 * M_PI / 180), ell = 1.5, beta = 0.136;
+  auto inverse = [&](double t) { return -beta / (ell * std::log((t - tan1) / (tan2 - tan1))); };
+  const auto points = series(0.5, {21, 22, 23, 24, 25, 26, 27, 28}, inverse, 3);
+  auto fit = fit_pouliquen(points, beta);
+  // A longer ℓ raises tan θ at every I, which a lower θ2 takes back: strongly negative.
+  auto corr = parameter_correlation(fit.raw, "tan_theta2", "ell");
+  ASSERT_TRUE(corr);
+  EXPECT_LT(*corr, -0.9);
+  std::vector<double> rms;
+  const std::vector<double> held{0.75, 1.0, 1.25, 1.5, 1.75, 2.0, 2.5};
+  for (double value : held) {
+    auto refit = fit_pouliquen_held_ell(points, beta, value);
+    EXPECT_EQ(refit.raw.parameters.size(), 2u);
+    EXPECT_EQ(refit.ell.value, value);
+    rms.push_back(refit.raw.rms_residual());
+  }
+  EXPECT_EQ(std::min_element(rms.begin(), rms.end()) - rms.begin(), 3);
+  EXPECT_THROW(fit_pouliquen_held_ell(points, beta, -1), AnalysisError);
 }
 
 TEST(LinearFits, PowerLawRecoversExponentAndCorrelation)

@@ -2,6 +2,7 @@
 
 #include "io/ave_chunk.h"
 #include "io/ave_time.h"
+#include "io/chute_record.h"
 #include "io/dump.h"
 #include "lammps_text.h"
 #include "temp_files.h"
@@ -162,6 +163,27 @@ TEST(Dump, TruncatedFrameNamesTheLine)
   reader.next(frame);
   EXPECT_EQ(error_of([&] { reader.next(frame); }),
             path + ":21: file ends where atom 2 of 2 was expected (truncated dump?)");
+}
+
+// chute.params as inputs/in.chute prints it: '#' comments, "name value" lines.
+TEST(ChuteRecord, ReadsNamedValuesAndRefusesMalformedLines)
+{
+  const auto dir = scratch_dir();
+  EXPECT_FALSE(read_chute_record(dir.string()));
+  const auto path = write_file(dir / "chute.params", "# in.chute\ny_top_m 0.015\nsample_rate_hz 1000\n\nd_m 5.0e-4\n");
+  auto record = read_chute_record(dir.string());
+  ASSERT_TRUE(record);
+  EXPECT_EQ(record->source, path);
+  EXPECT_DOUBLE_EQ(*record->find("y_top_m"), 0.015);
+  EXPECT_DOUBLE_EQ(*record->find("d_m"), 5e-4);
+  EXPECT_FALSE(record->find("g_mps2"));
+  write_file(dir / "chute.params", "y_top_m 0.015\ny_top_m 0.02\n");
+  EXPECT_EQ(error_of([&] { read_chute_record(dir.string()); }), path + ":2: 'y_top_m' is given twice");
+  write_file(dir / "chute.params", "y_top_m\n");
+  EXPECT_EQ(error_of([&] { read_chute_record(dir.string()); }),
+            path + ":1: expected a name and a value, found 1 fields");
+  write_file(dir / "chute.params", "d_m nan\n");
+  EXPECT_EQ(error_of([&] { read_chute_record(dir.string()); }), path + ":1: non-finite value 'nan' for d_m");
 }
 
 }  // namespace

@@ -36,6 +36,7 @@ TEST_F(SyntheticRunTest, RecoversEveryMeasuredQuantity)
 {
   auto run = analyse_run(settings_);
   EXPECT_TRUE(run.window_detected);
+  EXPECT_TRUE(run.window_stationary);
   EXPECT_GT(result(run, "t_start") * std::sqrt(truth_.d / truth_.g), 3 * truth_.relaxation * 0.5);
   EXPECT_NEAR(result(run, "U"), truth_.u_final, 0.015 * truth_.u_final);  // the criterion allows a small drift
   EXPECT_NEAR(result(run, "phi"), truth_.phi, 4 * error(run, "phi") + 1e-3);
@@ -47,6 +48,12 @@ TEST_F(SyntheticRunTest, RecoversEveryMeasuredQuantity)
   EXPECT_NEAR(result(run, "shear_rate_reduced"), truth_.u_final / truth_.h, 0.01);
   EXPECT_NEAR(result(run, "creep_lambda"), truth_.creep_lambda, 3 * error(run, "creep_lambda") + 0.05);
   EXPECT_GT(result(run, "bagnold_r2"), 0.99);
+  // phi(z) is the same in every block: its bulk and half-height come out exactly (to rounding).
+  EXPECT_NEAR(result(run, "phi_bulk"), truth_.phi_bulk, 1e-9);
+  EXPECT_NEAR(result(run, "h_packing"), truth_.h, 1e-6);
+  EXPECT_NEAR(result(run, "I_packing"), result(run, "U") / std::pow(truth_.h, 1.5), 1e-9);
+  ASSERT_EQ(run.profile->phi.size(), run.profile->z_d.size());
+  EXPECT_NEAR(run.profile->phi.front(), truth_.phi_bed, 1e-9);
   ASSERT_EQ(run.layers.size(), 5u);  // the empty top layer is left out
   EXPECT_LT(run.layers.front().amplitude_at_f, run.layers.back().amplitude_at_f);
   EXPECT_TRUE(run.warnings.empty());
@@ -59,6 +66,12 @@ TEST_F(SyntheticRunTest, ExplicitWindowOverridesDetection)
   EXPECT_FALSE(run.window_detected);
   EXPECT_EQ(run.window.begin, 0u);
   EXPECT_LT(result(run, "U"), truth_.u_final - 0.2);  // the transient drags the mean down
+  // ... and U drifts across it: analysed all the same, labelled and warned of.
+  EXPECT_FALSE(run.window_stationary);
+  EXPECT_GT(result(run, "stationary_drift"), run.settings.criterion.max_relative_drift);
+  ASSERT_EQ(run.warnings.size(), 1u);
+  EXPECT_NE(run.warnings[0].find("is not stationary: U drifts by"), std::string::npos) << run.warnings[0];
+  EXPECT_EQ(window_name(run), "window (not stationary)");
 }
 
 TEST_F(SyntheticRunTest, MissingTimeInformationIsAnErrorNamingTheFile)

@@ -7,6 +7,10 @@ import shutil
 
 from .run import BUILT_CDPOST
 
+# The record inputs/in.chute writes into a run's folder as its chute stage starts (wall tops,
+# sample rate, d, g and the scene's parameters); cdpost takes from it what it is not given.
+RUN_RECORD = "chute.params"
+
 
 def find_cdpost(given=None):
     """The cdpost executable: `given`, else the build's, else the one on PATH; None if none

@@ -26,7 +26,7 @@ import json
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "scripts"))
 
 from cdtools import lammps_files, logs, run, stats, text
-from cdtools.campaign import plan
+from cdtools.campaign import plan, report
 
 
 def check(condition, message):
@@ -198,9 +198,49 @@ def check_runs_older_than_a_variable(work):
               f"--var {given}: vars keep '{added}': {added in job.vars}, problem: {problem}")
 
 
+def check_readings():
+    """The layer reading's runs and packings carry its name, and a deck value written two ways
+    (1e-4, 1.0e-4) is one setting for the resume check and the report."""
+    defaults = plan.deck_defaults()
+    point = dict(defaults, mu="0.5", theta="24", L="45", reading="layer")
+    check(plan.run_name(point, defaults) == "mu0.5_theta24_L45_layer", plan.run_name(point, defaults))
+    check(plan.run_name(dict(point, reading="count"), defaults) == "mu0.5_theta24_L45", "count reading's name")
+    layer_points = plan.SERIES["layer_mu0.5"]
+    check([p["theta"] for p in layer_points] == [p["theta"] for p in plan.SERIES["mu0.5"]]
+          and all(p["reading"] == "layer" for p in layer_points), f"layer_mu0.5 series {layer_points}")
+    args = argparse.Namespace(out="/tmp/campaign")
+    depositions = {}
+    plan.deposition_of(args, point, depositions)
+    plan.deposition_of(args, dict(point, reading="count"), depositions)
+    check(sorted(depositions) == ["mu0.5_L45_seed20261122", "mu0.5_L45_seed20261122_layer"],
+          f"depositions {sorted(depositions)}")
+    same = plan.changed_vars(dict(dt="1.0e-4", mu="0.5"), dict(dt="1e-4", mu="0.5"), ["dt", "mu"])
+    check(same == "", f"1e-4 and 1.0e-4: {same}")
+    check(plan.changed_vars(dict(order="fixed"), dict(order="shuffle"), ["order"]) == "order fixed -> shuffle",
+          "a changed word")
+
+
+def check_readings_table(work):
+    """The report's table of both readings: every fit the two analyses share, each reading's
+    value and error, and their difference in units of the combined error."""
+    folders = {}
+    for analysis, value in (("flow_rules", "1.0"), ("layer_flow_rules", "1.5")):
+        folders[analysis] = os.path.join(work, analysis)
+        os.makedirs(folders[analysis])
+        write(folders[analysis], "fits.csv", "name,value,error,unit,description\n"
+              f"phi_k,{value},0.3,1,slope\nonly_{analysis},1,0.1,1,x\n")
+    text = report.section_readings([], folders, work)
+    rows = [line for line in text.splitlines() if line.startswith("| phi_k |")]
+    check(rows == ["| phi_k | 1.00 ± 0.30 | 1.50 ± 0.30 | +1.2 | 1 |"], f"readings table rows {rows}")
+    check("only_" not in text, "a fit of one reading only is in the side-by-side table")
+    check(report.section_readings([], {"flow_rules": folders["flow_rules"]}, os.path.join(work, "none")) == "",
+          "a table with one reading")
+
+
 def main():
     with tempfile.TemporaryDirectory() as work:
         check_runs_older_than_a_variable(work)
+        check_readings_table(work)
         check_time_files(work)
         check_chunk_files(work)
         check_dumps(work)
@@ -208,8 +248,9 @@ def main():
     check_statistics()
     check_text()
     check_arguments()
+    check_readings()
     print("cdtools: ave/time, ave/chunk and dump readers (cut files included), logs, statistics, text, "
-          "-var arguments, runs older than a deck variable")
+          "-var arguments, runs older than a deck variable, the two readings' names")
 
 
 if __name__ == "__main__":

@@ -23,7 +23,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "bench"))
 
 import rank_solutions
-from cdtools.lammps_files import read_dump, read_time_file, unwrapped
+from cdtools.lammps_files import read_chunk_file, read_dump, read_time_file, unwrapped
 from cdtools.logs import tagged_line
 from cdtools.run import DECK, TOP, lmp_command, mpi_launcher
 
@@ -66,6 +66,19 @@ def summary(output, tag):
     values = tagged_line(output, tag)
     check(values is not None, f"no {tag} line in the output")
     return values
+
+
+def check_record(folder, wall_height, grains, theta):
+    """chute.params, the record in.chute writes for cdpost as a chute stage starts: the wall tops
+    z is measured from, the sample rate (the deck's default), d, g, the grains and the tilt."""
+    path = os.path.join(folder, "chute.params")
+    check(os.path.exists(path), f"no chute.params in {folder}")
+    with open(path) as src:
+        record = {name: float(value) for name, value in
+                  (line.split() for line in src if line.strip() and not line.startswith("#"))}
+    expected = dict(y_top_m=wall_height * D, sample_rate_hz=1000, d_m=D, g_mps2=G, grains=grains, theta_deg=theta)
+    wrong = {k: record.get(k) for k, v in expected.items() if record.get(k) is None or abs(record[k] - v) > 1e-9 * v}
+    check(not wrong, f"{path}: {wrong}, expected {expected}")
 
 
 def mean(values):
@@ -111,6 +124,7 @@ def case_deposition(args):
     result = summary(output, "DEPOSITION")
     for name in ("deposition.restart", "deposition.data", "deposition.dump"):
         check(os.path.exists(os.path.join(folder, name)), f"{name} not written")
+    check(not os.path.exists(os.path.join(folder, "chute.params")), "the deposition wrote a chute's chute.params")
     check(result["grains"] == 200, f"{result['grains']} grains, expected 200")
     check(result["ke_per_grain"] < 1e-4, f"not settled: KE per grain {result['ke_per_grain']} m g d")
     check(result["max_interpenetration_d"] < 0.005,
@@ -171,9 +185,15 @@ FLOW_THETA, FLOW_DURATION, FLOW_FRAME = 24, 1.2, 0.004
 
 def case_flow_run(args):
     """The flow that steady_flow and walls_trap analyse: 24 degrees (the thin layer stops at
-    23) for 1.2 s, a dump frame every 4 ms."""
-    chute(args, "flow", FLOW_THETA, FLOW_DURATION, snapshot_interval=FLOW_FRAME)
-    print("flow run written")
+    23) for 1.2 s, a dump frame every 4 ms. Its chute.params, and that of the same cell in stage
+    all (deposition and chute in one process, 4 ms of flow at 26 degrees)."""
+    folder, _ = chute(args, "flow", FLOW_THETA, FLOW_DURATION, snapshot_interval=FLOW_FRAME)
+    check_record(folder, 8, 200, FLOW_THETA)
+    in_one = os.path.join(args.work, "stage_all")
+    shutil.rmtree(in_one, ignore_errors=True)
+    run_lmp(args.lmp, in_one, dict(CELL, stage="all", theta=26, duration=0.004))
+    check_record(in_one, 8, 200, 26)
+    print("flow run written; chute.params right from a deposition and in stage all")
 
 
 def case_dt_change(args):
@@ -227,6 +247,50 @@ def case_walls_trap(args):
     check(lowest > WALL_TOP, f"a grain crossed with its centre {(lowest - WALL_TOP) / D:.3f} d from the wall top")
     print(f"walls: {len(buried)} grains stayed below the wall tops and none crossed; {len(crossed)} "
           f"grains crossed, the lowest at z = {(lowest - WALL_TOP) / D:.2f} d")
+
+
+def case_columns(args):
+    """columns.chunk holds the flowing layer's v(x, t): at every sample round(L/column_width)
+    columns tile the cell, their counts add up to the layer's grains (flow.time's n_flow), and
+    their count-weighted mean vy is the layer's mean v_flow."""
+    folder = os.path.join(args.work, "flow")
+    rows = {round(r["v_time"] * 1000): r for r in read_time_file(os.path.join(folder, "flow.time"))}
+    blocks = read_chunk_file(os.path.join(folder, "columns.chunk"))
+    columns = round(float(CELL["L"]) / 1.5)
+    check(len(blocks) >= len(rows) - 1, f"{len(blocks)} blocks of columns.chunk for {len(rows)} samples")
+    compared = 0
+    for step, chunks in blocks:
+        check(len(chunks) == columns, f"step {step}: {len(chunks)} columns, expected {columns}")
+        centres = [c["Coord1"] for c in chunks]
+        check(all(abs(x - (k + 0.5) / columns) < 1e-6 for k, x in enumerate(centres)), f"column centres {centres}")
+        count = sum(c["Ncount"] for c in chunks)
+        row = next((r for r in rows.values() if r["TimeStep"] == step), None)
+        if row is None or count == 0:
+            continue
+        check(count == row["v_n_flow"], f"step {step}: {count} grains in the columns, {row['v_n_flow']} in the layer")
+        v = sum(c["Ncount"] * c["vy"] for c in chunks) / count
+        check(abs(v - row["v_v_flow"]) <= 1e-6 * max(1.0, abs(row["v_v_flow"])) + 1e-9,
+              f"step {step}: columns' mean vy {v}, the layer's {row['v_v_flow']}")
+        compared += 1
+    check(compared > 10, f"only {compared} samples compared")
+    print(f"columns: {columns} columns tile the cell; at {compared} samples their grains and mean vy are the layer's")
+
+
+def case_reading(args):
+    """-var reading selects the source's count per 45 d (3967) or the count of a 40-49 d layer
+    (3290), scaled with L; -var grains wins. The deposition stops right after creating its
+    grains (settle_max shorter than the fall), so each count costs a fraction of a second."""
+    folder = os.path.join(args.work, "reading")
+    cases = ((dict(reading="count"), round(3967 * 9 / 45)), (dict(reading="layer"), round(3290 * 9 / 45)),
+             (dict(reading="layer", grains="700"), 700))
+    for given, expected in cases:
+        variables = dict(given, stage="deposition", L="9", wall_height="3", settle_max="0.001")
+        status, output = run_lmp(args.lmp, folder, variables, expect_ok=False)
+        created = [line for line in output.splitlines() if line.strip().startswith("Created") and "atoms" in line]
+        check(status == 1 and created, f"{given}: status {status}, no 'Created N atoms' line")
+        count = int(created[-1].split()[1])
+        check(count == expected, f"{given}: {count} grains, expected {expected}")
+    print("reading: count 3967 and layer 3290 grains per 45 d, scaled with L; -var grains wins")
 
 
 def case_steady_flow(args):
@@ -491,6 +555,9 @@ BAD_VARS = [
     ("acceleration", "anderson", "-var acceleration anderson"),
     ("full_sweep_every", "0", "-var full_sweep_every 0"),
     ("full_sweep_every", "2.5", "-var full_sweep_every 2.5"),
+    ("reading", "both", "-var reading both"),
+    ("column_width", "0", "-var column_width 0"),
+    ("grains", "100", "-var grains 100: too few to cover the wall tops (at least 1425"),
 ]
 
 
@@ -513,10 +580,11 @@ def case_restart_between_samples(args):
     (at a refined level, 0.25 ms steps against 1 ms samples); continued from there, the run keeps
     the level and its position in the period: it starts from the state the straight run had at
     that step, takes the same steps at the same chute times up to the end of the period, and
-    samples every whole millisecond after it. Small skin and dt 1e-4 s, so that the 0.3 s flow
-    refines the step; a restart every 2 ms, so that the last two restarts fall within a few ms
-    of the end. (Later values are not compared: rebuilt neighbour lists may reorder the
-    contacts, and the flow amplifies differences within the solver's tolerance.)"""
+    samples every whole millisecond after it; it records the chute in its chute.params. Small skin
+    and dt 1e-4 s, so that the 0.3 s flow refines the step; a restart every 2 ms, so that the
+    last two restarts fall within a few ms of the end. (Later values are not compared: rebuilt
+    neighbour lists may reorder the contacts, and the flow amplifies differences within the
+    solver's tolerance.)"""
     work = os.path.join(args.work, "restart_between_samples")
     shutil.rmtree(work, ignore_errors=True)
     start = os.path.join(args.work, "deposition", "deposition.restart")
@@ -535,6 +603,7 @@ def case_restart_between_samples(args):
         folder = os.path.join(work, "from_" + name)
         run_lmp(args.lmp, folder, dict(settings, start=os.path.join(straight, name), duration=duration + 0.01))
         rows = [r for r in read_time_file(os.path.join(folder, "flow.time")) if r["v_time"] <= duration + 1e-9]
+        check_record(folder, 8, 200, 24)
         first = rows[0]
         if not whole_ms(first["v_time"]):
             between.append(f"{name} at {first['v_time']} s")
@@ -555,7 +624,8 @@ def case_restart_between_samples(args):
 
 def case_runner_resume(args):
     """The runner, killed in the middle of a run, continues it from its restart when started
-    again; the spliced outputs are continuous; a finished run is not run again."""
+    again; the spliced outputs are continuous, the legs' chute.params is carried into the run's
+    folder; a finished run is not run again."""
     out = os.path.join(args.work, "campaign")
     shutil.rmtree(out, ignore_errors=True)
     cmd = [sys.executable, RUNNER, "--out", out, "--lmp", args.lmp, "--cdpost", "none",
@@ -594,6 +664,7 @@ def case_runner_resume(args):
     for name in ("params.json", "cost.json", "chute.restart", "profile.chunk", "layers.chunk",
                  "packing.chunk", "solver.time", "dump.chute.gz"):
         check(os.path.exists(os.path.join(run, name)), f"{name} missing from the run folder")
+    check_record(run, 4, 80, 24)
 
     third = subprocess.run(cmd, capture_output=True, text=True, timeout=60)
     check(third.returncode == 0 and "start run" not in third.stdout,
@@ -616,6 +687,8 @@ CASES = {
     "static_tilt": case_static_tilt,
     "runaway": case_runaway,
     "bad_var": case_bad_var,
+    "columns": case_columns,
+    "reading": case_reading,
     "start_mismatch": case_start_mismatch,
     "runner_resume": case_runner_resume,
     "restart_between_samples": case_restart_between_samples,

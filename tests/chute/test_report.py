@@ -6,7 +6,8 @@
 The campaign folder is written here as the runner leaves it (run folders with their spliced
 outputs and legs, DONE), for the mu = 0.5 series and its replica, with flows that follow a
 known mu(I) rule, phi(U) law and oscillation; one run of the series is left unstarted. The
-report must analyse every finished run with cdpost, recover the laws from the series fit,
+report must analyse every finished run with cdpost (from its chute.params, or the campaign's
+variables for a run made before the deck wrote one), recover the laws from the series fit,
 measure the replica scatter, list the unstarted run, hold no dump or restart, read a run whose
 raw outputs are gone back from what it published, use no run (its own or published) made with
 other deck variables than the report's, keep a hand-written discussion when it is made again,
@@ -38,6 +39,7 @@ PHI_C, K = 0.82, 0.002                  # phi = PHI_C - K U/sqrt(g d)
 SAMPLE_RATE, DURATION, DT = 1000, 4.0, 1.0e-4
 REPLICA_SHIFT = 0.2                     # U of the replica run minus the original (sqrt(g d))
 STOPPED_U, H_STOP = 0.02, 30.0          # a layer that stopped (it creeps), and its thickness (d)
+UNRECORDED = "mu0.5_theta24_L45_seed20261123"  # a run made before the deck wrote chute.params
 SERIES_ARGS = ["--series", "mu0.5", "--series", "replicas", "--only", "mu0.5_*"]
 
 
@@ -111,9 +113,17 @@ def write_dump(folder):
             out.write(f"{n + 1} 1 {(n + 0.5) * 2.2 * D:.6g} {Y_TOP + D:.6g} 0.1 0 {D / 2} 0\n")
 
 
-def write_run(campaign, name, theta, seed_shift, frequency, u=None, h=H):
-    """A finished run folder as the runner leaves it, with one leg and its timers; the layer
-    flows by the mu(I) rule unless u (sqrt(g d)) is given."""
+def write_record(folder):
+    """chute.params as inputs/in.chute writes it (the wall tops, sample rate, d, g, ...)."""
+    with open(os.path.join(folder, "chute.params"), "w") as out:
+        out.write(f"# inputs/in.chute: chute parameters, one name and value a line (SI)\ny_top_m {Y_TOP}\n"
+                  f"sample_rate_hz {SAMPLE_RATE}\nd_m {D}\ng_mps2 {G}\nL_d 45\nwall_height_d 30\n")
+
+
+def write_run(campaign, name, theta, seed_shift, frequency, u=None, h=H, record=True):
+    """A finished run folder as the runner leaves it, with one leg and its timers, and its
+    chute.params unless made before the deck wrote one; the layer flows by the mu(I) rule unless
+    u (sqrt(g d)) is given."""
     folder = os.path.join(campaign, "runs", name)
     leg = os.path.join(folder, "legs", "00")
     os.makedirs(leg)
@@ -123,6 +133,8 @@ def write_run(campaign, name, theta, seed_shift, frequency, u=None, h=H):
     write_profile(folder, u)
     write_layers(folder, frequency)
     write_dump(folder)
+    if record:
+        write_record(folder)
     for restart in ("chute.restart", os.path.join("legs", "00", "chute.restart")):
         open(os.path.join(folder, restart), "w").write("a restart the report must not copy\n")
     shutil.copy(os.path.join(folder, "flow.time"), leg)
@@ -138,7 +150,7 @@ def write_campaign(campaign):
     write_run(campaign, "mu0.5_theta22_L45", 22, 0.0, 15.0, u=STOPPED_U, h=H_STOP)
     for theta in range(23, 28):
         write_run(campaign, f"mu0.5_theta{theta}_L45", theta, 0.0, 15.0 + theta - 22)
-    write_run(campaign, "mu0.5_theta24_L45_seed20261123", 24, REPLICA_SHIFT, 17.0)
+    write_run(campaign, UNRECORDED, 24, REPLICA_SHIFT, 17.0, record=False)
 
 
 def read_csv(path):
@@ -190,6 +202,14 @@ def main():
             check(os.path.exists(os.path.join(results, "runs", name, "results.csv")), f"{name}: no results.csv")
         check("| mu0.5_theta28_L45 |" in readme and "not started" in readme,
               "the unstarted run is not listed with its state")
+        # cdpost reads a run's chute.params; a run without one gets the campaign's variables.
+        log = open(os.path.join(campaign, "runs", "mu0.5_theta23_L45", "cdpost.log")).read()
+        check("--z0" not in log.splitlines()[0] and "parameters: z0 0.015 m, sample rate 1000 Hz, d 0.0005 m, g 9.81 "
+              "m/s^2 from " in log, "cdpost did not take the run's chute.params:\n" + log[:400])
+        log = open(os.path.join(campaign, "runs", UNRECORDED, "cdpost.log")).read()
+        check("parameters: z0 0.015 m from --z0; sample rate 1000 Hz from --sample-rate; d 0.0005 m from --d; "
+              "g 9.81 m/s^2 from --g" in log, "the run without chute.params did not get the campaign's variables:\n"
+              + log[:400])
         big = [os.path.join(d, f) for d, _, files in os.walk(results) for f in files
                if "restart" in f or f.startswith("dump") or os.path.getsize(os.path.join(d, f)) > 2_000_000]
         check(not big, f"results/ holds restarts, dumps or large files: {big}")
@@ -222,6 +242,18 @@ def main():
               "the run without raw outputs is not listed as published")
         check(open(os.path.join(results, "series", "flow_rules", "fits.csv")).read() == fits_before,
               "the series fits changed when a run was read back from its published results")
+        check("## Changed by this report" not in readme, "an unchanged re-analysis reported changes")
+        # A published number that the analysis does not reproduce (an earlier cdpost, say) is
+        # replaced, and the report says which, with the value it had.
+        fits_path = os.path.join(results, "series", "flow_rules", "fits.csv")
+        published = fits_before.replace("\nmuI_I0,", "\nmuI_I0,9", 1)
+        check(published != fits_before, "no muI_I0 row to alter")
+        open(fits_path, "w").write(published)
+        changed = report(os.path.abspath(args.cdpost), campaign, results)
+        rows = [r for r in changed.splitlines() if r.startswith("| series/flow_rules/fits.csv | muI_I0 | 9")]
+        check("## Changed by this report" in changed and len(rows) == 1,
+              "a changed published fit was not reported:\n" + changed[:1500])
+        check(open(fits_path).read() == fits_before, "the altered fit was not replaced by the analysis")
         manifest = open(os.path.join(results, "series", "flow_rules", "manifest.csv")).read()
         check(f"\n../../runs/{lost},0.5,25,0,\n" in manifest, "the manifest does not list the published run:\n"
               + manifest)

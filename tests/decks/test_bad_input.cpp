@@ -2,60 +2,17 @@
 // executable on a deck and checks the exit status and the ERROR line.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
-#include <fstream>
 #include <string>
 
-#ifndef LMP_CD_EXECUTABLE
-#error "LMP_CD_EXECUTABLE must name the lmp_cd executable"
-#endif
+#include "lmp_cd_run.h"
 
 namespace {
 
-struct RunResult {
-  int exit_status;
-  std::string output;
-};
+using cdtest::error_line;
+using cdtest::run_deck;
+using cdtest::RunResult;
 
-RunResult run_deck(const std::string& name, const std::string& deck, const std::string& launcher = "")
-{
-  const std::string path = "bad_input_" + name + ".in";
-  std::ofstream(path) << deck;
-  const std::string command = launcher + LMP_CD_EXECUTABLE " -log none -in " + path + " 2>&1";
-  RunResult result{0, ""};
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer;
-  while (fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
-  result.exit_status = pclose(pipe);
-  std::remove(path.c_str());
-  return result;
-}
-
-// The ERROR line LAMMPS printed, or "" if none.
-std::string error_line(const std::string& output)
-{
-  const std::size_t start = output.find("ERROR");
-  if (start == std::string::npos) return "";
-  return output.substr(start, output.find('\n', start) - start);
-}
-
-const std::string preamble = R"(
-units si
-dimension 2
-atom_style sphere
-atom_modify map array
-comm_modify vel yes
-neigh_modify delay 0
-boundary p f p
-region box block 0 0.01 0 0.01 -0.0003 0.0003
-create_box 2 box
-create_atoms 1 single 0.005 0.00025 0
-create_atoms 1 single 0.006 0.00025 0
-set group all diameter 5e-4 density/disc 2500
-neighbor 1e-4 bin
-timestep 1e-5
-)";
+const std::string& preamble = cdtest::two_grains;
 
 struct BadCase {
   const char* name;
@@ -114,6 +71,39 @@ const BadCase bad_cases[] = {
      preamble + "set atom 1 vx 2000\nfix cd all contact/dynamics 0.5 0.5 dt_max 1e-4\nrun 10\n",
      "atom 1 moves at 2000 m/s; the smallest step"},
     {"negative_type_mu", with_fix("0.5 0.5 mu/types 1 2 -1"), "mu/types must be >= 0, got -1"},
+    // The preamble has 2 atom types.
+    {"type_beyond_the_types", with_fix("0.5 0.5 mu/types 1 3 0.2"),
+     "mu/types type '3' is not a type or range of types within 1-2"},
+    {"type_range_from_zero", with_fix("0.5 0.5 e/types 0*1 1 0.2"),
+     "e/types type '0*1' is not a type or range of types within 1-2"},
+    {"type_range_reversed", with_fix("0.5 0.5 mu/types 1 2*1 0.2"),
+     "mu/types type '2*1' is not a type or range of types within 1-2"},
+    {"type_not_a_number", with_fix("0.5 0.5 e/types a 1 0.2"), "e/types expects an integer, got 'a'"},
+    {"type_law_missing_value", with_fix("0.5 0.5 mu/types 1 1"), "mu/types needs 3 value(s)"},
+    {"number_without_digits", with_fix("0.5 0.5 tolerance e"), "tolerance expects a number, got 'e'"},
+    {"number_with_two_points", with_fix("0.5 0.5 relaxation 0.5.1"), "relaxation expects a number, got '0.5.1'"},
+    {"number_overflowing", with_fix("0.5 0.5 alert 1e999"), "alert '1e999' is outside the range of a double"},
+    {"number_underflowing", with_fix("0.5 0.5 tolerance 1e-400"),
+     "tolerance '1e-400' is outside the range of a double"},
+    {"mu_overflowing", with_fix("1e999 0.5"), "mu '1e999' is outside the range of a double"},
+    {"integer_overflowing", with_fix("0.5 0.5 max_iterations 99999999999"),
+     "max_iterations must fit an int, got '99999999999'"},
+    {"integer_with_inner_sign", with_fix("0.5 0.5 full_sweep_every 1-2"),
+     "full_sweep_every expects an integer, got '1-2'"},
+    {"integer_sign_alone", with_fix("0.5 0.5 max_contacts -"), "max_contacts expects an integer, got '-'"},
+    {"seed_overflowing", with_fix("0.5 0.5 order shuffle 99999999999"),
+     "order shuffle seed must fit an int, got '99999999999'"},
+    {"seed_zero", with_fix("0.5 0.5 order shuffle 0"), "order shuffle seed must be > 0, got 0"},
+    {"max_contacts_beyond_limit", with_fix("0.5 0.5 max_contacts 1000000000"),
+     "max_contacts must be in [1,1000], got 1000000000"},
+    {"warm_start_not_yes_or_no", with_fix("0.5 0.5 warm_start 1"), "warm_start must be yes or no, got '1'"},
+    {"negative_alert", with_fix("0.5 0.5 alert -1"), "alert must be >= 0, got -1"},
+    {"zero_density", with_fix("0.5 0.5 density 0"), "density must be > 0, got 0"},
+    {"zero_dt_align", with_fix("0.5 0.5 dt_max 1e-4 dt_align 0"), "dt_align must be > 0, got 0"},
+    {"wall_missing_restitution", with_fix("0.5 0.5 wall yplane 0 0.5"), "wall yplane needs 3 value(s)"},
+    {"wall_position_not_a_number", with_fix("0.5 0.5 wall xplane x 0.5 0.5"), "wall xplane expects a number, got 'x'"},
+    {"wall_negative_mu", with_fix("0.5 0.5 wall segment 0 0 0 0.005 -1 0.5"), "wall mu must be >= 0, got -1"},
+    {"zero_length_segment", with_fix("0.5 0.5 wall segment 0 0 0 0 0.5 0.5"), "wall segment has zero length"},
     {"wall_outside_box", with_fix("0.5 0.5 wall yplane -0.001 0.5 0.5"), "wall yplane at -0.001 is outside the box"},
     {"segment_outside_box", with_fix("0.5 0.5 wall segment 0 0 0 0.02 0.5 0.5"),
      "wall segment end (0, 0.02) is outside the box"},
@@ -140,7 +130,7 @@ const BadCase bad_cases[] = {
        deck.replace(deck.find("atom_modify map array"), 21, "");
        return deck;
      }(),
-     "requires an atom map"},
+     "requires an atom map: use atom_modify map hash"},
     {"neighbour_delay",
      [] {
        std::string deck = with_fix("0.5 0.5");

@@ -2,6 +2,12 @@
 """Every deck and command shown in README.md and doc/ runs as shown (ctest label docs).
 
     test_docs.py CASE --lmp build/lmp_cd --cdpost build/postproc/cdpost --work DIR
+    test_docs.py pages|costs|page_rules
+
+The cases `pages` (lengths: README.md, every page under doc/, the newcomer pages together; no
+study log's sections or phrases),
+`costs` (each deck's cost stated once) and `page_rules` (those rules tried on synthetic pages)
+run no program: page_rules.py says what they check.
 
 How the pages mark what they show (the test finds blocks by these marks):
 
@@ -37,6 +43,9 @@ import shlex
 import shutil
 import subprocess
 import sys
+import unittest
+
+import page_rules
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.dirname(os.path.dirname(HERE))
@@ -371,19 +380,63 @@ def case_example_decks(args):
     print("the example decks ran without ERROR or WARNING")
 
 
+def tree_files(pattern_lists):
+    """{path relative to the top: text} of the files the glob patterns match."""
+    files = {}
+    for pattern in pattern_lists:
+        for path in glob.glob(os.path.join(TOP, pattern), recursive=True):
+            with open(path) as src:
+                files[os.path.relpath(path, TOP)] = src.read()
+    return files
+
+
+REFERENCE_PAGES = ("README.md", "doc/**/*.md", "doc/**/*.rst")
+
+
+def report(problems, passed):
+    if problems:
+        raise Failure("\n".join(problems))
+    print(passed)
+
+
+def case_pages(args):
+    pages = tree_files(REFERENCE_PAGES)
+    total = sum(page_rules.line_count(pages[path]) for path in page_rules.NEWCOMER_PAGES if path in pages)
+    report(page_rules.length_problems(pages) + page_rules.history_problems(pages),
+           f"{len(pages)} pages within their lengths; the newcomer pages {total} lines together")
+
+
+def case_costs(args):
+    files = tree_files(REFERENCE_PAGES + ("inputs/in.*",))
+    report(page_rules.cost_problems(files), "every deck's cost is stated once")
+
+
+def case_page_rules(args):
+    suite = unittest.defaultTestLoader.discover(HERE, pattern="test_page_rules.py", top_level_dir=HERE)
+    if not unittest.TextTestRunner(verbosity=2).run(suite).wasSuccessful():
+        raise Failure("the page rules misjudge a synthetic page (above)")
+
+
 CASES = {"decks": case_decks, "commands": case_commands, "long_commands": case_long_commands,
-         "unmarked": case_unmarked, "example_decks": case_example_decks}
+         "unmarked": case_unmarked, "example_decks": case_example_decks,
+         "pages": case_pages, "costs": case_costs, "page_rules": case_page_rules}
+# The cases that run lmp_cd or cdpost (the others read the pages only).
+RUNS_PROGRAMS = {"decks", "commands", "long_commands", "example_decks"}
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("case", choices=sorted(CASES))
-    parser.add_argument("--lmp", required=True, help="lmp_cd")
-    parser.add_argument("--cdpost", required=True, help="cdpost")
-    parser.add_argument("--work", required=True, help="scratch folder")
+    parser.add_argument("--lmp", help="lmp_cd")
+    parser.add_argument("--cdpost", help="cdpost")
+    parser.add_argument("--work", help="scratch folder")
     args = parser.parse_args()
-    args.work = os.path.join(os.path.abspath(args.work), args.case)
-    os.makedirs(args.work, exist_ok=True)
+    if args.case in RUNS_PROGRAMS:
+        missing = [option for option in ("lmp", "cdpost", "work") if getattr(args, option) is None]
+        if missing:
+            parser.error(f"the case {args.case} needs " + ", ".join("--" + option for option in missing))
+        args.work = os.path.join(os.path.abspath(args.work), args.case)
+        os.makedirs(args.work, exist_ok=True)
     try:
         CASES[args.case](args)
     except Failure as failure:

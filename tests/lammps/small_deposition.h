@@ -40,4 +40,19 @@ fix 2d all enforce2d
                      fmt::arg("options", fix_options), fmt::arg("mu", mu), fmt::arg("e", e));
 }
 
+// What a deck re-specifies after read_restart of a small_deposition: the settings a restart
+// file does not keep, the fixes, and `fix_options` on the fix line.
+inline std::string small_deposition_after_restart(const std::string& fix_options)
+{
+  return fmt::format(R"(
+neighbor {skin} bin
+comm_modify vel yes
+neigh_modify delay 0 every 1 check yes
+fix grav all gravity 9.81 vector 0 -1 0
+fix cd all contact/dynamics 0.5 0.5 wall yplane 0.0 0.5 0.5 {options}
+fix 2d all enforce2d
+)",
+                     fmt::arg("skin", 0.2 * deposition_d), fmt::arg("options", fix_options));
+}
+
 }  // namespace cdtest

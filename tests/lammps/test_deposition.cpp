@@ -99,18 +99,8 @@ class Restart : public ::testing::Test {
   {
     LammpsSession s;
     s.commands("read_restart " + restart_file);
-    s.commands(R"(
-neighbor 1e-4 bin
-comm_modify vel yes
-neigh_modify delay 0 every 1 check yes
-fix grav all gravity 9.81 vector 0 -1 0
-fix cd all contact/dynamics 0.5 0.5 wall yplane 0.0 0.5 0.5 tolerance 1e-10 max_iterations 100000 )" +
-               fix_options + R"(
-fix 2d all enforce2d
-fix iters all ave/time 1 1 1 f_cd[1] file )" +
-               restarted_iterations + R"(
-run 100
-)");
+    s.commands(cdtest::small_deposition_after_restart("tolerance 1e-10 max_iterations 100000 " + fix_options));
+    s.commands("fix iters all ave/time 1 1 1 f_cd[1] file " + restarted_iterations + "\nrun 100");
     return positions_by_id(s);
   }
 

@@ -17,8 +17,7 @@ constexpr double d = cdtest::deposition_d;
 TEST(Machinery, PouredGrainsGetDiscMassesAndSettle)
 {
   LammpsSession s;
-  // Debian's LAMMPS (29 Sep 2021) crashes in Atom::map_set when fix pour fills an empty box
-  // with `atom_modify map array`, with or without this fix; the hash map works.
+  // fix pour needs a hash atom map in this LAMMPS (FixContactDynamics::check_insertion_map).
   std::string preamble = cdtest::disk_preamble;
   preamble.replace(preamble.find("map array"), 9, "map hash");
   s.commands(preamble);

@@ -223,18 +223,8 @@ TEST_F(SeveralRanks, RestartWrittenOnSeveralRanksContinuesOnOne)
   if (world_rank() != 0) return;
   LammpsSession one(MPI_COMM_SELF);
   one.commands("read_restart " + restart);
-  one.commands(fmt::format(R"(
-neighbor {skin} bin
-comm_modify vel yes
-neigh_modify delay 0 every 1 check yes
-fix grav all gravity 9.81 vector 0 -1 0
-fix cd all contact/dynamics 0.5 0.5 wall yplane 0.0 0.5 0.5 {options}
-fix 2d all enforce2d
-fix iters all ave/time 1 1 1 f_cd[1] file {file}
-run 20
-unfix iters
-)",
-                           fmt::arg("skin", 0.2 * d), fmt::arg("options", options), fmt::arg("file", restarted)));
+  one.commands(cdtest::small_deposition_after_restart(options));
+  one.commands("fix iters all ave/time 1 1 1 f_cd[1] file " + restarted + "\nrun 20\nunfix iters");
   on_one = state_of(one);
   const std::vector<double> before = cdtest::ave_time_values_after(unbroken, 100);
   const std::vector<double> after = cdtest::ave_time_values_after(restarted, 100);

@@ -1,8 +1,13 @@
 #include "analysis/published_run.h"
 
+#include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <regex>
 #include <set>
+#include <sstream>
 
+#include "analysis/layer_geometry.h"
 #include "io/ave_time.h"
 #include "io/line_source.h"
 #include "io/tokens.h"
@@ -90,6 +95,80 @@ std::vector<LayerSpectrum> read_layers_csv(const std::string& path)
   return layers;
 }
 
+// profile.csv: z_d, u and count per bin, and phi where the run's analysis had packing.chunk.
+struct PublishedProfile {
+  std::vector<double> z_d, count, phi;
+};
+
+PublishedProfile read_profile_csv(const std::string& path)
+{
+  const std::vector<std::string> with_phi{"z_d", "u_sqrt_gd", "count", "phi"};
+  const std::vector<std::string> header(with_phi.begin(), with_phi.end() - 1);
+  std::string first;
+  LineSource peek(path);
+  while (peek.next(first) && is_blank(first)) {
+  }
+  const bool has_phi = csv_fields(first, peek) == with_phi;
+  PublishedProfile profile;
+  read_csv_rows(path, has_phi ? with_phi : header,
+                [&](const std::vector<std::string>& fields, const LineSource& source) {
+                  profile.z_d.push_back(parse_number(fields[0], source, "z_d"));
+                  profile.count.push_back(parse_number(fields[2], source, "count"));
+                  if (has_phi) profile.phi.push_back(parse_number(fields[3], source, "phi"));
+                });
+  return profile;
+}
+
+// The value of "key" in params.json (the campaign's record of a run's deck variables, flat
+// "key": "value" pairs).
+double json_number(const std::string& path, const std::string& key)
+{
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "cannot open");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string content = text.str();
+  std::smatch match;
+  if (!std::regex_search(content, match, std::regex("\"" + key + "\"\\s*:\\s*\"?([^\",}\\s]+)")))
+    throw InputError(path, 0, "no value for \"" + key + "\"");
+  LineSource source(path);  // names the file in a malformed number's error
+  return parse_number(match[1].str(), source, key);
+}
+
+// Narrowest spacing of the bins (profile.csv leaves out the empty bins above the surface).
+double bin_width(const std::vector<double>& z_d)
+{
+  double width = INFINITY;
+  for (size_t i = 1; i < z_d.size(); ++i) width = std::min(width, z_d[i] - z_d[i - 1]);
+  return width;
+}
+
+// phi(z) from profile.csv (its phi column, else its counts with L and the dispersity of
+// params.json), then phi_bulk, h_packing and I_packing.
+void add_published_geometry(const std::filesystem::path& folder, RunAnalysis& run)
+{
+  const auto profile_path = (folder / "profile.csv").string(), params_path = (folder / "params.json").string();
+  const auto profile = read_profile_csv(profile_path);
+  PackingProfile packing{profile.z_d, profile.phi};
+  std::string source = "profile.csv, phi";
+  if (packing.phi.empty()) {
+    if (!std::filesystem::exists(params_path)) {
+      run.warnings.push_back(profile_path + " has no phi and " + params_path +
+                             " is missing (L, dispersity): phi_bulk and h_packing not estimated from the counts");
+      return;
+    }
+    const double length = json_number(params_path, "L"), dispersity = json_number(params_path, "dispersity");
+    try {
+      packing.phi = packing_from_counts(profile.count, length, bin_width(profile.z_d), dispersity);
+    } catch (const AnalysisError& e) {
+      throw InputError(params_path, 0, e.what());
+    }
+    source = "profile.csv, count x mean grain area / (L d), L and dispersity from params.json";
+  }
+  if (auto problem = add_layer_geometry(run.results, packing, source))
+    run.warnings.push_back(profile_path + ": " + *problem);
+}
+
 }  // namespace
 
 bool is_published_run(const std::string& directory)
@@ -104,6 +183,8 @@ RunAnalysis read_published_run(const std::string& directory)
   run.settings.directory = directory;
   run.results = read_results_csv((folder / "results.csv").string());
   if (std::filesystem::exists(folder / "layers.csv")) run.layers = read_layers_csv((folder / "layers.csv").string());
+  if (!run.results.find("phi_bulk") && std::filesystem::exists(folder / "profile.csv"))
+    add_published_geometry(folder, run);
   return run;
 }
 

@@ -1,7 +1,8 @@
 // A run as `cdpost run` published it: results.csv and layers.csv in a folder (results/runs/<name>
 // of the campaign keeps these, without the raw outputs). `cdpost series` reads such a folder as
 // it is, so the series fits can be made again from published results alone; its results are
-// those of the analysis that wrote it (window, blocks, options), not analysed again.
+// those of the analysis that wrote it (window, blocks, options), not analysed again; only
+// phi_bulk, h_packing and I_packing are added from profile.csv when results.csv lacks them.
 #pragma once
 
 #include <string>

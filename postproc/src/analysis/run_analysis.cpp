@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 #include <gsl/gsl_statistics_double.h>
 
+#include "analysis/layer_geometry.h"
 #include "io/ave_chunk.h"
 #include "io/ave_time.h"
 #include "io/line_source.h"
@@ -194,6 +197,33 @@ Window choose_window(const RunSettings& settings, const TimeSeries& series, bool
   });
 }
 
+std::string percent(double fraction)
+{
+  std::ostringstream text;
+  text << std::setprecision(2) << 100 * fraction << "%";
+  return text.str();
+}
+
+// A window given on the command line is analysed whatever its drift; one that fails the test the
+// detection applies (the drift of U across it within --max-drift) is labelled so and warned of.
+void test_stationarity(RunAnalysis& run)
+{
+  const auto& s = run.series;
+  const double drift = relative_drift(s.time_s, s.u_flow_mps, run.window);
+  const double limit = run.settings.criterion.max_relative_drift;
+  run.window_stationary = drift <= limit;
+  run.window_drift = "U drifts by " + percent(drift) + " across it, " + (run.window_stationary ? "within" : "above") +
+                     " the " + percent(limit) + " the stationarity test allows (--max-drift)";
+  if (run.window_stationary) return;
+  auto bounds = [&](double unit) {
+    return format_estimate(s.time_s[run.window.begin] / unit, std::nullopt) + " to " +
+           format_estimate(s.time_s[run.window.end - 1] / unit, std::nullopt);
+  };
+  run.warnings.push_back("the window t = " + bounds(1.0) + " s (" + bounds(run.settings.units.reduced_time_s()) +
+                         " sqrt(d/g)) is not stationary: " + run.window_drift +
+                         "; its means, spectra and profile are those of a changing flow");
+}
+
 // Blocks of a chunk file whose time lies in [t0, t1].
 std::vector<size_t> blocks_between(const ChunkSeries& chunks, const TimeSeries& clock, double t0, double t1)
 {
@@ -243,6 +273,40 @@ VelocityProfile average_profile(const ChunkSeries& chunks, const std::vector<siz
   }
   if (profile.z_d.size() >= 2) profile.bin_width_d = std::abs(profile.z_d[1] - profile.z_d[0]);
   return profile;
+}
+
+// phi(z) of every bin, a time average over the blocks weighted by the duration each covers.
+PackingProfile average_packing(const ChunkSeries& chunks, const std::vector<size_t>& blocks,
+                               const std::vector<double>& durations, const RunSettings& settings)
+{
+  const size_t coord = chunks.column_index(settings.columns.packing_coord);
+  const size_t phi = chunks.column_index(settings.columns.packing_phi);
+  const double to_d = settings.units.length_unit_m / settings.units.d_m;
+  PackingProfile profile;
+  for (size_t chunk = 0; chunk < chunks.chunks; ++chunk) {
+    double sum = 0, duration = 0;
+    for (size_t b : blocks) sum += durations[b] * chunks.value(b, chunk, phi), duration += durations[b];
+    profile.z_d.push_back((chunks.value(blocks.front(), chunk, coord) - settings.z0) * to_d);
+    profile.phi.push_back(sum / duration);
+  }
+  return profile;
+}
+
+// phi of each bin of u(z), from the packing profile's bin at the same height.
+std::vector<double> packing_of_bins(const VelocityProfile& velocity, const PackingProfile& packing,
+                                    const std::string& source)
+{
+  std::vector<double> phi;
+  for (double z : velocity.z_d) {
+    auto same =
+        std::find_if(packing.z_d.begin(), packing.z_d.end(), [&](double zp) { return std::abs(zp - z) < 1e-6; });
+    if (same == packing.z_d.end())
+      throw InputError(
+          source, 0,
+          "no bin at z = " + std::to_string(z) + " d, where profile.chunk has one (both need the same bins)");
+    phi.push_back(packing.phi[static_cast<size_t>(same - packing.z_d.begin())]);
+  }
+  return phi;
 }
 
 // Layer top: the highest bin above z = 0 still holding half the median count of the
@@ -297,8 +361,8 @@ struct Analyser {
     const auto& s = run.series;
     auto& r = run.results;
     r.add("t_start", reduced_time(s.time_s[run.window.begin]), "sqrt(d/g)",
-          run.window_detected ? "start of the detected stationary regime" : "start of the stationary window (given)");
-    r.add("t_end", reduced_time(s.time_s[run.window.end - 1]), "sqrt(d/g)", "end of the stationary window");
+          run.window_detected ? "start of the detected stationary regime" : "start of the given " + window_name(run));
+    r.add("t_end", reduced_time(s.time_s[run.window.end - 1]), "sqrt(d/g)", "end of the " + window_name(run));
     r.add("stationary_drift", relative_drift(s.time_s, s.u_flow_mps, run.window), "",
           "drift of the line fitted to U(t) across the window, relative to its mean");
     r.add("U", window_mean(s.u_flow_mps, 1 / units.reduced_velocity_mps()), "sqrt(g d)",
@@ -365,6 +429,17 @@ struct Analyser {
     if (!h) return;
     run.h_d = h->value;
     fit_profile(chunks->source);
+  }
+
+  // phi(z) from packing.chunk over the window, in profile.csv and as phi_bulk, h_packing, I_packing.
+  void packing()
+  {
+    auto chunks = read_optional_chunks(settings.columns.packing_file, "no phi(z), phi_bulk or h_packing");
+    if (!chunks) return;
+    run.packing = average_packing(*chunks, window_blocks(*chunks), block_durations(*chunks, run.series), settings);
+    if (run.profile) run.profile->phi = packing_of_bins(*run.profile, *run.packing, chunks->source);
+    if (auto problem = add_layer_geometry(run.results, *run.packing, "packing.chunk"))
+      run.warnings.push_back(chunks->source + ": " + *problem);
   }
 
   void fit_profile(const std::string& file)
@@ -474,17 +549,24 @@ ColumnSpectrum analyse_column_spectrum(const std::string& path, const std::strin
   });
 }
 
+std::string window_name(const RunAnalysis& run)
+{
+  return run.window_stationary ? "stationary window" : "window (not stationary)";
+}
+
 RunAnalysis analyse_run(const RunSettings& settings)
 {
   RunAnalysis run;
   run.settings = settings;
   run.series = read_time_series(settings, run.warnings);
   run.window = choose_window(settings, run.series, run.window_detected, path_in(settings, settings.columns.time_file));
+  test_stationarity(run);
   Analyser analyser{run, settings, settings.units};
   analyser.time_averages();
   analyser.spectrum_of_v();
   analyser.profile();
   if (run.h_d <= 0 && run.results.find("h")) run.h_d = run.results.find("h")->value;
+  analyser.packing();
   analyser.derived_rates();
   analyser.layer_spectra();
   return run;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "fit/packing_profile.h"
 #include "fit/profile_fits.h"
 #include "output/results.h"
 #include "signal/spectrum.h"
@@ -43,7 +44,10 @@ struct RunColumns {
   std::string profile_coord = "Coord1";
   std::string profile_vx = "vx";
   std::string profile_count = "Ncount";
-  std::string layers_file = "layers.chunk";  // fix ave/chunk of vy per layer, sampled finely
+  std::string packing_file = "packing.chunk";  // fix ave/chunk over the profile's bins, norm none
+  std::string packing_coord = "Coord1";
+  std::string packing_phi = "v_phi_of_grain";  // area fraction of the bin
+  std::string layers_file = "layers.chunk";    // fix ave/chunk of vy per layer, sampled finely
   std::string layers_coord = "Coord1";
   std::string layers_vz = "vy";
   std::string layers_count = "Ncount";  // optional
@@ -64,6 +68,7 @@ struct RunSettings {
   double peak_fmax_hz = std::numeric_limits<double>::infinity();
   double high_frequency_hz = 100;  // A_mean is the mean amplitude at and above this
   double z0 = 0;                   // wall-top height in input length units (z = y - z0)
+  std::string parameters;          // which d, g, z0 and sample rate are used, and where from (one line)
   double creep_depth_d = 30;       // the creep fit uses -creep_depth_d <= z < 0
   int averaging_blocks = 10;
   bool progress = false;
@@ -87,6 +92,7 @@ struct TimeSeries {
 
 struct VelocityProfile {
   std::vector<double> z_d, u_reduced, count;  // per bin, averaged over the stationary window
+  std::vector<double> phi;                    // area fraction per bin, from packing.chunk (empty without it)
   double bin_width_d = 0;
 };
 
@@ -102,11 +108,14 @@ struct RunAnalysis {
   TimeSeries series;
   Window window;
   bool window_detected = true;
-  Spectrum spectrum;  // of v(t), amplitude in sqrt(g d)
+  bool window_stationary = true;  // U drifts across the window within criterion.max_relative_drift
+  std::string window_drift;       // that drift against the limit, in words
+  Spectrum spectrum;              // of v(t), amplitude in sqrt(g d)
   SpectralPeak peak;
   std::optional<VelocityProfile> profile;
   std::optional<BagnoldFit> bagnold;
   std::optional<CreepFit> creep;
+  std::optional<PackingProfile> packing;  // phi(z) over the window, every bin (packing.chunk)
   std::vector<LayerSpectrum> layers;
   ResultTable results;
   std::vector<std::string> warnings;
@@ -114,6 +123,10 @@ struct RunAnalysis {
 };
 
 RunAnalysis analyse_run(const RunSettings& settings);
+
+// How results, report and figures name the analysed window: "stationary window", or
+// "window (not stationary)" when it fails the stationarity test.
+std::string window_name(const RunAnalysis& run);
 
 // Spectrum, peak and A_mean of one column of a fix ave/time file, over the whole file or
 // the window settings.t_start/t_end; amplitudes in the column's own units.

@@ -37,7 +37,7 @@ Figure time_series_figure(const RunAnalysis& run)
   const auto t = reduced(s.time_s, units.reduced_time_s());
   const std::pair<double, double> band{t[run.window.begin], t[run.window.end - 1]};
   Panel u;
-  u.title = "Mean x-velocity (shaded: stationary window)";
+  u.title = "Mean x-velocity; shaded: " + window_name(run);
   u.x_label = "t / sqrt(d/g)";
   u.y_label = "velocity / sqrt(g d)";
   u.x_band = band;
@@ -75,7 +75,7 @@ Figure spectrum_figure(const RunAnalysis& run)
     panel.curves.push_back(line_curve(
         "A_mean (f >= " + format_estimate(run.settings.high_frequency_hz, std::nullopt) + " Hz)", CurveStyle::Lines,
         {run.settings.high_frequency_hz, run.spectrum.frequency_hz.back()}, {a_mean->value, a_mean->value}));
-  return {"spectrum", "Spectrum of v(t) over the stationary regime", {panel}};
+  return {"spectrum", "Spectrum of v(t) over the " + window_name(run), {panel}};
 }
 
 Figure profile_figure(const RunAnalysis& run)
@@ -158,9 +158,12 @@ Figure depth_figure(const RunAnalysis& run)
 void write_tables(const RunAnalysis& run, const std::string& out)
 {
   write_columns_csv(out + "/spectrum.csv", {"f_Hz", "A_sqrt_gd"}, {run.spectrum.frequency_hz, run.spectrum.amplitude});
-  if (run.profile)
-    write_columns_csv(out + "/profile.csv", {"z_d", "u_sqrt_gd", "count"},
-                      {run.profile->z_d, run.profile->u_reduced, run.profile->count});
+  if (run.profile) {
+    std::vector<std::string> names{"z_d", "u_sqrt_gd", "count"};
+    std::vector<std::vector<double>> columns{run.profile->z_d, run.profile->u_reduced, run.profile->count};
+    if (!run.profile->phi.empty()) names.push_back("phi"), columns.push_back(run.profile->phi);
+    write_columns_csv(out + "/profile.csv", names, columns);
+  }
   if (!run.layers.empty()) {
     std::vector<std::vector<double>> columns(5);
     for (const auto& layer : run.layers) {
@@ -178,17 +181,18 @@ void write_tables(const RunAnalysis& run, const std::string& out)
 std::string method_text(const RunAnalysis& run)
 {
   const auto& s = run.settings;
-  std::string window = run.window_detected
-                           ? "detected: earliest start at which the line fitted to U(t) drifts by at most " +
-                                 format_estimate(s.criterion.max_relative_drift * 100, std::nullopt) +
-                                 "% of the mean across a window of at least " +
-                                 format_estimate(s.criterion.min_window_fraction * 100, std::nullopt) + "% of the run"
-                           : "given on the command line";
+  std::string window =
+      run.window_detected
+          ? "Stationary window detected: earliest start at which the line fitted to U(t) drifts by at most " +
+                format_estimate(s.criterion.max_relative_drift * 100, std::nullopt) +
+                "% of the mean across a window of at least " +
+                format_estimate(s.criterion.min_window_fraction * 100, std::nullopt) + "% of the run"
+          : (run.window_stationary ? "Stationary window" : "Window") + std::string(" given on the command line, ") +
+                (run.window_stationary ? "" : "not stationary: ") + run.window_drift;
   return "Units: d = " + format_estimate(s.units.d_m, std::nullopt) +
          " m, g = " + format_estimate(s.units.g_mps2, std::nullopt) +
-         " m/s^2 (sqrt(g/d) = " + format_estimate(s.units.reduced_rate_hz(), std::nullopt) +
-         " Hz). Stationary window " + window + ". Means carry the standard error of " +
-         std::to_string(s.averaging_blocks) +
+         " m/s^2 (sqrt(g/d) = " + format_estimate(s.units.reduced_rate_hz(), std::nullopt) + " Hz). " + window +
+         ". Means carry the standard error of " + std::to_string(s.averaging_blocks) +
          " block means. Spectrum: Welch average of Hann-windowed, detrended segments of " +
          format_estimate(run.spectrum.segment_duration_s, std::nullopt) +
          " s, amplitude normalised so that a sinusoid of amplitude a reads a; "
@@ -215,6 +219,7 @@ void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::
   }
   MarkdownReport report("Run " + run.settings.directory);
   report.paragraph(method_text(run));
+  if (!run.settings.parameters.empty()) report.paragraph("Parameters: " + run.settings.parameters + ".");
   report.heading("Results");
   report.table(run.results);
   report.heading("Figures");

@@ -33,9 +33,14 @@ std::vector<std::string> split_commas(const std::string& line)
   return fields;
 }
 
+std::string label(double value)
+{
+  return format_estimate(value, std::nullopt);
+}
+
 std::string mu_label(double mu)
 {
-  return format_estimate(mu, std::nullopt);
+  return label(mu);
 }
 
 }  // namespace
@@ -132,18 +137,19 @@ namespace {
 struct SeriesFitter {
   SeriesAnalysis& series;
 
-  std::vector<FlowPoint> flow_points() const
+  // The runs that have I (and phi, where they do) under `reading`.
+  std::vector<FlowPoint> flow_points(const LayerReading& reading) const
   {
     std::vector<FlowPoint> points;
     for (const auto& run : series.runs) {
-      if (!run.estimate("I")) continue;
+      if (!run.estimate(reading.inertial)) continue;
       FlowPoint p;
       p.run = run.entry.name;
       p.mu = run.entry.mu;
       p.theta_deg = run.entry.theta_deg;
-      p.inertial_number = run.value("I");
+      p.inertial_number = run.value(reading.inertial);
       p.velocity = run.value("U");
-      if (auto phi = run.estimate("phi")) p.phi = phi->value;
+      if (auto phi = run.estimate(reading.phi)) p.phi = phi->value;
       points.push_back(p);
     }
     return points;
@@ -190,18 +196,27 @@ struct SeriesFitter {
     }
   }
 
-  void pouliquen_fixed(const std::vector<FlowPoint>& points, double mu)
+  void pouliquen_fixed(const std::vector<FlowPoint>& points, double mu, ReadingFits& fits)
   {
-    const std::string suffix = "_mu" + mu_label(mu);
-    attempt("Pouliquen's rule for mu = " + mu_label(mu), [&] {
+    const std::string suffix = "_mu" + mu_label(mu), name = fits.reading.prefix + "pouliquen";
+    attempt(scope(fits) + "Pouliquen's rule for mu = " + mu_label(mu), [&] {
       auto fit = fit_pouliquen(points, series.settings.beta);
       auto& r = series.fits;
-      r.add("pouliquen_theta1" + suffix, fit.angles.theta1_deg, "deg",
-            "theta1 of Pouliquen's rule (beta = " + format_estimate(fit.beta, std::nullopt) + ")");
-      r.add("pouliquen_theta2" + suffix, fit.angles.theta2_deg, "deg", "theta2 of Pouliquen's rule");
-      r.add("pouliquen_ell" + suffix, fit.ell, "", "l of Pouliquen's rule");
-      record_residuals("pouliquen", suffix, "tan_theta", fit.raw, fit.residuals);
-      series.pouliquen.push_back(fit);
+      r.add(name + "_theta1" + suffix, fit.angles.theta1_deg, "deg",
+            "theta1 of Pouliquen's rule (beta = " + format_estimate(fit.beta, std::nullopt) + ")" + of(fits));
+      r.add(name + "_theta2" + suffix, fit.angles.theta2_deg, "deg", "theta2 of Pouliquen's rule" + of(fits));
+      r.add(name + "_ell" + suffix, fit.ell, "", "l of Pouliquen's rule" + of(fits));
+      if (auto c = parameter_correlation(fit.raw, "tan_theta2", "ell"))
+        r.add(name + "_corr_theta2_ell" + suffix, *c, "",
+              "correlation coefficient of theta2 and l in Pouliquen's rule (fit covariance)" + of(fits));
+      record_residuals(name, suffix, "tan_theta", fit.raw, fit.residuals);
+      for (double ell : series.settings.held_ell)
+        attempt(scope(fits) + "Pouliquen's rule with l held at " + label(ell) + " for mu = " + mu_label(mu), [&] {
+          auto held = fit_pouliquen_held_ell(points, series.settings.beta, ell);
+          series.held_fits.push_back(
+              {fits.reading.prefix, "pouliquen", ell, held.angles, held.raw.rms_residual(), held.raw.dof});
+        });
+      fits.pouliquen.push_back(fit);
     });
   }
 
@@ -249,37 +264,92 @@ struct SeriesFitter {
     return kept;
   }
 
+  // What a description of the packing reading's fits ends with, and what its warnings start
+  // with; both "" for the surface reading, whose names carry no prefix either.
+  static std::string of(const ReadingFits& fits)
+  {
+    return fits.reading.prefix.empty() ? "" : "; " + fits.reading.description;
+  }
+  static std::string scope(const ReadingFits& fits)
+  {
+    return fits.reading.prefix.empty() ? "" : "with h_packing and phi_bulk: ";
+  }
+
+  void mu_of_i(const std::vector<FlowPoint>& points, ReadingFits& fits)
+  {
+    const std::string name = fits.reading.prefix + "muI";
+    attempt(scope(fits) + "the mu(I) rule", [&] {
+      const auto kept = points_at_enough_angles(points, kMuOfIAngles, scope(fits) + "the mu(I) rule");
+      auto fit = fit_mu_of_i(kept);
+      auto& r = series.fits;
+      r.add(name + "_I0", fit.i0, "", "I0 of the mu(I) rule, shared by every mu" + of(fits));
+      for (size_t m = 0; m < fit.angles.size(); ++m) {
+        const auto& a = fit.angles[m];
+        r.add(name + "_theta1_mu" + mu_label(a.mu), a.theta1_deg, "deg", "theta1 of the mu(I) rule" + of(fits));
+        r.add(name + "_theta2_mu" + mu_label(a.mu), a.theta2_deg, "deg", "theta2 of the mu(I) rule" + of(fits));
+        if (auto c = parameter_correlation(fit.raw, "I0", "tan_theta2_" + std::to_string(m)))
+          r.add(name + "_corr_I0_theta2_mu" + mu_label(a.mu), *c, "",
+                "correlation coefficient of I0 and theta2 in the mu(I) rule (fit covariance)" + of(fits));
+      }
+      record_residuals(name, "", "tan_theta", fit.raw, fit.residuals);
+      for (double i0 : series.settings.held_i0)
+        attempt(scope(fits) + "the mu(I) rule with I0 held at " + label(i0), [&] {
+          auto held = fit_mu_of_i_held_i0(kept, i0);
+          for (const auto& a : held.angles)
+            series.held_fits.push_back({fits.reading.prefix, "muI", i0, a, held.raw.rms_residual(), held.raw.dof});
+        });
+      fits.mu_of_i = fit;
+    });
+  }
+
+  void phi_laws(const std::vector<FlowPoint>& points, ReadingFits& fits)
+  {
+    const std::string& prefix = fits.reading.prefix;
+    attempt(scope(fits) + "phi = phi_c(mu) - k U/sqrt(g d)", [&] {
+      auto fit = fit_phi_velocity(points);
+      series.fits.add(prefix + "phi_k", fit.k, "",
+                      "k of phi = phi_c(mu) - k U/sqrt(g d), shared by every mu" + of(fits));
+      for (const auto& [mu, phi_c] : fit.phi_c)
+        series.fits.add(prefix + "phi_c_mu" + mu_label(mu), phi_c, "", "phi_c of the linear phi(U) law" + of(fits));
+      record_residuals(prefix + "phi_U", "", "phi", fit.raw, fit.residuals);
+      fits.phi_of_u = fit;
+    });
+    attempt(scope(fits) + "phi = phi_c(mu) - k_I I", [&] {
+      auto fit = fit_phi_inertial(points);
+      series.fits.add(prefix + "phiI_k", fit.k, "", "k_I of phi = phi_c(mu) - k_I I, shared by every mu" + of(fits));
+      for (const auto& [mu, phi_c] : fit.phi_c)
+        series.fits.add(prefix + "phiI_c_mu" + mu_label(mu), phi_c, "", "phi_c of the linear phi(I) law" + of(fits));
+      record_residuals(prefix + "phi_I", "", "phi", fit.raw, fit.residuals);
+      fits.phi_of_i = fit;
+    });
+  }
+
   void flow_rules()
   {
-    const auto points = flow_points();
-    auto& r = series.fits;
-    const auto mus = friction_values(points);
-    for (double mu : mus) {
-      pouliquen_fixed(points_with_mu(points, mu), mu);
-      pouliquen_free(points_with_mu(points, mu), mu);
-    }
-    for (const auto& entry : series.stopped)
-      if (std::find(mus.begin(), mus.end(), entry.mu) == mus.end())
-        series.warnings.push_back("stopped run " + entry.directory + " (mu = " + mu_label(entry.mu) +
-                                  ") not used: no flowing run at that mu");
-    attempt("the mu(I) rule", [&] {
-      auto fit = fit_mu_of_i(points_at_enough_angles(points, kMuOfIAngles, "the mu(I) rule"));
-      r.add("muI_I0", fit.i0, "", "I0 of the mu(I) rule, shared by every mu");
-      for (const auto& a : fit.angles) {
-        r.add("muI_theta1_mu" + mu_label(a.mu), a.theta1_deg, "deg", "theta1 of the mu(I) rule");
-        r.add("muI_theta2_mu" + mu_label(a.mu), a.theta2_deg, "deg", "theta2 of the mu(I) rule");
+    for (const auto& reading : {kSurfaceReading, kPackingReading}) {
+      const auto points = flow_points(reading);
+      if (points.empty()) {
+        series.warnings.push_back("no run has " + reading.inertial + ": no fit with " + reading.description);
+        continue;
       }
-      record_residuals("muI", "", "tan_theta", fit.raw, fit.residuals);
-      series.mu_of_i = fit;
-    });
-    attempt("phi = phi_c(mu) - k U/sqrt(g d)", [&] {
-      auto fit = fit_phi_velocity(points);
-      r.add("phi_k", fit.k, "", "k of phi = phi_c(mu) - k U/sqrt(g d), shared by every mu");
-      for (const auto& [mu, phi_c] : fit.phi_c)
-        r.add("phi_c_mu" + mu_label(mu), phi_c, "", "phi_c of the linear phi(U) law");
-      record_residuals("phi_U", "", "phi", fit.raw, fit.residuals);
-      series.phi_of_u = fit;
-    });
+      if (points.size() < series.runs.size())
+        series.warnings.push_back(std::to_string(series.runs.size() - points.size()) + " runs without " +
+                                  reading.inertial + " left out of the fits with " + reading.description);
+      ReadingFits fits{reading, {}, std::nullopt, std::nullopt, std::nullopt};
+      const auto mus = friction_values(points);
+      for (double mu : mus) {
+        pouliquen_fixed(points_with_mu(points, mu), mu, fits);
+        if (reading.prefix.empty()) pouliquen_free(points_with_mu(points, mu), mu);
+      }
+      if (reading.prefix.empty())
+        for (const auto& entry : series.stopped)
+          if (std::find(mus.begin(), mus.end(), entry.mu) == mus.end())
+            series.warnings.push_back("stopped run " + entry.directory + " (mu = " + mu_label(entry.mu) +
+                                      ") not used: no flowing run at that mu");
+      mu_of_i(points, fits);
+      phi_laws(points, fits);
+      series.readings.push_back(fits);
+    }
   }
 
   // A result of a run by name; "L" is the manifest's cell length.
@@ -431,9 +501,10 @@ SeriesAnalysis analyse_series(const SeriesSettings& settings)
     RunSettings run_settings = settings.run;
     run_settings.directory = entries[i].directory;
     try {
+      const bool published = is_published_run(run_settings.directory);
+      if (!published && settings.complete_run) settings.complete_run(run_settings);
       series.runs.push_back({entries[i],
-                             is_published_run(run_settings.directory) ? read_published_run(run_settings.directory)
-                                                                      : analyse_run(run_settings),
+                             published ? read_published_run(run_settings.directory) : analyse_run(run_settings),
                              std::nullopt});
     } catch (const std::exception& e) {
       throw InputError(settings.manifest, entries[i].line, std::string("run failed: ") + e.what());

@@ -9,6 +9,7 @@
 // the measurement h_stop(theta) for Pouliquen's rule.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,7 +23,14 @@ namespace cdpost {
 struct SeriesSettings {
   std::string manifest;
   RunSettings run;  // shared by every run; directory set per run
+  // Completes the settings of a run read from its raw outputs from what its folder records
+  // (the command line's run parameters); none: `run` as it is.
+  std::function<void(RunSettings&)> complete_run;
   double beta = 0.136;
+  // The values at which the mu(I) rule is refitted with I0 held, and Pouliquen's rule with l
+  // held (at beta): the rms residual against the held value shows what the runs determine.
+  std::vector<double> held_i0{0.1, 0.15, 0.2, 0.3, 0.4, 0.5};
+  std::vector<double> held_ell{0.5, 0.75, 1, 1.25, 1.5, 1.75, 2, 2.5, 3};
 };
 
 struct ManifestEntry {
@@ -50,19 +58,50 @@ struct SeriesRun {
 struct SeriesResidual {
   std::string run;  // the run's directory, as in runs.csv
   double mu = 0, theta_deg = 0;
-  std::string fit;       // pouliquen, pouliquen_betafree, muI or phi_U
+  std::string fit;       // pouliquen, pouliquen_betafree, muI, phi_U or phi_I, packing_ before the packing reading's
   std::string quantity;  // tan_theta or phi
   double value = 0;      // observed − fitted
 };
 
+// A reading of the layer's thickness and packing (doc/scene.md): each run's I and phi under it.
+struct LayerReading {
+  std::string name;         // "surface reading", "packing reading"
+  std::string prefix;       // of its fits' names: "" (surface), "packing_"
+  std::string inertial;     // the runs' result holding I under it
+  std::string phi;          // phi
+  std::string thickness;    // and h
+  std::string description;  // the definitions, for reports
+};
+const LayerReading kSurfaceReading{"surface reading", "", "I", "phi", "h", "h = 2 <z>, phi = grain area/(L h)"};
+const LayerReading kPackingReading{
+    "packing reading", "packing_",  "I_packing",
+    "phi_bulk",        "h_packing", "h = h_packing (phi(z) at half phi_bulk), phi = phi_bulk (0.2 h-0.8 h)"};
+
+// The flow rules and phi laws fitted under one reading.
+struct ReadingFits {
+  LayerReading reading;
+  std::vector<PouliquenFit> pouliquen;  // at the fixed beta
+  std::optional<MuIFit> mu_of_i;
+  std::optional<PhiFit> phi_of_u, phi_of_i;  // phi = phi_c(mu) - k U/sqrt(g d), - k_I I
+};
+
+// A rule refitted with one parameter held: one row per friction.
+struct HeldFit {
+  std::string reading;  // its prefix: "" or "packing_"
+  std::string rule;     // muI (I0 held) or pouliquen (l held)
+  double held = 0;
+  AngleBounds angles;       // of one friction
+  double rms_residual = 0;  // in tan theta, over the fit's runs (every friction for muI)
+  int dof = 0;
+};
+
 struct SeriesAnalysis {
   SeriesSettings settings;
-  std::vector<SeriesRun> runs;          // the flowing runs, analysed
-  std::vector<ManifestEntry> stopped;   // the runs that stopped
-  std::vector<PouliquenFit> pouliquen;  // at the fixed beta
-  std::vector<PouliquenFreeFit> pouliquen_free;
-  std::optional<MuIFit> mu_of_i;
-  std::optional<PhiFit> phi_of_u;
+  std::vector<SeriesRun> runs;                   // the flowing runs, analysed
+  std::vector<ManifestEntry> stopped;            // the runs that stopped
+  std::vector<ReadingFits> readings;             // surface, then packing (when the runs have it)
+  std::vector<PouliquenFreeFit> pouliquen_free;  // surface reading
+  std::vector<HeldFit> held_fits;
   std::optional<PowerLaw> f_vs_scale, f_vs_shear_rate;
   std::vector<SeriesResidual> residuals;
   ResultTable fits;
@@ -71,7 +110,7 @@ struct SeriesAnalysis {
 
 SeriesAnalysis analyse_series(const SeriesSettings& settings);
 
-// OUT/runs.csv (one row per flowing run), OUT/fits.{csv,json}, OUT/residuals.csv,
+// OUT/runs.csv (one row per flowing run), OUT/fits.{csv,json}, OUT/residuals.csv, OUT/held_fits.csv,
 // OUT/layer_amplitudes.csv, OUT/depth_decay.csv, OUT/figures, OUT/report.md.
 void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir);
 

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "analysis/series_analysis.h"
+#include "io/ave_time.h"
 #include "output/gnuplot.h"
 #include "output/report.h"
 
@@ -50,21 +51,6 @@ Panel panel(const std::string& title, const std::string& x_label, const std::str
   return p;
 }
 
-Curve sampled(const std::string& title, double x0, double x1, const std::function<std::optional<double>(double)>& y)
-{
-  Curve curve;
-  curve.title = title;
-  curve.style = CurveStyle::Lines;
-  for (int i = 0; i <= 100; ++i) {
-    double x = x0 + (x1 - x0) * i / 100.0;
-    if (auto value = y(x)) {
-      curve.x.push_back(x);
-      curve.y.push_back(*value);
-    }
-  }
-  return curve;
-}
-
 std::pair<double, double> x_extent(const std::vector<Curve>& curves)
 {
   double low = INFINITY, high = -INFINITY;
@@ -73,79 +59,154 @@ std::pair<double, double> x_extent(const std::vector<Curve>& curves)
   return {low, high};
 }
 
+// A fitted curve y(x) over [x0, x1] with its one-sigma band from the fit's covariance (delta
+// method); `y` takes the fit's parameters. Points where the band is undefined, or the curve
+// above y_max (a rule diverging at theta2), are left out.
+Curve banded(const std::string& title, double x0, double x1, const FitResult& fit,
+             const std::function<std::optional<double>(const std::vector<double>&, double)>& y, double y_max = INFINITY)
+{
+  Curve curve;
+  curve.title = title;
+  curve.style = CurveStyle::LinesBand;
+  const auto parameters = fit.values();
+  for (int i = 0; i <= 100; ++i) {
+    const double x = x0 + (x1 - x0) * i / 100.0;
+    const auto value = y(parameters, x);
+    const auto sigma = propagated_error(fit, [&](const std::vector<double>& p) { return y(p, x); });
+    if (!value || !sigma || *value > y_max) continue;
+    curve.x.push_back(x);
+    curve.y.push_back(*value);
+    curve.y_error.push_back(*sigma);
+  }
+  return curve;
+}
+
 Figure power_law_figure(const SeriesAnalysis& series, const std::string& name, const std::string& x,
                         const std::string& x_label, const std::optional<PowerLaw>& law)
 {
   auto curves = by_friction(series, x, "f");
   if (law && !curves.empty()) {
     auto [x0, x1] = x_extent(curves);
-    curves.push_back(sampled("f = " + format_estimate(law->prefactor.value, law->prefactor.error) + " x^(" +
-                                 format_estimate(law->exponent.value, law->exponent.error) + ")",
-                             x0, x1,
-                             [&](double xv) { return law->prefactor.value * std::pow(xv, law->exponent.value); }));
+    curves.push_back(banded("f = " + format_estimate(law->prefactor.value, law->prefactor.error) + " x^(" +
+                                format_estimate(law->exponent.value, law->exponent.error) + ")",
+                            x0, x1, law->line, [](const std::vector<double>& p, double xv) {
+                              return std::exp(p[0]) * std::pow(xv, p[1]);
+                            }));
   }
-  return {
-      name, "Oscillation frequency f against " + x_label, {panel("f against " + x_label, x_label, "f (Hz)", curves)}};
+  return {name,
+          "Oscillation frequency f against " + x_label + "; band: one standard error of the fitted law (delta method)",
+          {panel("f against " + x_label, x_label, "f (Hz)", curves)}};
 }
 
-Figure phi_figure(const SeriesAnalysis& series)
+// phi against x (U or I) under one reading, with the fitted line of each friction and its band.
+Panel phi_panel(const SeriesAnalysis& series, const ReadingFits& fits, const std::string& x,
+                const std::optional<PhiFit>& law, const std::string& x_label)
 {
-  auto curves = by_friction(series, "U", "phi");
-  if (series.phi_of_u && !curves.empty()) {
-    auto [u0, u1] = x_extent(curves);
-    for (const auto& [mu, phi_c] : series.phi_of_u->phi_c) {
-      const double k = series.phi_of_u->k.value, c = phi_c.value;
-      curves.push_back(sampled("phi_c - k U, mu = " + label(mu), u0, u1, [=](double u) { return c - k * u; }));
-    }
+  auto curves = by_friction(series, x, fits.reading.phi);
+  if (law && !curves.empty()) {
+    auto [x0, x1] = x_extent(curves);
+    const auto slope = static_cast<size_t>(law->raw.parameters.size() - 1);
+    for (size_t m = 0; m < law->phi_c.size(); ++m)
+      curves.push_back(banded("phi_c - k x, mu = " + label(law->phi_c[m].first), x0, x1, law->raw,
+                              [=](const std::vector<double>& p, double xv) { return p[m] - p[slope] * xv; }));
   }
-  return {"phi_vs_U",
-          "phi against U with the linear law",
-          {panel("Area fraction against velocity", "U / sqrt(g d)", "phi", curves)}};
+  auto p =
+      panel(fits.reading.phi + " against " + x_label + ", " + fits.reading.name, x_label, fits.reading.phi, curves);
+  p.key = "bottom left";
+  return p;
 }
 
-// Mean h (in d) of the runs of one friction coefficient: the flow-rule curves are drawn for it.
-double mean_thickness(const SeriesAnalysis& series, double mu)
+// Side by side, one panel per reading.
+Figure readings_figure(const std::string& name, const std::string& caption, std::vector<Panel> panels)
+{
+  for (size_t i = 0; i < panels.size(); ++i) {
+    panels[i].width = 1.0 / panels.size();
+    panels[i].origin_x = static_cast<double>(i) / panels.size();
+  }
+  return Figure{name, caption, panels, 700 * static_cast<int>(panels.size()), 650};
+}
+
+std::vector<Figure> phi_figures(const SeriesAnalysis& series)
+{
+  std::vector<Panel> against_u, against_i;
+  for (const auto& fits : series.readings) {
+    against_u.push_back(phi_panel(series, fits, "U", fits.phi_of_u, "U / sqrt(g d)"));
+    against_i.push_back(phi_panel(series, fits, fits.reading.inertial, fits.phi_of_i, fits.reading.inertial));
+  }
+  const std::string band = "; bands: one standard error of the fitted line (delta method, fit covariance)";
+  return {readings_figure("phi_vs_U", "phi against U with the linear law, per reading of h and phi" + band, against_u),
+          readings_figure("phi_vs_I", "phi against I with the linear law, per reading of h and phi" + band, against_i)};
+}
+
+// Mean h (in d, result `thickness`) of the runs of one friction: the flow-rule curves are drawn for it.
+double mean_thickness(const SeriesAnalysis& series, double mu, const std::string& thickness)
 {
   double sum = 0;
   int count = 0;
   for (const auto& run : series.runs)
-    if (run.entry.mu == mu && run.estimate("h")) sum += run.value("h"), ++count;
+    if (run.entry.mu == mu && run.estimate(thickness)) sum += run.value(thickness), ++count;
   return count ? sum / count : 0;
+}
+
+double tan_deg(double deg)
+{
+  return std::tan(deg * M_PI / 180);
+}
+
+// U/sqrt(g d) = I (h/d)^1.5 of a rule's I(tan θ), none where the rule gives none.
+std::optional<double> velocity(std::optional<double> inertial, double h)
+{
+  if (!inertial || !(*inertial > 0)) return std::nullopt;
+  return *inertial * std::pow(h, 1.5);
+}
+
+Panel flow_rule_panel(const SeriesAnalysis& series, const ReadingFits& fits)
+{
+  auto curves = by_friction(series, "theta", "U");
+  auto [t0, t1] = x_extent(curves);
+  double u_max = 0;
+  for (const auto& c : curves) u_max = std::max(u_max, *std::max_element(c.y.begin(), c.y.end()));
+  const double top = 1.3 * u_max;  // the rules diverge at theta2
+  const double beta = series.settings.beta;
+  for (const auto& fit : fits.pouliquen) {
+    const double h = mean_thickness(series, fit.angles.mu, fits.reading.thickness);
+    curves.push_back(banded(
+        "Pouliquen, mu = " + label(fit.angles.mu), fit.angles.theta1_deg.value, fit.angles.theta2_deg.value, fit.raw,
+        [=](const std::vector<double>& p, double theta) {
+          auto h_stop = pouliquen_stop_thickness(tan_deg(theta), p[0], p[1], p[2]);
+          return velocity(h_stop ? std::optional<double>(beta / *h_stop) : std::nullopt, h);
+        },
+        top));
+  }
+  if (fits.mu_of_i)
+    for (size_t m = 0; m < fits.mu_of_i->angles.size(); ++m) {
+      const auto& angles = fits.mu_of_i->angles[m];
+      const double h = mean_thickness(series, angles.mu, fits.reading.thickness);
+      curves.push_back(banded(
+          "mu(I), mu = " + label(angles.mu), angles.theta1_deg.value, angles.theta2_deg.value, fits.mu_of_i->raw,
+          [=](const std::vector<double>& p, double theta) {
+            const double t = tan_deg(theta), tan1 = p[1 + 2 * m], tan2 = p[2 + 2 * m];
+            if (!(t > tan1 && t < tan2)) return std::optional<double>();
+            return velocity(p[0] * (t - tan1) / (tan2 - t), h);
+          },
+          top));
+    }
+  auto p =
+      panel("U against tilt, " + fits.reading.name + " (curves at the mean " + fits.reading.thickness + " of each mu)",
+            "theta (deg)", "U / sqrt(g d)", curves);
+  p.x_range = std::make_pair(t0 - 1, t1 + 1);
+  p.y_range = std::make_pair(0.0, top);
+  return p;
 }
 
 Figure flow_rule_figure(const SeriesAnalysis& series)
 {
-  auto curves = by_friction(series, "theta", "U");
-  auto velocity = [](double inertial, double h) { return inertial * std::pow(h, 1.5); };  // U/sqrt(gd) = I (h/d)^1.5
-  auto tan_deg = [](double deg) { return std::tan(deg * M_PI / 180); };
-  for (const auto& fit : series.pouliquen) {
-    const double h = mean_thickness(series, fit.angles.mu);
-    curves.push_back(sampled("Pouliquen, mu = " + label(fit.angles.mu), fit.angles.theta1_deg.value,
-                             fit.angles.theta2_deg.value, [&](double theta) -> std::optional<double> {
-                               auto i = pouliquen_inertial_number(tan_deg(theta), fit);
-                               if (!i) return std::nullopt;
-                               return velocity(*i, h);
-                             }));
-  }
-  if (series.mu_of_i)
-    for (const auto& angles : series.mu_of_i->angles) {
-      const double h = mean_thickness(series, angles.mu), i0 = series.mu_of_i->i0.value;
-      curves.push_back(sampled("mu(I), mu = " + label(angles.mu), angles.theta1_deg.value, angles.theta2_deg.value,
-                               [&](double theta) -> std::optional<double> {
-                                 auto i = mu_of_i_inertial_number(tan_deg(theta), angles, i0);
-                                 if (!i) return std::nullopt;
-                                 return velocity(*i, h);
-                               }));
-    }
-  auto p = panel("U against tilt with the flow rules (curves at the mean h of each mu)", "theta (deg)", "U / sqrt(g d)",
-                 curves);
-  const auto measured = by_friction(series, "theta", "U");
-  auto [t0, t1] = x_extent(measured);
-  double u_max = 0;
-  for (const auto& c : measured) u_max = std::max(u_max, *std::max_element(c.y.begin(), c.y.end()));
-  p.x_range = std::make_pair(t0 - 1, t1 + 1);
-  p.y_range = std::make_pair(0.0, 1.3 * u_max);  // the rules diverge at theta2
-  return {"U_vs_theta", "U against theta with Pouliquen's and the mu(I) rule", {p}};
+  std::vector<Panel> panels;
+  for (const auto& fits : series.readings) panels.push_back(flow_rule_panel(series, fits));
+  return readings_figure("U_vs_theta",
+                         "U against theta with Pouliquen's and the mu(I) rule, per reading of h and phi; bands: one "
+                         "standard error of the fitted curve (delta method, fit covariance)",
+                         panels);
 }
 
 std::optional<Figure> length_figure(const SeriesAnalysis& series)
@@ -209,6 +270,8 @@ std::optional<Figure> depth_figure(const SeriesAnalysis& series)
 std::optional<Figure> beta_free_figure(const SeriesAnalysis& series)
 {
   std::vector<Curve> stops, froude;
+  double h_max = 0;
+  for (const auto& entry : series.stopped) h_max = std::max(h_max, *entry.h_stop_d);
   for (const auto& fit : series.pouliquen_free) {
     if (!fit.beta) continue;
     const double mu = fit.angles.mu, tan1 = fit.raw["tan_theta1"].value, tan2 = fit.raw["tan_theta2"].value,
@@ -226,17 +289,19 @@ std::optional<Figure> beta_free_figure(const SeriesAnalysis& series)
         flowing.y.push_back(run.value("U") / std::sqrt(h));
       }
     stops.push_back(measured);
-    stops.push_back(
-        sampled("h_stop(theta), mu = " + label(mu), fit.angles.theta1_deg.value, fit.angles.theta2_deg.value, h_stop));
+    stops.push_back(banded(
+        "h_stop(theta), mu = " + label(mu), fit.angles.theta1_deg.value, fit.angles.theta2_deg.value, fit.raw,
+        [](const std::vector<double>& p, double theta) {
+          return pouliquen_stop_thickness(std::tan(theta * M_PI / 180), p[0], p[1], p[2]);
+        },
+        2 * h_max));
     froude.push_back(flowing);
     if (!flowing.x.empty())
-      froude.push_back(sampled("Fr = beta h/h_stop, beta = " + format_estimate(fit.beta->value, fit.beta->error), 0,
-                               *std::max_element(flowing.x.begin(), flowing.x.end()),
-                               [&](double x) { return fit.beta->value * x; }));
+      froude.push_back(banded("Fr = beta h/h_stop, beta = " + format_estimate(fit.beta->value, fit.beta->error), 0,
+                              *std::max_element(flowing.x.begin(), flowing.x.end()), fit.raw,
+                              [](const std::vector<double>& p, double x) { return std::optional<double>(p[3] * x); }));
   }
   if (stops.empty()) return std::nullopt;
-  double h_max = 0;
-  for (const auto& entry : series.stopped) h_max = std::max(h_max, *entry.h_stop_d);
   auto left = panel("Deposit thickness of the stopped runs", "theta (deg)", "h_stop / d", stops);
   left.y_range = std::make_pair(0.0, 2 * h_max);  // h_stop(theta) diverges at theta1
   left.width = 0.5;
@@ -244,7 +309,8 @@ std::optional<Figure> beta_free_figure(const SeriesAnalysis& series)
   right.width = 0.5;
   right.origin_x = 0.5;
   return Figure{"pouliquen_beta_free",
-                "Pouliquen's rule with beta free: h_stop(theta) and Fr = beta h/h_stop",
+                "Pouliquen's rule with beta free: h_stop(theta) and Fr = beta h/h_stop; bands: one standard error "
+                "(delta method)",
                 {left, right},
                 1300,
                 600};
@@ -261,8 +327,8 @@ std::vector<Figure> series_figures(const SeriesAnalysis& series)
       {"A_vs_phi",
        "Peak amplitude A against phi",
        {panel("A against phi", "phi", "A / sqrt(g d)", by_friction(series, "phi", "A"))}},
-      phi_figure(series),
       flow_rule_figure(series)};
+  for (auto& figure : phi_figures(series)) figures.push_back(figure);
   if (auto lengths = length_figure(series)) figures.push_back(*lengths);
   if (auto depth = depth_figure(series)) figures.push_back(*depth);
   if (auto beta = beta_free_figure(series)) figures.push_back(*beta);
@@ -271,8 +337,8 @@ std::vector<Figure> series_figures(const SeriesAnalysis& series)
 
 void write_runs_table(const SeriesAnalysis& series, const std::string& path)
 {
-  const std::vector<std::string> names = {"U",       "phi", "h", "I",      "shear_rate",
-                                          "f_scale", "f",   "A", "A_mean", "creep_lambda"};
+  const std::vector<std::string> names = {"U",          "phi",     "h", "I", "phi_bulk", "h_packing",   "I_packing",
+                                          "shear_rate", "f_scale", "f", "A", "A_mean",   "creep_lambda"};
   auto out = open_output(path);
   out.precision(10);
   out << "run,mu,theta_deg,L_d";
@@ -300,6 +366,54 @@ void write_residuals(const SeriesAnalysis& series, const std::string& path)
   out << "run,mu,theta_deg,fit,quantity,residual\n";
   for (const auto& r : series.residuals)
     out << r.run << ',' << r.mu << ',' << r.theta_deg << ',' << r.fit << ',' << r.quantity << ',' << r.value << '\n';
+}
+
+// One row per held value and friction: the angles refitted and the rms residual.
+void write_held_fits(const SeriesAnalysis& series, const std::string& path)
+{
+  auto out = open_output(path);
+  out.precision(10);
+  out << "reading,rule,held_parameter,held_value,mu,theta1_deg,theta1_error_deg,theta2_deg,theta2_error_deg,"
+         "rms_residual_tan_theta,dof\n";
+  for (const auto& h : series.held_fits) {
+    out << (h.reading.empty() ? "surface" : "packing") << ',' << h.rule << ',' << (h.rule == "muI" ? "I0" : "ell")
+        << ',' << h.held << ',' << h.angles.mu;
+    for (const auto* angle : {&h.angles.theta1_deg, &h.angles.theta2_deg}) {
+      out << ',' << angle->value << ',';
+      if (angle->error) out << *angle->error;
+    }
+    out << ',' << h.rms_residual << ',' << h.dof << '\n';
+  }
+}
+
+// The held fits of one rule and reading as a table: a row per held value, the rms and each
+// friction's θ1, θ2; the free fit's value and rms head the caption.
+void held_table(MarkdownReport& report, const SeriesAnalysis& series, const std::string& reading,
+                const std::string& rule)
+{
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> header{rule == "muI" ? "I0 held" : "l held", "mu", "theta1 (deg)", "theta2 (deg)",
+                                  "rms residual (tan theta)"};
+  for (const auto& h : series.held_fits)
+    if (h.reading == reading && h.rule == rule)
+      rows.push_back({label(h.held), label(h.angles.mu),
+                      format_estimate(h.angles.theta1_deg.value, h.angles.theta1_deg.error),
+                      format_estimate(h.angles.theta2_deg.value, h.angles.theta2_deg.error),
+                      format_estimate(h.rms_residual, std::nullopt)});
+  if (rows.empty()) return;
+  std::vector<std::string> fitted;  // the free fit's parameter and rms residual
+  for (const std::string stem : rule == "muI"
+                                    ? std::vector<std::string>{"muI_I0", "muI_rms_residual"}
+                                    : std::vector<std::string>{"pouliquen_ell_mu", "pouliquen_rms_residual_mu"})
+    for (const auto& row : series.fits.rows())
+      if (row.name.rfind(reading + stem, 0) == 0)
+        fitted.push_back(row.name + " = " + format_estimate(row.value, row.error));
+  report.paragraph((reading.empty() ? "Surface reading" : "Packing reading") + std::string(", ") +
+                   (rule == "muI" ? "the mu(I) rule with I0 held (one joint fit per value, the rms over every run)"
+                                  : "Pouliquen's rule with l held (beta = " + label(series.settings.beta) +
+                                        ", one fit per friction and value)") +
+                   ". Free fit: " + join_names(fitted) + ".");
+  report.table(header, rows);
 }
 
 // One row per run and layer: the amplitude at the run's f against the layer's z.
@@ -347,7 +461,8 @@ void residual_table(MarkdownReport& report, const SeriesAnalysis& series)
     rows.push_back(row);
   }
   std::vector<std::string> header{"run"};
-  for (const auto& fit : fits) header.push_back(fit + (fit == "phi_U" ? " (phi)" : " (tan theta)"));
+  for (const auto& fit : fits)
+    header.push_back(fit + (fit.find("phi_") != std::string::npos ? " (phi)" : " (tan theta)"));
   report.table(header, rows);
 }
 
@@ -382,6 +497,13 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
       "Correlations are Pearson's r with the number of runs n and the two-sided p-value of r (Student t, n - 2 degrees "
       "of freedom); over all runs and, when the series has several frictions, per mu (`_mu<mu>`). Per-run numbers: "
       "runs.csv.");
+  report.paragraph(
+      "Two readings of the layer's thickness and packing (doc/scene.md): the surface one, h = 2 <z> over the grains "
+      "above the wall tops and phi = their area/(L h), gives the fits without prefix; the packing one, phi_bulk = the "
+      "mean of phi(z) over 0.2 h-0.8 h and h_packing = the height where phi(z) falls to half phi_bulk (I_packing = U/"
+      "h_packing^1.5), gives those named `packing_*`. Each reading also fits phi = phi_c(mu) - k_I I (`phiI_*`). The "
+      "fitted curves of the figures carry one-standard-error bands from the fit's covariance (delta method: var y = "
+      "g^T C g, g the curve's gradient in the parameters).");
   report.heading("Fitted numbers");
   report.table(series.fits);
   report.heading("Residuals of the flow-rule fits");
@@ -390,6 +512,15 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
       "table "
       "above (`*_rms_residual*`); every residual is in residuals.csv.");
   residual_table(report, series);
+  report.heading("What the flow-rule fits determine");
+  report.paragraph(
+      "Over the runs' range of I the mu(I) rule's I0 and theta2 trade off, and so do Pouliquen's theta2 and l: "
+      "`*_corr_I0_theta2_mu<mu>` and `*_corr_theta2_ell_mu<mu>` above are their correlation coefficients "
+      "cov/(sigma sigma) from the fit's covariance. Below, each rule refitted with that parameter held at several "
+      "values, the others free (held_fits.csv): where the rms residual hardly changes, the runs do not determine the "
+      "held parameter.");
+  for (const auto& fits : series.readings)
+    for (const std::string rule : {"muI", "pouliquen"}) held_table(report, series, fits.reading.prefix, rule);
   report.heading("Decay of the oscillation with depth");
   report.paragraph(
       "The amplitude of v at each run's f per layer (layer_amplitudes.csv, figure amplitude_vs_depth), fitted as "
@@ -407,6 +538,7 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
   report.warnings(series.warnings);
   write_runs_table(series, out_dir + "/runs.csv");
   write_residuals(series, out_dir + "/residuals.csv");
+  write_held_fits(series, out_dir + "/held_fits.csv");
   write_layer_amplitudes(series, out_dir + "/layer_amplitudes.csv");
   write_depth_decay(series, out_dir + "/depth_decay.csv");
   series.fits.write_csv(out_dir + "/fits.csv");

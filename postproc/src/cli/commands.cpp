@@ -8,6 +8,7 @@
 #include "analysis/series_analysis.h"
 #include "analysis/snapshot.h"
 #include "cli/options.h"
+#include "cli/run_parameters.h"
 #include "io/ave_time.h"
 #include "io/line_source.h"
 
@@ -55,8 +56,8 @@ const std::vector<ColumnOption> column_options = {
 
 std::vector<OptionSpec> unit_options()
 {
-  return {{"d", "METRES", "mean grain diameter (default 5e-4)"},
-          {"g", "M/S2", "gravity (default 9.81)"},
+  return {{"d", "METRES", "mean grain diameter (default: the run's chute.params, else 5e-4)"},
+          {"g", "M/S2", "gravity (default: the run's chute.params, else 9.81)"},
           {"units", "si|reduced", "units of the input: SI (default) or reduced (d, sqrt(d/g))"},
           {"length-unit", "METRES", "one input length unit in metres (overrides --units)"},
           {"time-unit", "SECONDS", "one input time unit in seconds (overrides --units)"},
@@ -79,9 +80,11 @@ std::vector<OptionSpec> analysis_options()
       {"fmax", "HZ", "highest frequency searched for the peak (default Nyquist)"},
       {"high-frequency", "HZ", "A_mean is the mean amplitude above this (default 100)"},
       {"sample-rate", "HZ",
-       "spectra use the samples on this rate's grid, the deck's sample_rate (default: the time file's "
+       "spectra use the samples on this rate's grid (default: the run's chute.params, else the time file's "
        "longest interval)"},
-      {"z0", "LENGTH", "height of the wall tops in input length units (z = y - z0; default 0)"},
+      {"z0", "LENGTH",
+       "height of the wall tops in input length units, z = y - z0 (default: the run's chute.params; "
+       "needed without one)"},
       {"creep-depth", "D", "the creep fit uses -D <= z < 0, in d (default 30)"},
       {"blocks", "N", "blocks for the standard error of means (default 10)"},
       {"out", "DIR", "output directory"}};
@@ -89,20 +92,6 @@ std::vector<OptionSpec> analysis_options()
   for (const auto& c : column_options)
     specs.push_back({c.name, "NAME", std::string(c.help) + " (default " + RunColumns().*c.member + ")"});
   return specs;
-}
-
-Units units_from(const ParsedOptions& options, const std::string& command)
-{
-  Units units;
-  units.d_m = options.number("d").value_or(units.d_m);
-  units.g_mps2 = options.number("g").value_or(units.g_mps2);
-  if (!(units.d_m > 0 && units.g_mps2 > 0)) throw UsageError(command + ": --d and --g must be positive");
-  auto system = options.text("units").value_or("si");
-  if (system == "reduced") units.use_reduced_input();
-  else if (system != "si") throw UsageError(command + ": --units must be 'si' or 'reduced', not '" + system + "'");
-  units.length_unit_m = options.number("length-unit").value_or(units.length_unit_m);
-  units.time_unit_s = options.number("time-unit").value_or(units.time_unit_s);
-  return units;
 }
 
 RunSettings settings_from(const ParsedOptions& options, const std::string& command)
@@ -121,7 +110,7 @@ RunSettings settings_from(const ParsedOptions& options, const std::string& comma
   s.high_frequency_hz = options.number("high-frequency").value_or(s.high_frequency_hz);
   s.sample_rate_hz = options.number("sample-rate");
   if (s.sample_rate_hz && !(*s.sample_rate_hz > 0)) throw UsageError(command + ": --sample-rate must be positive");
-  s.z0 = options.number("z0").value_or(s.z0);
+  s.z0 = options.number("z0").value_or(s.z0);  // else a run folder's record (run_parameters.h)
   s.creep_depth_d = options.number("creep-depth").value_or(s.creep_depth_d);
   s.averaging_blocks = static_cast<int>(options.integer("blocks").value_or(s.averaging_blocks));
   s.progress = options.flag("progress");
@@ -146,6 +135,13 @@ std::optional<ParsedOptions> parse_or_help(const std::string& command, const std
   return options;
 }
 
+// The folder holding `file`, "." for a bare name: where its run's chute.params would be.
+std::string folder_of(const std::string& file)
+{
+  const auto folder = std::filesystem::path(file).parent_path();
+  return folder.empty() ? "." : folder.string();
+}
+
 void print_warnings(const std::vector<std::string>& warnings)
 {
   for (const auto& w : warnings) std::cerr << "cdpost: warning: " << w << '\n';
@@ -160,6 +156,8 @@ int command_run(const std::vector<std::string>& arguments)
   auto settings = settings_from(*options, "cdpost run");
   settings.directory = options->positional[0];
   if (!std::filesystem::is_directory(settings.directory)) throw InputError(settings.directory, 0, "not a directory");
+  apply_run_parameters(settings, *options, "cdpost run");
+  std::cout << "parameters: " << settings.parameters << '\n';
   auto out = options->text("out").value_or((std::filesystem::path(settings.directory) / "post").string());
   auto run = analyse_run(settings);
   write_run_outputs(run, out, options->text("dump").value_or(""));
@@ -176,9 +174,13 @@ int command_series(const std::vector<std::string>& arguments)
   SeriesSettings series;
   series.run = settings_from(*options, "cdpost series");
   series.manifest = options->positional[0];
+  series.complete_run = [&](RunSettings& run) { apply_run_parameters(run, *options, "cdpost series"); };
   auto out =
       options->text("out").value_or((std::filesystem::path(series.manifest).parent_path() / "series-post").string());
   auto result = analyse_series(series);
+  for (const auto& run : result.runs)
+    if (!run.analysis.settings.parameters.empty())
+      std::cout << run.entry.name << ": parameters: " << run.analysis.settings.parameters << '\n';
   write_series_outputs(result, out);
   std::cout << result.fits.text() << "results: " << out << "/fits.csv, " << out << "/runs.csv, " << out
             << "/residuals.csv, " << out << "/depth_decay.csv, report: " << out << "/report.md\n";
@@ -194,6 +196,11 @@ int command_spectrum(const std::vector<std::string>& arguments)
       parse_or_help("cdpost spectrum", "cdpost spectrum FILE [--column NAME] [options]", arguments, specs, 1);
   if (!options) return 0;
   auto settings = settings_from(*options, "cdpost spectrum");
+  const auto recorded =
+      run_parameters(*options, "cdpost spectrum", folder_of(options->positional[0]), WallTops::optional);
+  settings.units = recorded.units;
+  settings.sample_rate_hz = recorded.sample_rate_hz;
+  if (recorded.recorded) std::cout << "parameters: " << recorded.description << '\n';
   const std::string column = options->text("column").value_or(settings.columns.v_flow);
   auto run = analyse_column_spectrum(options->positional[0], column, settings);
   std::cout << run.results.text();
@@ -211,7 +218,8 @@ int command_snapshot(const std::vector<std::string>& arguments)
   specs.insert(specs.end(), {{"timestep", "N", "frame to draw (default: the last)"},
                              {"z0", "LENGTH",
                               "height of the wall tops in input length units: walls on the periodic boundary from the "
-                              "box bottom up to it, periodic images shaded above it (default 0: no walls)"},
+                              "box bottom up to it, periodic images shaded above it (default: the chute.params beside "
+                              "the dump, else 0: no walls)"},
                              {"out", "DIR", "output directory (default: the dump's directory)"}});
   auto options = parse_or_help("cdpost snapshot", "cdpost snapshot DUMP [options]", arguments, specs, 1);
   if (!options) return 0;
@@ -222,7 +230,9 @@ int command_snapshot(const std::vector<std::string>& arguments)
   auto out = options->text("out").value_or(std::filesystem::path(request.dump_path).parent_path().string());
   if (out.empty()) out = ".";
   std::filesystem::create_directories(out);
-  auto figure = snapshot_figure(request, units_from(*options, "cdpost snapshot"), options->number("z0").value_or(0));
+  const auto recorded = run_parameters(*options, "cdpost snapshot", folder_of(request.dump_path), WallTops::optional);
+  if (recorded.recorded) std::cout << "parameters: " << recorded.description << '\n';
+  auto figure = snapshot_figure(request, recorded.units, recorded.z0.value_or(0));
   if (auto problem = render_figure(figure, out)) throw std::runtime_error(*problem);
   std::cout << "snapshot: " << out << "/snapshot.png, " << out << "/snapshot.svg\n";
   return 0;

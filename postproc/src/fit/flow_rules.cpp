@@ -125,23 +125,40 @@ double pouliquen_tan(double inertial_number, double tan1, double tan2, double el
   return tan1 + (tan2 - tan1) * std::exp(-beta / (ell * inertial_number));
 }
 
-PouliquenFit fit_pouliquen(const std::vector<FlowPoint>& points, double beta)
+namespace {
+
+// θ1, θ2 and, unless `held_ell` gives it, ℓ.
+PouliquenFit fit_pouliquen_with(const std::vector<FlowPoint>& points, double beta, std::optional<double> held_ell)
 {
-  require_angles(points, kPouliquenAngles, "Pouliquen's rule");
+  require_angles(points, held_ell ? 2 : kPouliquenAngles, "Pouliquen's rule");
   const auto observed = tangents(points);
   auto [tan1, tan2] = initial_tangents(observed);
   const auto middle = median_point(points);
   double ell = -beta / (middle.inertial_number * std::log((tan_deg(middle.theta_deg) - tan1) / (tan2 - tan1)));
   auto model = [&](const std::vector<double>& p, size_t i) {
-    return pouliquen_tan(points[i].inertial_number, p[0], p[1], p[2], beta);
+    return pouliquen_tan(points[i].inertial_number, p[0], p[1], held_ell ? *held_ell : p[2], beta);
   };
   PouliquenFit fit;
-  fit.raw = fit_nonlinear(observed, model, {tan1, tan2, ell}, {"tan_theta1", "tan_theta2", "ell"});
+  if (held_ell) fit.raw = fit_nonlinear(observed, model, {tan1, tan2}, {"tan_theta1", "tan_theta2"});
+  else fit.raw = fit_nonlinear(observed, model, {tan1, tan2, ell}, {"tan_theta1", "tan_theta2", "ell"});
   fit.angles = {points.front().mu, angle_of_tangent(fit.raw["tan_theta1"]), angle_of_tangent(fit.raw["tan_theta2"])};
-  fit.ell = fit.raw["ell"];
+  fit.ell = held_ell ? Estimate{*held_ell, std::nullopt} : fit.raw["ell"];
   fit.beta = beta;
   fit.residuals = named_residuals(run_names(points), fit.raw);
   return fit;
+}
+
+}  // namespace
+
+PouliquenFit fit_pouliquen(const std::vector<FlowPoint>& points, double beta)
+{
+  return fit_pouliquen_with(points, beta, std::nullopt);
+}
+
+PouliquenFit fit_pouliquen_held_ell(const std::vector<FlowPoint>& points, double beta, double ell)
+{
+  if (!(ell > 0)) throw AnalysisError("Pouliquen's rule: a held l must be positive");
+  return fit_pouliquen_with(points, beta, ell);
 }
 
 double pouliquen_stop_tan(double h_stop_d, double tan1, double tan2, double ell)
@@ -236,7 +253,10 @@ std::optional<double> mu_of_i_inertial_number(double tan_theta, const AngleBound
   return i0 * (tan_theta - tan1) / (tan2 - tan_theta);
 }
 
-MuIFit fit_mu_of_i(const std::vector<FlowPoint>& points)
+namespace {
+
+// θ1, θ2 per friction and, unless `held_i0` gives it, I0 (then the first parameter).
+MuIFit fit_mu_of_i_with(const std::vector<FlowPoint>& points, std::optional<double> held_i0)
 {
   const auto mus = friction_values(points);
   if (mus.empty()) throw AnalysisError("the mu(I) rule needs flowing runs");
@@ -245,27 +265,46 @@ MuIFit fit_mu_of_i(const std::vector<FlowPoint>& points)
   std::vector<size_t> group;  // friction coefficient index of each point
   for (const auto& p : points)
     group.push_back(static_cast<size_t>(std::find(mus.begin(), mus.end(), p.mu) - mus.begin()));
-  std::vector<double> initial{median_point(points).inertial_number};
-  std::vector<std::string> names{"I0"};
+  const size_t first = held_i0 ? 0 : 1;  // index of tan θ1 of the first friction
+  std::vector<double> initial;
+  std::vector<std::string> names;
+  if (!held_i0) initial.push_back(median_point(points).inertial_number), names.push_back("I0");
   for (size_t m = 0; m < mus.size(); ++m) {
     auto [tan1, tan2] = initial_tangents(tangents(points_with_mu(points, mus[m])));
     initial.insert(initial.end(), {tan1, tan2});
     names.insert(names.end(), {"tan_theta1_" + std::to_string(m), "tan_theta2_" + std::to_string(m)});
   }
   auto model = [&](const std::vector<double>& p, size_t i) {
-    return mu_of_i_tan(points[i].inertial_number, p[1 + 2 * group[i]], p[2 + 2 * group[i]], p[0]);
+    return mu_of_i_tan(points[i].inertial_number, p[first + 2 * group[i]], p[first + 1 + 2 * group[i]],
+                       held_i0 ? *held_i0 : p[0]);
   };
   MuIFit fit;
   fit.raw = fit_nonlinear(observed, model, initial, names);
-  fit.i0 = fit.raw.parameters[0];
+  fit.i0 = held_i0 ? Estimate{*held_i0, std::nullopt} : fit.raw.parameters[0];
   fit.residuals = named_residuals(run_names(points), fit.raw);
   for (size_t m = 0; m < mus.size(); ++m)
-    fit.angles.push_back(
-        {mus[m], angle_of_tangent(fit.raw.parameters[1 + 2 * m]), angle_of_tangent(fit.raw.parameters[2 + 2 * m])});
+    fit.angles.push_back({mus[m], angle_of_tangent(fit.raw.parameters[first + 2 * m]),
+                          angle_of_tangent(fit.raw.parameters[first + 1 + 2 * m])});
   return fit;
 }
 
-PhiFit fit_phi_velocity(const std::vector<FlowPoint>& points)
+}  // namespace
+
+MuIFit fit_mu_of_i(const std::vector<FlowPoint>& points)
+{
+  return fit_mu_of_i_with(points, std::nullopt);
+}
+
+MuIFit fit_mu_of_i_held_i0(const std::vector<FlowPoint>& points, double i0)
+{
+  if (!(i0 > 0)) throw AnalysisError("the mu(I) rule: a held I0 must be positive");
+  return fit_mu_of_i_with(points, i0);
+}
+
+namespace {
+
+// phi = phi_c(mu) − k x(point), by linear least squares over the points that have phi.
+PhiFit fit_phi_linear(const std::vector<FlowPoint>& points, double (*abscissa)(const FlowPoint&))
 {
   std::vector<FlowPoint> with_phi;
   std::copy_if(points.begin(), points.end(), std::back_inserter(with_phi),
@@ -277,7 +316,7 @@ PhiFit fit_phi_velocity(const std::vector<FlowPoint>& points)
   for (size_t i = 0; i < with_phi.size(); ++i) {
     auto m = std::find(mus.begin(), mus.end(), with_phi[i].mu) - mus.begin();
     design(static_cast<Eigen::Index>(i), m) = 1.0;
-    design(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(mus.size())) = -with_phi[i].velocity;
+    design(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(mus.size())) = -abscissa(with_phi[i]);
     phi.push_back(*with_phi[i].phi);
   }
   std::vector<std::string> names;
@@ -289,6 +328,18 @@ PhiFit fit_phi_velocity(const std::vector<FlowPoint>& points)
   for (size_t m = 0; m < mus.size(); ++m) fit.phi_c.emplace_back(mus[m], fit.raw.parameters[m]);
   fit.residuals = named_residuals(run_names(with_phi), fit.raw);
   return fit;
+}
+
+}  // namespace
+
+PhiFit fit_phi_velocity(const std::vector<FlowPoint>& points)
+{
+  return fit_phi_linear(points, [](const FlowPoint& p) { return p.velocity; });
+}
+
+PhiFit fit_phi_inertial(const std::vector<FlowPoint>& points)
+{
+  return fit_phi_linear(points, [](const FlowPoint& p) { return p.inertial_number; });
 }
 
 }  // namespace cdpost

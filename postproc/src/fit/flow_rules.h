@@ -56,6 +56,8 @@ struct PouliquenFit {
 };
 // Fits θ1, θ2, ℓ to the points of one friction coefficient (at least 3 points).
 PouliquenFit fit_pouliquen(const std::vector<FlowPoint>& points, double beta);
+// The rule refitted with ℓ held at `ell`: θ1, θ2 free (`ell` has no error; raw holds tan θ1, tan θ2).
+PouliquenFit fit_pouliquen_held_ell(const std::vector<FlowPoint>& points, double beta, double ell);
 double pouliquen_tan(double inertial_number, double tan1, double tan2, double ell, double beta);
 // I for which the rule gives tan θ; none outside (tan θ1, tan θ2).
 std::optional<double> pouliquen_inertial_number(double tan_theta, const PouliquenFit& fit);
@@ -87,17 +89,21 @@ struct MuIFit {
 };
 // Joint fit over all the points: one I0, θ1 and θ2 per friction coefficient.
 MuIFit fit_mu_of_i(const std::vector<FlowPoint>& points);
+// The rule refitted with I0 held at `i0`: θ1, θ2 per friction free (`i0` has no error).
+MuIFit fit_mu_of_i_held_i0(const std::vector<FlowPoint>& points, double i0);
 double mu_of_i_tan(double inertial_number, double tan1, double tan2, double i0);
 std::optional<double> mu_of_i_inertial_number(double tan_theta, const AngleBounds& angles, double i0);
 
 struct PhiFit {
-  Estimate k;                                      // shared slope
+  Estimate k;                                      // shared slope, in phi per unit of the abscissa
   std::vector<std::pair<double, Estimate>> phi_c;  // per friction coefficient
   FitResult raw;
   std::vector<PointResidual> residuals;  // in phi, of the points that have phi
 };
 // phi = phi_c(mu) − k U/sqrt(g d) over the points that have phi.
 PhiFit fit_phi_velocity(const std::vector<FlowPoint>& points);
+// phi = phi_c(mu) − k_I I over the points that have phi.
+PhiFit fit_phi_inertial(const std::vector<FlowPoint>& points);
 
 // The distinct friction coefficients, ascending.
 std::vector<double> friction_values(const std::vector<FlowPoint>& points);

@@ -3,6 +3,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace cdpost {
@@ -12,6 +13,48 @@ const Estimate& FitResult::operator[](const std::string& name) const
   for (size_t i = 0; i < names.size(); ++i)
     if (names[i] == name) return parameters[i];
   throw AnalysisError("fit has no parameter '" + name + "'");
+}
+
+std::vector<double> FitResult::values() const
+{
+  std::vector<double> v;
+  for (const auto& p : parameters) v.push_back(p.value);
+  return v;
+}
+
+std::optional<double> parameter_correlation(const FitResult& fit, const std::string& a, const std::string& b)
+{
+  if (fit.covariance.size() == 0) return std::nullopt;
+  auto index = [&](const std::string& name) {
+    fit[name];  // throws for an unknown name
+    return static_cast<Eigen::Index>(std::find(fit.names.begin(), fit.names.end(), name) - fit.names.begin());
+  };
+  const Eigen::Index i = index(a), j = index(b);
+  const double scale = std::sqrt(fit.covariance(i, i) * fit.covariance(j, j));
+  if (!(scale > 0)) return std::nullopt;
+  return fit.covariance(i, j) / scale;
+}
+
+std::optional<double> propagated_error(const FitResult& fit, const ParameterFunction& quantity)
+{
+  if (fit.covariance.size() == 0) return std::nullopt;
+  const auto centre = fit.values();
+  Eigen::VectorXd gradient(static_cast<Eigen::Index>(centre.size()));
+  for (size_t i = 0; i < centre.size(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    const double step = 1e-3 * std::sqrt(fit.covariance(k, k));
+    if (!(step > 0)) return std::nullopt;
+    auto shifted = centre;
+    shifted[i] = centre[i] + step;
+    const auto up = quantity(shifted);
+    shifted[i] = centre[i] - step;
+    const auto down = quantity(shifted);
+    if (!up || !down) return std::nullopt;
+    gradient(k) = (*up - *down) / (2 * step);
+  }
+  const double variance = gradient.dot(fit.covariance * gradient);
+  if (!(std::isfinite(variance) && variance >= 0)) return std::nullopt;
+  return std::sqrt(variance);
 }
 
 void use_gsl_error_codes()
@@ -94,6 +137,7 @@ PowerLaw fit_power_law(const std::vector<double>& x, const std::vector<double>& 
   if (log_prefactor.error) law.prefactor.error = law.prefactor.value * *log_prefactor.error;
   law.exponent = fit.parameters[1];
   law.points = fit.points;
+  law.line = fit;
   if (x.size() >= 3) law.correlation = correlation(x, y);
   return law;
 }

@@ -4,6 +4,8 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,8 +24,20 @@ struct FitResult {
   int points = 0;
   int dof = 0;
   const Estimate& operator[](const std::string& name) const;
+  std::vector<double> values() const;  // the parameters' values, in order
   double rms_residual() const { return std::sqrt(chi2 / points); }
 };
+
+// The correlation coefficient of two parameters, cov(a, b)/(σa σb); none without covariance.
+std::optional<double> parameter_correlation(const FitResult& fit, const std::string& a, const std::string& b);
+
+// A quantity computed from a fit's parameters (none where it is undefined).
+using ParameterFunction = std::function<std::optional<double>(const std::vector<double>& parameters)>;
+
+// One-sigma error of q(p) by the delta method: var q = gᵀ C g, C the fit's covariance and
+// g = ∂q/∂p by central differences with steps of 1e-3 of each parameter's error (q is smooth
+// on that scale). None without covariance or where q is undefined at a step.
+std::optional<double> propagated_error(const FitResult& fit, const ParameterFunction& quantity);
 
 // GSL aborts on errors by default; the fits report them as AnalysisError instead.
 void use_gsl_error_codes();
@@ -42,6 +56,7 @@ struct PowerLaw {
   Estimate exponent;
   std::optional<double> correlation;  // Pearson correlation of x and y (3 points or more)
   int points = 0;
+  FitResult line;  // ln y = ln c + n ln x: parameters log_prefactor, exponent and their covariance
 };
 PowerLaw fit_power_law(const std::vector<double>& x, const std::vector<double>& y);
 

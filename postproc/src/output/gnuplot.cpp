@@ -32,7 +32,7 @@ void write_data_block(std::ostream& out, const std::string& name, const Curve& c
       continue;
     }
     out << curve.x[i] << ' ' << curve.y[i];
-    if (curve.style == CurveStyle::ErrorBars) out << ' ' << curve.y_error[i];
+    if (curve.style == CurveStyle::ErrorBars || curve.style == CurveStyle::LinesBand) out << ' ' << curve.y_error[i];
     if (curve.style == CurveStyle::Circles || curve.style == CurveStyle::ShadedCircles)
       out << ' ' << curve.radius[i] << ' ' << curve.colour[i];
     out << '\n';
@@ -40,9 +40,12 @@ void write_data_block(std::ostream& out, const std::string& name, const Curve& c
   out << "EOD\n";
 }
 
-std::string plot_clause(const Curve& curve, const std::string& block)
+// The curve at position `index` of its panel; a LinesBand takes the line type index + 1 for both
+// its band and its line.
+std::string plot_clause(const Curve& curve, const std::string& block, size_t index)
 {
   std::string with;
+  const std::string colour = " lt " + std::to_string(index + 1);
   switch (curve.style) {
     case CurveStyle::Points: with = "using 1:2 with points pt 7 ps 1"; break;
     case CurveStyle::Lines: with = "using 1:2 with lines lw 2"; break;
@@ -53,6 +56,10 @@ std::string plot_clause(const Curve& curve, const std::string& block)
       with = "using 1:2:3:4 with circles lc palette fs transparent solid 0.3 noborder";
       break;
     case CurveStyle::Walls: with = "using 1:2 with lines lw 3 lc rgb 'black'"; break;
+    case CurveStyle::LinesBand:
+      with = "using 1:($2-$3):($2+$3) with filledcurves fs transparent solid 0.2 noborder" + colour + " notitle, " +
+             block + " using 1:2 with lines lw 2" + colour;
+      break;
   }
   return block + " " + with + (curve.title.empty() ? " notitle" : " title " + quoted(curve.title));
 }
@@ -82,7 +89,7 @@ void write_panel(std::ostream& out, const Panel& panel, size_t index, bool multi
         << ", graph 1 behind fc rgb '#e4e4f0' fs solid noborder\n";
   out << "plot ";
   for (size_t c = 0; c < panel.curves.size(); ++c)
-    out << (c ? ", \\\n     " : "") << plot_clause(panel.curves[c], block_name(index, c));
+    out << (c ? ", \\\n     " : "") << plot_clause(panel.curves[c], block_name(index, c), c);
   out << "\n";
 }
 

@@ -9,14 +9,15 @@
 
 namespace cdpost {
 
-// Walls: black lines; in Lines and Walls a NaN point breaks the line.
-enum class CurveStyle { Points, Lines, LinesPoints, ErrorBars, Circles, ShadedCircles, Walls };
+// Walls: black lines; in Lines and Walls a NaN point breaks the line. LinesBand: a line with a
+// shaded band y ± y_error of the same colour (a fitted curve and its confidence band).
+enum class CurveStyle { Points, Lines, LinesPoints, ErrorBars, Circles, ShadedCircles, Walls, LinesBand };
 
 struct Curve {
   std::string title;
   CurveStyle style = CurveStyle::Points;
   std::vector<double> x, y;
-  std::vector<double> y_error;  // ErrorBars
+  std::vector<double> y_error;  // ErrorBars, LinesBand
   std::vector<double> radius;   // Circles: radius in x-axis units
   std::vector<double> colour;   // Circles: value mapped on the palette
 };

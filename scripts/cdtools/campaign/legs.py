@@ -5,6 +5,7 @@ import math
 import os
 import shutil
 
+from ..cdpost import RUN_RECORD
 from ..lammps_files import read_chunk_records, read_dump_records, read_time_records, time_span
 from ..logs import parse_summary, read_outputs, error_line, read_progress
 from .jobs import write_json
@@ -42,6 +43,16 @@ def splice_legs(leg_dirs, starts, name, kind, destination):
     return True
 
 
+def carry_record(leg_dirs, folder):
+    """The newest leg's chute.params into the run's folder (the legs of a run share its
+    variables); nothing if no leg has one (legs run before the deck wrote it)."""
+    for leg_dir in reversed(leg_dirs):
+        path = os.path.join(leg_dir, RUN_RECORD)
+        if os.path.exists(path):
+            shutil.copy2(path, os.path.join(folder, RUN_RECORD))
+            return
+
+
 def leg_error(leg_dir):
     """The first ERROR line of a leg's log or screen output, or None."""
     return error_line(read_outputs(leg_dir))
@@ -60,8 +71,8 @@ def finish_deposition(job):
 
 
 def finish_run(job):
-    """The legs' outputs spliced into the run's folder, its restart, cost.json, result.json
-    and DONE; the problem, or None."""
+    """The legs' outputs spliced into the run's folder, its restart and chute.params, cost.json,
+    result.json and DONE; the problem, or None."""
     legs = job.legs()
     starts = []
     for leg in legs:
@@ -70,6 +81,7 @@ def finish_run(job):
     for name, kind in LEG_OUTPUTS:
         splice_legs(legs, starts, name, kind, os.path.join(job.folder, name))
     shutil.copy2(os.path.join(legs[-1], "chute.restart"), os.path.join(job.folder, "chute.restart"))
+    carry_record(legs, job.folder)
     write_json(os.path.join(job.folder, "cost.json"), run_cost(job, legs))
     summary = read_progress(os.path.join(legs[-1], "log.lammps")).summary
     write_json(os.path.join(job.folder, "result.json"), parse_summary(summary))

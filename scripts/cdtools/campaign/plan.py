@@ -124,10 +124,18 @@ def new_run(args, name, series, variables, deposition):
     return Job("run", name, folder, variables, deposition, series)
 
 
+def same_value(a, b):
+    """Two deck values are the same setting: equal as numbers (1e-4 and 1.0e-4), else as text."""
+    try:
+        return float(a) == float(b)
+    except (TypeError, ValueError):
+        return str(a) == str(b)
+
+
 def changed_vars(old, new, keys):
     """'name old -> new' for each of `keys` whose value differs but duration (runs are
     extended), comma-separated; '' if none."""
-    changed = sorted(k for k in keys if k != "duration" and str(old.get(k)) != str(new.get(k)))
+    changed = sorted(k for k in keys if k != "duration" and not same_value(old.get(k), new.get(k)))
     return ", ".join(f"{k} {old.get(k)} -> {new.get(k)}" for k in changed)
 
 

@@ -5,7 +5,7 @@ import os
 import shlex
 import subprocess
 
-from ..cdpost import read_results
+from ..cdpost import RUN_RECORD, read_results
 from .plan import ANALYSES
 
 # A run whose flowing layer moves slower than this (sqrt(g d)) has stopped: it enters the
@@ -19,6 +19,16 @@ def wall_top(variables):
     return float(variables["wall_height"]) * float(variables["d"])
 
 
+def recorded_options(folders, variables):
+    """cdpost's options for what a run folder's chute.params records: none when every folder
+    holds one (cdpost reads them), else the deck variables the runs were made with (runs made
+    before the deck wrote the record, or published runs, which do not need it)."""
+    if all(os.path.exists(os.path.join(folder, RUN_RECORD)) for folder in folders):
+        return []
+    return ["--d", variables["d"], "--g", variables["g"], "--sample-rate", variables["sample_rate"],
+            "--z0", repr(wall_top(variables))]
+
+
 def run_logged(cmd, log):
     """Runs cmd; its command line and output go to `log`. Returns (ok, last line of its
     standard error)."""
@@ -30,10 +40,10 @@ def run_logged(cmd, log):
 
 def postprocess_run(job, cdpost, args):
     """cdpost run on a finished run. Returns (ok, message); 'not stationary' is reported."""
-    # The deck's sample rate sets the spectra's grid even where a leg ran at a refined step throughout.
-    cmd = [cdpost, "run", job.folder, "--d", job.vars["d"], "--g", job.vars["g"],
-           "--sample-rate", job.vars["sample_rate"],
-           "--z0", repr(wall_top(job.vars)), "--dump", os.path.join(job.folder, "dump.chute.gz")]
+    # The run's wall tops and sample rate (the spectra's grid even where a leg ran at a refined step
+    # throughout) come from its chute.params, or from its variables.
+    cmd = [cdpost, "run", job.folder] + recorded_options([job.folder], job.vars) + \
+        ["--dump", os.path.join(job.folder, "dump.chute.gz")]
     return run_logged(cmd + args.cdpost_option, os.path.join(job.folder, "cdpost.log"))
 
 
@@ -90,7 +100,8 @@ def run_series(analysis, manifest_folder, runs, cdpost, args, out=None):
     for folder in (manifest_folder, out):
         os.makedirs(folder, exist_ok=True)
     manifest = write_manifest(manifest_folder, analysis, runs)
-    cmd = [cdpost, "series", manifest, "--z0", repr(wall_top(runs[0][2])), "--out", out] + args.cdpost_option
+    cmd = [cdpost, "series", manifest] + recorded_options([folder for folder, _, _ in runs], runs[0][2]) + \
+        ["--out", out] + args.cdpost_option
     ok, message = run_logged(cmd, os.path.join(out, "cdpost.log"))
     print(f"series {analysis}: {len(runs)} runs, cdpost series {'done' if ok else 'failed: ' + message}", flush=True)
     return ok

@@ -13,6 +13,7 @@ the DISCUSSION markers of an existing README.md is kept; everything else is rege
 import csv
 import glob
 import json
+import math
 import os
 import shlex
 import shutil
@@ -23,7 +24,7 @@ from ..stats import pooled_sd
 from ..text import markdown_table, number, with_error
 from .jobs import read_json
 from .legs import run_cost
-from .plan import ANALYSES, build_jobs, changed_vars
+from .plan import ANALYSES, build_jobs, changed_vars, reading
 from .post import postprocess_run, run_series, window_bounds
 from .schedule import campaign_cdpost
 
@@ -140,11 +141,30 @@ def recorded_mismatch(folder, variables):
     return changed_vars(recorded, variables, set(recorded) & set(variables))
 
 
-def write_run(record, destination):
-    """results/runs/<name>/: cdpost's results, the cost and every command that made them."""
+def changed_numbers(old, new):
+    """[(name, old, new)] for every published number that a new analysis changes (beyond the
+    10 significant digits cdpost writes), drops (new None) or adds to a published file (old None)."""
+    def same(a, b):
+        return (math.isnan(a) and math.isnan(b)) or abs(a - b) <= 1e-9 * max(abs(a), abs(b), 1e-300)
+    changes = [(n, old[n][0], new[n][0] if n in new else None) for n in sorted(old)
+               if n not in new or not same(old[n][0], new[n][0])]
+    return changes + [(n, None, new[n][0]) for n in sorted(new) if n not in old and old]
+
+
+def read_published(path):
+    return read_results(path) if os.path.exists(path) else {}
+
+
+def write_run(record, destination, changes):
+    """results/runs/<name>/: cdpost's results, the cost and every command that made them; what it
+    changes of an earlier publication of the run goes to `changes` (file -> [(name, old, new)])."""
     folder = os.path.join(destination, "runs", record.name)
     os.makedirs(folder, exist_ok=True)
+    published = os.path.join(folder, "results.csv")
+    before = read_published(published)
     copy_matching(record.source, RUN_FILES, folder)
+    if changed_numbers(before, read_published(published)):
+        changes[os.path.relpath(published, destination)] = changed_numbers(before, read_published(published))
     with open(os.path.join(folder, "cost.json"), "w") as out:
         json.dump(record.cost, out, indent=2, sort_keys=True)
     legs = sorted(glob.glob(os.path.join(record.folder, "legs", "*", "command.sh")))
@@ -163,12 +183,12 @@ def replica_pairs(records):
     """(replica, original) pairs: a run of another seed and the run at the same mu, theta, L."""
     by_point = {}
     for r in records:
-        by_point.setdefault((r.vars["mu"], r.vars["theta"], r.vars["L"]), []).append(r)
+        by_point.setdefault((r.vars["mu"], r.vars["theta"], r.vars["L"], reading(r.vars)), []).append(r)
     pairs = []
     for runs in by_point.values():
         analysed = [r for r in runs if r.results]
-        seeds = sorted(analysed, key=lambda r: r.series == "replicas")
-        if len(seeds) >= 2 and seeds[-1].series == "replicas":
+        seeds = sorted(analysed, key=lambda r: r.series.endswith("replicas"))
+        if len(seeds) >= 2 and seeds[-1].series.endswith("replicas"):
             pairs.append((seeds[-1], seeds[0]))
     return pairs
 
@@ -223,6 +243,64 @@ def section_fits(title, folder, prefixes, figures, destination):
         text += markdown_table(["fit parameter", "value", "unit"], rows) + "\n"
     text += "".join(f"![{f}]({relative}/figures/{f}.png) " for f in shown) + "\n"
     return text
+
+
+# The series analysis of each reading of the 45 d cell (doc/scene.md), in the order shown.
+READINGS = (("count", "flow_rules"), ("layer", "layer_flow_rules"))
+# Per-run quantities shown per friction beside the fits: (result name, heading).
+READING_MEANS = (("h", "h (d)"), ("phi", "φ"), ("creep_lambda", "creep length λ (d)"),
+                 ("bagnold_amplitude", "Bagnold a (√(gd)/d^1.5)"))
+
+
+def reading_fits(copied_series, destination):
+    """{reading: its series fits} for the readings whose series analysis exists."""
+    fits = {}
+    for name, analysis in READINGS:
+        folder = copied_series.get(analysis, os.path.join(destination, "series", analysis))
+        if read_fits(folder):
+            fits[name] = read_fits(folder)
+    return fits
+
+
+def difference_text(a, b):
+    """(b − a) in units of the combined error, '–' where either has no error."""
+    if not (a and b and a[1] and b[1]):
+        return "–"
+    return f"{(b[0] - a[0]) / (a[1] ** 2 + b[1] ** 2) ** 0.5:+.1f}"
+
+
+def series_means(records, name):
+    """{(reading, mu): (mean of `name` over the analysed L = 45 d runs, their count)}."""
+    groups = {}
+    for r in records:
+        if r.results and r.get(name) and float(r.vars["L"]) == 45:
+            groups.setdefault((reading(r.vars), r.vars["mu"]), []).append(r.get(name)[0])
+    return {key: (sum(v) / len(v), len(v)) for key, v in groups.items()}
+
+
+def section_readings(records, copied_series, destination):
+    """Both readings of the 45 d cell side by side: every series fit, and the per-friction means
+    of the layer's thickness, packing, creep length and Bagnold amplitude."""
+    fits = reading_fits(copied_series, destination)
+    if len(fits) < 2:
+        return ""
+    names = [n for n in fits["count"] if n in fits["layer"]]
+    rows = [[n, result_text(fits["count"][n]), result_text(fits["layer"][n]),
+             difference_text(fits["count"][n], fits["layer"][n]), fits["count"][n][2]] for n in names]
+    text = ("## Two readings of the 45 d cell\n\nEvery series fit of the count reading (3967 grains) "
+            "and of the layer reading (3290 grains, a 40–49 d layer; `doc/scene.md`), from "
+            "`series/flow_rules` and `series/layer_flow_rules`; the difference is layer − count in units "
+            "of the combined error.\n\n"
+            + markdown_table(["fit", "count", "layer", "difference (σ)", "unit"], rows) + "\n")
+    mean_rows = []
+    for name, heading in READING_MEANS:
+        means = series_means(records, name)
+        for mu in sorted({mu for _, mu in means}, key=float):
+            cells = [f"{number(means[(r, mu)][0], 4)} ({means[(r, mu)][1]} runs)" if (r, mu) in means else "–"
+                     for r, _ in READINGS]
+            mean_rows.append([heading, mu] + cells)
+    return text + "\nMeans over each friction's analysed runs:\n\n" + markdown_table(
+        ["quantity", "mu", "count", "layer"], mean_rows)
 
 
 def section_replicas(pairs, scatter):
@@ -330,10 +408,11 @@ def kept_discussion(path):
     return text[begin:end + len(DISCUSSION_END)]
 
 
-def publish_series(records, cdpost, args):
+def publish_series(records, cdpost, args, changes):
     """results/series/<analysis>/: the manifest over the published runs (results/runs/<name>, so
     that `cdpost series` can be run again from results/ alone) and cdpost's series results, for
-    every analysis with two analysed runs; returns {analysis: its folder in results/}."""
+    every analysis with two analysed runs; returns {analysis: its folder in results/}. The fits
+    it changes of the earlier publication go to `changes`."""
     published = {}
     for analysis, belongs in ANALYSES.items():
         runs = [(r.published, os.path.join(r.published, "results.csv"), r.vars)
@@ -342,13 +421,27 @@ def publish_series(records, cdpost, args):
             continue
         target = os.path.join(args.report, "series", analysis)
         work = os.path.join(args.out, "series", analysis, "published-post")
+        before = read_fits(target)
         if run_series(analysis, target, runs, cdpost, args, out=work):
             copy_matching(work, SERIES_FILES, target)
             published[analysis] = target
+            if changed_numbers(before, read_fits(target)):
+                changes[os.path.join("series", analysis, "fits.csv")] = changed_numbers(before, read_fits(target))
     return published
 
 
-def write_report(records, copied_series, destination, command):
+def section_changes(changes):
+    """Every published number this report changed, dropped or added (none: no section)."""
+    if not changes:
+        return ""
+    rows = [[f, name, "–" if old is None else number(old, 6), "–" if new is None else number(new, 6)]
+            for f, entries in sorted(changes.items()) for name, old, new in entries]
+    return ("## Changed by this report\n\nNumbers of an earlier publication that this analysis changed "
+            "(a new cdpost, a re-analysed run), dropped (–) or added; the earlier values are in the git "
+            "history of results/.\n\n" + markdown_table(["file", "name", "was", "now"], rows))
+
+
+def write_report(records, copied_series, destination, command, changes):
     """Writes results/README.md (see the module's docstring); returns its path."""
     pairs = replica_pairs(records)
     readme = os.path.join(destination, "README.md")
@@ -360,6 +453,7 @@ def write_report(records, copied_series, destination, command):
         + "\n\n(every number below comes from the files beside this page; errors are one standard error"
         " unless said otherwise).\n",
         discussion + "\n",
+        section_changes(changes),
         section_runs(records),
         section_quantities("Flow", "Means over each run's stationary window (block standard errors).",
                            records, FLOW_COLUMNS),
@@ -374,6 +468,7 @@ def write_report(records, copied_series, destination, command):
                            "creep length λ of u ∝ exp(z/λ) below the wall tops.", records, PROFILE_COLUMNS),
         section_fits("Cell length", length, ("correlation", "f_vs_L", "A_vs_L", "A_mean_vs_L"), ("L_series",),
                      destination),
+        section_readings(records, copied_series, destination),
         section_replicas(pairs, replica_scatter(pairs)),
         section_comparisons(destination),
         section_snapshots(records, destination),
@@ -403,13 +498,17 @@ def write_results(args):
     analyse_finished_runs(jobs, cdpost, args)
     os.makedirs(args.report, exist_ok=True)
     records = [RunRecord(job, args.report) for job in jobs if job.kind == "run"]
+    changes = {}
     for r in records:
         if r.local:
-            write_run(r, args.report)
-    series = publish_series(records, cdpost, args)
+            write_run(r, args.report, changes)
+    series = publish_series(records, cdpost, args, changes)
     command = " ".join(shlex.quote(a) for a in ["scripts/chute_campaign.py"] + args.argv)
     publish_comparisons(args.comparison, args.report)
-    readme = write_report(records, series, args.report, command)
+    readme = write_report(records, series, args.report, command, changes)
+    for path, entries in sorted(changes.items()):
+        print(f"{path}: {len(entries)} published numbers changed, dropped or added (README, 'Changed by this report')",
+              flush=True)
     analysed = sum(r.results is not None for r in records)
     published = sum(r.results is not None and not r.local for r in records)
     print(f"{readme}: {analysed} of {len(records)} runs analysed ({published} read from their published results)",
