@@ -28,15 +28,22 @@ Curve curve(const std::string& title, CurveStyle style, std::vector<double> x, s
   return c;
 }
 
-// Spectra of v(t) on log-log axes, with a vertical line at each soft run's contact frequency.
-Figure spectra_figure(const std::vector<const ComparedRun*>& runs, const std::string& name, const std::string& title)
+// A panel of the comparison, its key outside the plot on the right (a key for every run).
+Panel keyed_panel(const std::string& title, const std::string& x_label, const std::string& y_label)
 {
   Panel panel;
   panel.title = title;
-  panel.x_label = "f (Hz)";
-  panel.y_label = "A / sqrt(g d)";
-  panel.log_x = panel.log_y = true;
+  panel.x_label = x_label;
+  panel.y_label = y_label;
   panel.key = "outside right top";
+  return panel;
+}
+
+// Spectra of v(t) on log-log axes, with a vertical line at each soft run's contact frequency.
+Figure spectra_figure(const std::vector<const ComparedRun*>& runs, const std::string& name, const std::string& title)
+{
+  Panel panel = keyed_panel(title, "f (Hz)", "A / sqrt(g d)");
+  panel.log_x = panel.log_y = true;
   double lo = INFINITY, hi = 0;
   for (const auto* r : runs) {
     std::vector<double> f, a;
@@ -60,12 +67,9 @@ Figure spectra_figure(const std::vector<const ComparedRun*>& runs, const std::st
 
 Figure peaks_figure(const Comparison& c)
 {
-  Panel panel;
-  panel.title = "Spectral peaks against stiffness (lines: sqrt(2k/m)/(2 pi); rigid runs drawn flat)";
-  panel.x_label = "k / (m g / d)";
-  panel.y_label = "f (Hz)";
+  Panel panel = keyed_panel("Spectral peaks against stiffness (lines: sqrt(2k/m)/(2 pi); rigid runs drawn flat)",
+                            "k / (m g / d)", "f (Hz)");
   panel.log_x = panel.log_y = true;
-  panel.key = "outside right top";
   std::map<std::string, std::pair<Curve, Curve>> by_group;
   double kmin = INFINITY, kmax = 0;
   std::optional<double> k_to_f;  // f_c / sqrt(k_reduced), the same for every soft run of one d
@@ -126,12 +130,8 @@ Figure bulk_figure(const Comparison& c)
   const auto [kmin, kmax] = k_span(c);
   if (!(kmax > 0)) return figure;
   for (int i = 0; i < 3; ++i) {
-    Panel p;
-    p.title = names[i];
-    p.x_label = "k / (m g / d)";
-    p.y_label = labels[i];
+    Panel p = keyed_panel(names[i], "k / (m g / d)", labels[i]);
     p.log_x = true;
-    p.key = "outside right top";
     p.height = 1.0 / 3;
     p.origin_y = (2 - i) / 3.0;
     std::map<std::string, Curve> groups;
@@ -157,11 +157,7 @@ Figure bulk_figure(const Comparison& c)
 
 Figure profiles_figure(const Comparison& c)
 {
-  Panel panel;
-  panel.title = "Velocity profiles u(z) over each run's window";
-  panel.x_label = "u / sqrt(g d)";
-  panel.y_label = "z / d";
-  panel.key = "outside right top";
+  Panel panel = keyed_panel("Velocity profiles u(z) over each run's window", "u / sqrt(g d)", "z / d");
   for (const auto& r : c.runs)
     if (r.analysis.profile)
       panel.curves.push_back(
@@ -171,11 +167,7 @@ Figure profiles_figure(const Comparison& c)
 
 Figure u_t_figure(const Comparison& c)
 {
-  Panel panel;
-  panel.title = "U(t): mean x-velocity of the grains with z > 0";
-  panel.x_label = "t / sqrt(d/g)";
-  panel.y_label = "U / sqrt(g d)";
-  panel.key = "outside right top";
+  Panel panel = keyed_panel("U(t): mean x-velocity of the grains with z > 0", "t / sqrt(d/g)", "U / sqrt(g d)");
   for (const auto& r : c.runs) {
     const auto& u = r.analysis.settings.units;
     std::vector<double> t, v;
@@ -192,12 +184,10 @@ Figure u_t_figure(const Comparison& c)
 
 Figure cost_figure(const Comparison& c)
 {
-  Panel panel;
-  panel.title = "Cost per physical second: wall time, and wall time x the process's CPU share (rigid: flat lines)";
-  panel.x_label = "k / (m g / d)";
-  panel.y_label = "s / physical s";
+  Panel panel =
+      keyed_panel("Cost per physical second: wall time, and wall time x the process's CPU share (rigid: flat lines)",
+                  "k / (m g / d)", "s / physical s");
   panel.log_x = panel.log_y = true;
-  panel.key = "outside right top";
   const auto [kmin, kmax] = k_span(c);
   using Metric = std::optional<double> (ComparedRun::*)() const;
   const std::pair<const char*, Metric> metrics[2] = {{"wall", &ComparedRun::wall_per_physical_second},
