@@ -19,6 +19,9 @@ import re
 import subprocess
 import sys
 
+# cdtools, found from this file (scripts/cdtools/__init__.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, "scripts"))
+
 from cdtools.campaign.plan import deck_defaults
 from cdtools.cdpost import read_results
 from cdtools.lammps_files import read_chunk_file, read_time_file

@@ -1,5 +1,5 @@
 // Google Benchmark of the solver core on a dense bed of 4000 polydisperse disks resting on a
-// floor under gravity (bench/granular_bed.h): one Gauss–Seidel sweep, the local Coulomb
+// floor under gravity (src/testbed/granular_bed.h): one Gauss–Seidel sweep, the local Coulomb
 // solver alone, the preparation of a step, and a whole step to tolerance.
 //
 // Throughput is reported as items per second: contact updates (one local solve and impulse
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "granular_bed.h"
+#include "testbed/granular_bed.h"
 
 namespace {
 
@@ -66,16 +66,16 @@ LocalProblem local_problem(const cd::Contact& c, const std::vector<cd::BodyVeloc
 
 // The bed, its next step frozen, and the solver state at the start of that step's solve.
 struct Scene {
-  const bench::GranularBed& bed;
-  bench::FrozenStep frozen;
+  const testbed::GranularBed& bed;
+  testbed::FrozenStep frozen;
   std::vector<cd::Contact> contacts[3];      // prepared and warm-started, in each Order
   std::vector<cd::BodyVelocity> velocity;    // free velocity plus the warm-start impulses
   std::vector<LocalProblem> bed_problems;    // what the first sweep's local solves see
   std::vector<LocalProblem> mixed_problems;  // spread over every branch of the local solver
 
-  Scene(const bench::GranularBed& settled, bench::FrozenStep step) : bed(settled), frozen(std::move(step))
+  Scene(const testbed::GranularBed& settled, testbed::FrozenStep step) : bed(settled), frozen(std::move(step))
   {
-    bench::prepare_contacts(frozen, true, contacts[fixed_order]);
+    testbed::prepare_contacts(frozen, true, contacts[fixed_order]);
     const int body_count = static_cast<int>(frozen.bodies.velocity.size());
     std::mt19937_64 rng(shuffle_seed);
     for (Order order : {shuffled_order, interleaved_order}) {
@@ -100,17 +100,17 @@ struct Scene {
 };
 
 // The default bed: mu = e = 0.5 for grains and floor.
-const bench::GranularBed& frictional_bed()
+const testbed::GranularBed& frictional_bed()
 {
-  static const bench::GranularBed built{bench::BedSpec{}};
+  static const testbed::GranularBed built{testbed::BedSpec{}};
   return built;
 }
 
 // The same rain settled with mu = 0 everywhere (e = 0.5): a frictionless scene.
-const bench::GranularBed& frictionless_bed()
+const testbed::GranularBed& frictionless_bed()
 {
-  static const bench::GranularBed built{[] {
-    bench::BedSpec spec;
+  static const testbed::GranularBed built{[] {
+    testbed::BedSpec spec;
     spec.grain_law.mu = 0.0;
     spec.wall_law.mu = 0.0;
     return spec;
@@ -133,9 +133,9 @@ enum class Lean {
 };
 
 // The default bed's next step with e = 0 for grains and floor.
-bench::FrozenStep inelastic_step()
+testbed::FrozenStep inelastic_step()
 {
-  bench::FrozenStep frozen = frictional_bed().freeze();
+  testbed::FrozenStep frozen = frictional_bed().freeze();
   frozen.grain_law.restitution = frozen.floor.law.restitution = 0.0;
   return frozen;
 }
@@ -154,9 +154,9 @@ const Scene& lean_scene(Lean kind)
     }
     case Lean::immobile_layer: break;
   }
-  bench::BedSpec spec;
+  testbed::BedSpec spec;
   spec.immobile_layer = 10.0;
-  static const bench::GranularBed layered{spec};
+  static const testbed::GranularBed layered{spec};
   static const Scene built{layered, layered.freeze()};
   return built;
 }
@@ -236,7 +236,7 @@ void time_prepare(benchmark::State& state, const Scene& s)
 {
   std::vector<cd::Contact> contacts;
   for (auto _ : state) {
-    bench::prepare_contacts(s.frozen, true, contacts);
+    testbed::prepare_contacts(s.frozen, true, contacts);
     benchmark::DoNotOptimize(contacts.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(s.frozen.pairs.size()));
@@ -266,7 +266,7 @@ void time_whole_steps(benchmark::State& state, const Scene& s, bool warm, Order 
   double sweeps = 0.0, updates = 0.0;
   bool converged = true;
   for (auto _ : state) {
-    bench::prepare_contacts(s.frozen, warm, contacts);
+    testbed::prepare_contacts(s.frozen, warm, contacts);
     put_in_order(contacts, order, body_count, rng);
     velocity = s.frozen.bodies.velocity;
     cd::apply_impulses(contacts, velocity);
@@ -343,8 +343,8 @@ void register_lean_benchmarks()
 void describe_scene()
 {
   const Scene& s = scene();
-  const bench::GranularBed& bed = s.bed;
-  const bench::BedSpec& spec = bed.spec();
+  const testbed::GranularBed& bed = s.bed;
+  const testbed::BedSpec& spec = bed.spec();
   const auto& contacts = s.contacts[fixed_order];
   const int disks = static_cast<int>(bed.disks().size());
   int wall_contacts = 0;

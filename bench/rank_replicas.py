@@ -31,6 +31,9 @@ import os
 import re
 import sys
 
+# cdtools, found from this file (scripts/cdtools/__init__.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, "scripts"))
+
 from cdtools.cdpost import read_results
 from cdtools.lammps_files import read_time_file
 from cdtools.logs import log_summary

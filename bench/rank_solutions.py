@@ -29,6 +29,9 @@ import os
 import statistics
 import sys
 
+# cdtools, found from this file (scripts/cdtools/__init__.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, "scripts"))
+
 from cdtools.lammps_files import read_dump, read_time_file
 from cdtools.run import BUILT_LMP_CD, DECK, lmp_command, mpi_launcher, name_value_pairs, run_checked
 

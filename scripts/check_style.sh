@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The project's enforced style, one language per call (ctest: style.cpp, style.python):
-#   cpp      the C++ of src/, postproc/, bench/ and tests/ as .clang-format formats it
+#   cpp      the C++ of src/, postproc/, reference/, bench/ and tests/ as .clang-format formats it
 #   python   the Python of scripts/, bench/ and tests/ clean under flake8 (.flake8)
 # Exit status 1 with the files or lines at fault.
 set -euo pipefail
@@ -17,7 +17,7 @@ case "${1:-}" in
     unformatted=()
     while IFS= read -r -d '' file; do
       clang-format --dry-run --Werror "$file" >/dev/null 2>&1 || unformatted+=("$file")
-    done < <(find src postproc bench tests \( -name '*.cpp' -o -name '*.h' \) -print0 | sort -z)
+    done < <(find src postproc reference bench tests \( -name '*.cpp' -o -name '*.h' \) -print0 | sort -z)
     if [ ${#unformatted[@]} -gt 0 ]; then
       echo "not formatted as .clang-format says (clang-format -i FILE): ${unformatted[*]}"
       exit 1

@@ -15,6 +15,9 @@ import os
 import shlex
 import sys
 
+# cdtools, found from this file (scripts/cdtools/__init__.py)
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
+
 from cdtools.campaign.plan import SERIES, build_jobs
 from cdtools.campaign.report import write_results
 from cdtools.campaign.schedule import list_jobs, run_campaign

@@ -27,8 +27,10 @@ const char* const overview =
     "  overlaps DUMP               overlap statistics of the frames of a dump\n"
     "  collision FILE              restitution and contact steps of a recorded binary collision\n";
 
-std::optional<ParsedOptions> parse(const std::string& command, const std::string& usage, const std::vector<std::string>& arguments,
-                                   std::vector<OptionSpec> specs, size_t min_positional, size_t max_positional) {
+std::optional<ParsedOptions> parse(const std::string& command, const std::string& usage,
+                                   const std::vector<std::string>& arguments, std::vector<OptionSpec> specs,
+                                   size_t min_positional, size_t max_positional)
+{
   specs.push_back({"help", "", "show this help"});
   auto options = cdpost::parse_options(command, arguments, specs);
   if (options.flag("help")) {
@@ -40,7 +42,8 @@ std::optional<ParsedOptions> parse(const std::string& command, const std::string
   return options;
 }
 
-int command_compare(const std::vector<std::string>& arguments) {
+int command_compare(const std::vector<std::string>& arguments)
+{
   std::vector<OptionSpec> specs = {
       {"out", "DIR", "output directory (required)"},
       {"d", "METRES", "mean grain diameter when a run has no run.info (default 5e-4)"},
@@ -111,7 +114,8 @@ int command_compare(const std::vector<std::string>& arguments) {
   return 0;
 }
 
-int command_spatial_to_chunk(const std::vector<std::string>& arguments) {
+int command_spatial_to_chunk(const std::vector<std::string>& arguments)
+{
   auto options = parse("cdref spatial-to-chunk", "cdref spatial-to-chunk IN OUT", arguments, {}, 2, 2);
   if (!options) return 0;
   auto result = cdref::spatial_to_chunk(options->positional[0], options->positional[1]);
@@ -119,7 +123,8 @@ int command_spatial_to_chunk(const std::vector<std::string>& arguments) {
   return 0;
 }
 
-int command_overlaps(const std::vector<std::string>& arguments) {
+int command_overlaps(const std::vector<std::string>& arguments)
+{
   auto options = parse("cdref overlaps", "cdref overlaps DUMP [options]", arguments,
                        {{"d", "LENGTH", "mean diameter in the dump's length unit (default 5e-4)"},
                         {"floor", "Y", "floor height (default: the bottom of the box)"},
@@ -133,22 +138,25 @@ int command_overlaps(const std::vector<std::string>& arguments) {
   o.first_timestep = options->integer("first").value_or(0);
   o.last_timestep = options->integer("last").value_or(-1);
   auto s = cdref::dump_overlaps(options->positional[0], o);
-  std::cout << "frames " << s.frames << "\ncontacts " << s.contacts << "\nmean " << s.mean << "\nmean_of_max " << s.mean_of_max
-            << "\np99 " << s.p99 << "\nmax " << s.max << "\n";
+  std::cout << "frames " << s.frames << "\ncontacts " << s.contacts << "\nmean " << s.mean << "\nmean_of_max "
+            << s.mean_of_max << "\np99 " << s.p99 << "\nmax " << s.max << "\n";
   return 0;
 }
 
-int command_collision(const std::vector<std::string>& arguments) {
+int command_collision(const std::vector<std::string>& arguments)
+{
   auto options = parse("cdref collision", "cdref collision FILE", arguments, {}, 1, 1);
   if (!options) return 0;
   auto c = cdref::analyse_collision(options->positional[0]);
-  std::cout << "restitution " << c.restitution << "\ncontact_steps " << c.contact_steps << "\napproach_speed " << c.approach_speed << "\n";
+  std::cout << "restitution " << c.restitution << "\ncontact_steps " << c.contact_steps << "\napproach_speed "
+            << c.approach_speed << "\n";
   return 0;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv)
+{
   std::vector<std::string> arguments(argv + 1, argv + argc);
   try {
     if (arguments.empty() || arguments[0] == "--help" || arguments[0] == "help") {

@@ -7,7 +7,8 @@
 
 namespace cdref {
 
-CollisionResult analyse_collision(const std::string& path) {
+CollisionResult analyse_collision(const std::string& path)
+{
   cdpost::LineSource source(path);
   std::string line;
   CollisionResult result;
@@ -15,12 +16,14 @@ CollisionResult analyse_collision(const std::string& path) {
   while (source.next(line)) {
     if (cdpost::is_blank(line) || cdpost::is_comment(line)) continue;
     auto tokens = cdpost::split_whitespace(line);
-    if (tokens.size() != 3) source.fail("expected 'step gap velocity', found " + std::to_string(tokens.size()) + " values");
+    if (tokens.size() != 3)
+      source.fail("expected 'step gap velocity', found " + std::to_string(tokens.size()) + " values");
     cdpost::parse_integer(tokens[0], source, "step");
     const double gap = cdpost::parse_number(tokens[1], source, "gap");
     const double velocity = cdpost::parse_number(tokens[2], source, "velocity");
     if (!have_speed) {
-      if (velocity >= 0) source.fail("the bodies do not approach at the start (velocity " + std::string(tokens[2]) + ")");
+      if (velocity >= 0)
+        source.fail("the bodies do not approach at the start (velocity " + std::string(tokens[2]) + ")");
       result.approach_speed = -velocity;
       have_speed = true;
     }

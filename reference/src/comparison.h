@@ -17,9 +17,9 @@ namespace cdref {
 
 struct CompareSettings {
   std::vector<std::string> run_dirs;
-  cdpost::RunSettings run;               // units, window overrides, spectrum, columns
-  double flow_band_max_hz = 500;         // the flow's own oscillation is sought in [fmin, this]
-  double contact_band_low = 0.25;        // the contact band is [low, high] x f_contact
+  cdpost::RunSettings run;         // units, window overrides, spectrum, columns
+  double flow_band_max_hz = 500;   // the flow's own oscillation is sought in [fmin, this]
+  double contact_band_low = 0.25;  // the contact band is [low, high] x f_contact
   double contact_band_high = 4.0;
   double smoothing = 0.1;                // contact band: relative half-width of the smoothing
   double peak_excess = 1.5;              // a contact-band peak stands this far above the band's power law
@@ -39,7 +39,7 @@ struct ComparedRun {
   std::optional<double> k_eff_n_per_m, k_reduced, f_contact_hz, overlap_target;
   std::optional<OverlapStatistics> overlaps;
   std::optional<double> loop_seconds, physical_seconds, cpu_percent;
-  std::optional<double> process_cpu_share;  // (user + sys) / wall of the whole process (timing.txt)
+  std::optional<double> process_cpu_share;           // (user + sys) / wall of the whole process (timing.txt)
   std::optional<cdpost::SpectralPeak> flow_peak;     // in [fmin, flow_band_max]
   std::optional<cdpost::SpectralPeak> contact_peak;  // in the contact band (soft runs), if prominent
   std::optional<double> contact_excess;              // contact band: max of A / fitted power law

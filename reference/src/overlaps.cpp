@@ -21,7 +21,8 @@ struct Disk {
 // Calls visit(i, j) once for every pair closer than the largest contact distance, with cells
 // of that size (periodic in x when asked).
 template <class Visit>
-void for_near_pairs(const std::vector<Disk>& disks, double xlo, double length_x, bool periodic_x, Visit visit) {
+void for_near_pairs(const std::vector<Disk>& disks, double xlo, double length_x, bool periodic_x, Visit visit)
+{
   double rmax = 0, ylo = disks.front().y, yhi = ylo;
   for (const auto& d : disks) {
     rmax = std::max(rmax, d.r);
@@ -67,7 +68,8 @@ void for_near_pairs(const std::vector<Disk>& disks, double xlo, double length_x,
 
 }  // namespace
 
-OverlapStatistics dump_overlaps(const std::string& path, const OverlapOptions& options) {
+OverlapStatistics dump_overlaps(const std::string& path, const OverlapOptions& options)
+{
   cdpost::DumpReader reader(path);
   cdpost::DumpFrame frame;
   OverlapStatistics stats;
@@ -102,8 +104,10 @@ OverlapStatistics dump_overlaps(const std::string& path, const OverlapOptions& o
     stats.max = std::max(stats.max, frame_max);
   }
   if (stats.frames == 0)
-    throw cdpost::InputError(path, 0, "no frame between timesteps " + std::to_string(options.first_timestep) + " and " +
-                                          (options.last_timestep < 0 ? std::string("the end") : std::to_string(options.last_timestep)));
+    throw cdpost::InputError(
+        path, 0,
+        "no frame between timesteps " + std::to_string(options.first_timestep) + " and " +
+            (options.last_timestep < 0 ? std::string("the end") : std::to_string(options.last_timestep)));
   stats.contacts = static_cast<long>(all.size());
   if (!all.empty()) {
     stats.mean = sum / static_cast<double>(all.size());

@@ -11,13 +11,15 @@ namespace cdref {
 
 using cdpost::InputError;
 
-std::optional<std::string> RunInfo::text(const std::string& key) const {
+std::optional<std::string> RunInfo::text(const std::string& key) const
+{
   auto found = values.find(key);
   if (found == values.end()) return std::nullopt;
   return found->second;
 }
 
-std::optional<double> RunInfo::number(const std::string& key) const {
+std::optional<double> RunInfo::number(const std::string& key) const
+{
   auto value = text(key);
   if (!value) return std::nullopt;
   std::size_t used = 0;
@@ -32,7 +34,8 @@ std::optional<double> RunInfo::number(const std::string& key) const {
   return x;
 }
 
-RunInfo read_run_info(const std::string& path) {
+RunInfo read_run_info(const std::string& path)
+{
   RunInfo info;
   info.source = path;
   if (!std::filesystem::exists(path)) return info;
@@ -49,7 +52,8 @@ RunInfo read_run_info(const std::string& path) {
   return info;
 }
 
-std::vector<LoopTime> read_loop_times(const std::string& log_path) {
+std::vector<LoopTime> read_loop_times(const std::string& log_path)
+{
   static const std::regex loop(R"(^Loop time of ([0-9.eE+-]+) on ([0-9]+) procs for ([0-9]+) steps)");
   static const std::regex cpu(R"(^\s*([0-9.]+)% CPU use)");
   std::vector<LoopTime> times;

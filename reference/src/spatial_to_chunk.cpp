@@ -19,7 +19,8 @@ struct Header {
 
 // Reads the comment lines; leaves `line` holding the first data line and sets `data` if
 // there is one.
-Header read_header(cdpost::LineSource& source, std::string& line, bool& data) {
+Header read_header(cdpost::LineSource& source, std::string& line, bool& data)
+{
   Header header;
   data = false;
   while (source.next(line)) {
@@ -30,10 +31,8 @@ Header read_header(cdpost::LineSource& source, std::string& line, bool& data) {
     }
     const std::string comment = line.substr(line.find('#'));
     auto names = cdpost::header_names(comment);
-    if (!names.empty() && names.front() == "Bin")
-      header.names.assign(names.begin() + 1, names.end());
-    else if (header.title.empty())
-      header.title = comment;
+    if (!names.empty() && names.front() == "Bin") header.names.assign(names.begin() + 1, names.end());
+    else if (header.title.empty()) header.title = comment;
   }
   if (source.line_number() == 0) throw cdpost::InputError(source.path(), 0, "file is empty");
   if (header.names.empty()) source.fail("no '# Bin ...' header line naming the columns (not a fix ave/spatial file?)");
@@ -45,7 +44,8 @@ Header read_header(cdpost::LineSource& source, std::string& line, bool& data) {
 
 }  // namespace
 
-SpatialConversion spatial_to_chunk(const std::string& input, const std::string& output) {
+SpatialConversion spatial_to_chunk(const std::string& input, const std::string& output)
+{
   cdpost::LineSource source(input);
   std::string line;
   bool have_line = false;
@@ -64,7 +64,8 @@ SpatialConversion spatial_to_chunk(const std::string& input, const std::string& 
   for (; have_line; have_line = source.next(line)) {
     if (cdpost::is_blank(line) || cdpost::is_comment(line)) continue;
     auto block = cdpost::split_whitespace(line);
-    if (block.size() != 2) source.fail("expected a block line 'Timestep Number-of-bins', found " + std::to_string(block.size()) + " values");
+    if (block.size() != 2)
+      source.fail("expected a block line 'Timestep Number-of-bins', found " + std::to_string(block.size()) + " values");
     const long timestep = cdpost::parse_integer(block[0], source, "Timestep");
     const long bins = cdpost::parse_integer(block[1], source, "Number-of-bins");
     if (bins <= 0) source.fail("Number-of-bins must be positive");

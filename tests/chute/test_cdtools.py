@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Checks of scripts/cdtools, the tools' package, run by ctest (no simulation, a second).
 
-    PYTHONPATH=scripts tests/chute/test_cdtools.py
+    tests/chute/test_cdtools.py
 
 The LAMMPS file readers on hand-written files: fix ave/time rows and a malformed row named by
 its line, the head and tail of a file still being written; fix ave/chunk blocks, a block cut
@@ -21,6 +21,9 @@ import zlib
 
 import argparse
 import json
+
+# cdtools, found from this file (scripts/cdtools/__init__.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "scripts"))
 
 from cdtools import lammps_files, logs, run, stats, text
 from cdtools.campaign import plan

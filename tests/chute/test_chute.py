@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Deck-level tests of inputs/in.chute and scripts/chute_campaign.py, run by ctest.
 
-    PYTHONPATH=scripts:bench tests/chute/test_chute.py CASE --lmp build/lmp_cd --work DIR
+    tests/chute/test_chute.py CASE --lmp build/lmp_cd --work DIR
 
 Each case runs lmp_cd (or the runner) on a tiny erodible-bed cell (10 d long, 200 grains,
 walls 8 d high, so the flowing layer is about 12 d thick) and checks physics on its output.
@@ -17,6 +17,10 @@ import signal
 import subprocess
 import sys
 import time
+
+# cdtools and the bench tool under test, found from this file (scripts/cdtools/__init__.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "scripts"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "bench"))
 
 import rank_solutions
 from cdtools.lammps_files import read_chunk_file, read_dump, read_time_file, unwrapped

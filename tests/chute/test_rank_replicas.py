@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Checks of bench/rank_replicas.py's own logic, run by ctest (no simulation).
 
-    PYTHONPATH=scripts:bench tests/chute/test_rank_replicas.py
+    tests/chute/test_rank_replicas.py
 
 Seed lists and their bad forms; the paired differences on synthetic replicas whose beds
 scatter ten times more than their flows: pairing must recover the rank-count shift with the
@@ -20,6 +20,10 @@ import random
 import subprocess
 import sys
 import tempfile
+
+# cdtools and the bench tool under test, found from this file (scripts/cdtools/__init__.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "scripts"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "bench"))
 
 import rank_replicas as replicas
 from cdtools.stats import mean_sd_se

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Checks of bench/rank_solutions.py's own measures, run by ctest (no simulation).
 
-    PYTHONPATH=scripts:bench tests/chute/test_rank_solutions.py
+    tests/chute/test_rank_solutions.py
 
 The solve error and the mass-weighted bias on hand-computed velocities; a truncated velocity
 dump and a missing snapshot are refused with the file named, a --cell that sets what the study
@@ -14,6 +14,9 @@ import os
 import subprocess
 import sys
 import tempfile
+
+# the bench tool under test, found from this file
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "bench"))
 
 import rank_solutions as solutions
 

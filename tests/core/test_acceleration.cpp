@@ -7,15 +7,15 @@
 #include <cmath>
 
 #include "cd/gauss_seidel.h"
-#include "granular_bed.h"
+#include "testbed/granular_bed.h"
 
 namespace {
 
-// The settled bed of 600 disks (bench/granular_bed) the tests solve one step of.
-const bench::GranularBed& bed()
+// The settled bed of 600 disks (src/testbed/granular_bed) the tests solve one step of.
+const testbed::GranularBed& bed()
 {
-  static const bench::GranularBed built([] {
-    bench::BedSpec spec;
+  static const testbed::GranularBed built([] {
+    testbed::BedSpec spec;
     spec.disk_count = 600;
     spec.cell_length = 20.0;
     return spec;
@@ -31,9 +31,9 @@ struct Solved {
 
 Solved solve_step(bool warm, double tolerance, cd::Acceleration acceleration, int full_sweep_every = 1)
 {
-  const bench::FrozenStep frozen = bed().freeze();
+  const testbed::FrozenStep frozen = bed().freeze();
   Solved s{{}, {}, frozen.bodies.velocity};
-  bench::prepare_contacts(frozen, warm, s.contacts);
+  testbed::prepare_contacts(frozen, warm, s.contacts);
   cd::apply_impulses(s.contacts, s.velocity);
   cd::SolverSettings settings = bed().spec().solver;
   settings.tolerance = tolerance;
@@ -131,13 +131,13 @@ TEST(QuietContacts, ACapBeforeTheFullSweepIsNotConvergence)
   const Solved free_run = solve_step(false, 1e-3, cd::Acceleration::none, 8);
   ASSERT_TRUE(free_run.report.converged);
   ASSERT_GT(free_run.report.iterations, 8);
-  const bench::FrozenStep frozen = bed().freeze();
+  const testbed::FrozenStep frozen = bed().freeze();
   cd::SolverSettings settings = bed().spec().solver;
   settings.tolerance = 1e-3;
   settings.full_sweep_every = 8;
   settings.max_iterations = free_run.report.iterations - 1;  // the last sweep that checks is cut
   std::vector<cd::Contact> contacts;
-  bench::prepare_contacts(frozen, false, contacts);
+  testbed::prepare_contacts(frozen, false, contacts);
   std::vector<cd::BodyVelocity> velocity = frozen.bodies.velocity;
   cd::apply_impulses(contacts, velocity);
   const cd::SolveReport cut = cd::solve_gauss_seidel(contacts, velocity, settings);

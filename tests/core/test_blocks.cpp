@@ -1,4 +1,4 @@
-// The sweep of a decomposed run reproduced on one rank (bench::sweep_in_blocks): blocks sweep from the
+// The sweep of a decomposed run reproduced on one rank (testbed::sweep_in_blocks): blocks sweep from the
 // same velocities and their changes add up. Where two blocks push on one body at once the
 // iteration differs from Gauss–Seidel; where it converges, it reaches the same solution.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "cd/gauss_seidel.h"
-#include "emulated_ranks.h"
+#include "testbed/emulated_ranks.h"
 #include "pile.h"
 
 namespace {
@@ -49,13 +49,13 @@ TEST(BlockSweep, TwoBlocksPushingOneBodyOvershootAndAlternate)
   DoubleFloor two_blocks;
   const std::vector<std::size_t> block_ends{1, 2};
   for (int sweep = 1; sweep <= 5; sweep++) {
-    bench::sweep_in_blocks(two_blocks.pile.contacts, block_ends, two_blocks.pile.bodies.velocity, {});
+    testbed::sweep_in_blocks(two_blocks.pile.contacts, block_ends, two_blocks.pile.bodies.velocity, {});
     const double expected = sweep % 2 == 1 ? -two_blocks.fall : two_blocks.fall;
     EXPECT_NEAR(two_blocks.vy(), expected, 1e-12 * -two_blocks.fall) << "sweep " << sweep;
     EXPECT_EQ(two_blocks.pile.bodies.velocity[1].vx, 0.0);
   }
   const cd::SolverSettings settings{1e-6, 50, 1.0, cd::ConvergenceNorm::quadratic};
-  EXPECT_FALSE(bench::solve_in_blocks(two_blocks.pile.contacts, block_ends, two_blocks.pile.bodies.velocity, settings)
+  EXPECT_FALSE(testbed::solve_in_blocks(two_blocks.pile.contacts, block_ends, two_blocks.pile.bodies.velocity, settings)
                    .converged);
 }
 
@@ -122,7 +122,7 @@ TEST(BlockSweep, ConvergesToTheGaussSeidelSolution)
 
   const cd::SolverSettings settings{1e-12, 100000, 1.0, cd::ConvergenceNorm::quadratic};
   const cd::SolveReport in_blocks =
-      bench::solve_in_blocks(blocks.contacts, block_ends, blocks.bodies.velocity, settings);
+      testbed::solve_in_blocks(blocks.contacts, block_ends, blocks.bodies.velocity, settings);
   const cd::SolveReport in_order = cd::solve_gauss_seidel(plain.contacts, plain.bodies.velocity, settings);
   ASSERT_TRUE(in_blocks.converged);
   ASSERT_TRUE(in_order.converged);
@@ -135,7 +135,7 @@ TEST(BlockSweep, ConvergesToTheGaussSeidelSolution)
     }
 
   WalledStack single, reference;
-  bench::sweep_in_blocks(single.contacts, {single.contacts.size()}, single.bodies.velocity, {});
+  testbed::sweep_in_blocks(single.contacts, {single.contacts.size()}, single.bodies.velocity, {});
   cd::sweep(reference.contacts, reference.bodies.velocity, {});
   for (std::size_t b = 1; b < reference.bodies.velocity.size(); b++) {
     EXPECT_NEAR(single.bodies.velocity[b].vx, reference.bodies.velocity[b].vx, 1e-14 * fall) << b;

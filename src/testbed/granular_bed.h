@@ -14,7 +14,7 @@
 
 #include "cd/gauss_seidel.h"
 
-namespace bench {
+namespace testbed {
 
 struct BedSpec {
   int disk_count = 4000;
@@ -96,4 +96,4 @@ class GranularBed {
   std::vector<cd::SolveReport> settle_reports_;
 };
 
-}  // namespace bench
+}  // namespace testbed

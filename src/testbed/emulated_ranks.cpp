@@ -1,6 +1,6 @@
-#include "emulated_ranks.h"
+#include "testbed/emulated_ranks.h"
 
-namespace bench {
+namespace testbed {
 
 cd::SweepChange sweep_in_blocks(std::vector<cd::Contact>& contacts, const std::vector<std::size_t>& block_ends,
                                 std::vector<cd::BodyVelocity>& velocity, const cd::SolverSettings& settings)
@@ -37,4 +37,4 @@ cd::SolveReport solve_in_blocks(std::vector<cd::Contact>& contacts, const std::v
   return report;
 }
 
-}  // namespace bench
+}  // namespace testbed

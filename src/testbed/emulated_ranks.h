@@ -11,7 +11,7 @@
 
 #include "cd/gauss_seidel.h"
 
-namespace bench {
+namespace testbed {
 
 cd::SweepChange sweep_in_blocks(std::vector<cd::Contact>& contacts, const std::vector<std::size_t>& block_ends,
                                 std::vector<cd::BodyVelocity>& velocity, const cd::SolverSettings& settings);
@@ -20,4 +20,4 @@ cd::SweepChange sweep_in_blocks(std::vector<cd::Contact>& contacts, const std::v
 cd::SolveReport solve_in_blocks(std::vector<cd::Contact>& contacts, const std::vector<std::size_t>& block_ends,
                                 std::vector<cd::BodyVelocity>& velocity, const cd::SolverSettings& settings);
 
-}  // namespace bench
+}  // namespace testbed

@@ -1,4 +1,4 @@
-#include "granular_bed.h"
+#include "testbed/granular_bed.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace bench {
+namespace testbed {
 
 namespace {
 
@@ -353,4 +353,4 @@ double GranularBed::max_speed() const
   return fastest;
 }
 
-}  // namespace bench
+}  // namespace testbed
