@@ -68,7 +68,7 @@ FixContactDynamics::FixContactDynamics(LAMMPS* lmp, int narg, char** arg) : Fix(
 
   time_integrate = 1;
   vector_flag = 1;
-  size_vector = 11;
+  size_vector = 12;
   global_freq = 1;
   extvector = 0;
   local_flag = 1;
@@ -1211,6 +1211,7 @@ double FixContactDynamics::compute_vector(int n)
     case 8: return total_unconverged_steps;
     case 9: return total_steps;
     case 10: return full_sweep_work;
+    case 11: return last_report.solves;
   }
   return 0.0;
 }

@@ -88,6 +88,7 @@ SolveReport solve_step(StepContacts& contacts, std::vector<int>& promoted_record
     if (!promoted) break;
     const SolveReport more = solve_gauss_seidel(contacts.solved, bodies.velocity, settings, exchange);
     report.iterations += more.iterations;
+    report.solves += 1;
     report.contact_updates += more.contact_updates;
     report.residual = more.residual;
     report.converged = more.converged;

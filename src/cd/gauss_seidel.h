@@ -123,6 +123,7 @@ struct SolverSettings {
 
 struct SolveReport {
   int iterations = 0;            // sweeps, over every contact or over the active ones
+  int solves = 1;                // Gauss-Seidel solves: 1, plus one each time closing pairs joined
   double contact_updates = 0.0;  // local solves over all sweeps
   double residual = 0.0;
   bool converged = true;

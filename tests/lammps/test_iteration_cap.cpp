@@ -31,10 +31,11 @@ fix cd all contact/dynamics 0.5 0.0 max_iterations 1 wall yplane 0.0 0.5 0.0
 run 1
 )");
   LAMMPS_NS::Fix* fix = s.fix("cd");
-  EXPECT_EQ(fix->compute_vector(2), 2.0);  // contacts solved: the floor, then the pair
-  EXPECT_EQ(fix->compute_vector(0), 2.0);  // sweeps this step: one per solve, twice the cap
-  EXPECT_EQ(fix->compute_vector(6), 0.0);  // the last solve stopped at the cap
-  EXPECT_EQ(fix->compute_vector(8), 1.0);  // one step hit the cap
+  EXPECT_EQ(fix->compute_vector(2), 2.0);   // contacts solved: the floor, then the pair
+  EXPECT_EQ(fix->compute_vector(0), 2.0);   // sweeps this step: one per solve, twice the cap
+  EXPECT_EQ(fix->compute_vector(11), 2.0);  // solves this step: the first, and again for the pair
+  EXPECT_EQ(fix->compute_vector(6), 0.0);   // the last solve stopped at the cap
+  EXPECT_EQ(fix->compute_vector(8), 1.0);   // one step hit the cap
 }
 
 }  // namespace

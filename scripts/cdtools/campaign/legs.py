@@ -6,7 +6,7 @@ import os
 import shutil
 
 from ..cdpost import RUN_RECORD
-from ..lammps_files import read_chunk_records, read_dump_records, read_time_records, time_span
+from ..lammps_files import read_chunk_records, read_dump_records, read_time_file, read_time_records, time_span
 from ..logs import parse_summary, read_outputs, error_line, read_progress
 from .jobs import write_json
 
@@ -89,12 +89,13 @@ def finish_run(job):
     return None
 
 
-def mean_sweeps(folder):
-    """Mean Gauss-Seidel sweeps per step over a run's solver.time (its first column), or None."""
+def mean_solver_column(folder, column):
+    """Mean of one column of a run's solver.time (per-step values of the fix averaged over each
+    solver_interval), or None if the file or the column (older decks) is missing."""
     solver = os.path.join(folder, "solver.time")
     if not os.path.exists(solver):
         return None
-    values = [float(text.split()[1]) for _, text in read_time_records(solver)[1]]
+    values = [row[column] for row in read_time_file(solver) if column in row]
     return sum(values) / len(values) if values else None
 
 
@@ -117,4 +118,5 @@ def run_cost(job, legs):
                 wall_per_physical_second=wall / physical if physical > 0 else None,
                 cpu_seconds=cpu, cpu_per_physical_second=cpu / physical if physical > 0 else None,
                 seconds_per_grain_step=wall / (steps * job.grains()) if steps else None,
-                mean_sweeps_per_step=mean_sweeps(job.folder), legs=len(legs))
+                mean_sweeps_per_step=mean_solver_column(job.folder, "f_cd[1]"),
+                mean_solves_per_step=mean_solver_column(job.folder, "f_cd[12]"), legs=len(legs))
