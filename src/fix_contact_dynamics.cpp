@@ -56,6 +56,19 @@ double wall_key(int wall_index, cd::WallPart part)
   return -(3.0 * wall_index + static_cast<int>(part) + 1.0);
 }
 
+// The 1-based wall number of a wall key.
+int wall_number(double key)
+{
+  return static_cast<int>((-key - 1.0) / 3.0) + 1;
+}
+
+// A key's partner for messages: "atom ID" or "wall N".
+std::string partner_name(double partner)
+{
+  if (partner > 0.0) return fmt::format("atom {}", static_cast<tagint>(partner));
+  return fmt::format("wall {}", wall_number(partner));
+}
+
 }  // namespace
 
 /* ---------------------------------------------------------------------- */
@@ -141,14 +154,14 @@ void FixContactDynamics::parse_arguments(int narg, char** arg)
       require_values("order", iarg, 1, narg, error);
       const std::string value = arg[iarg + 1];
       if (value == "fixed") {
-        order = ContactOrder::fixed;
+        step_settings.order = cd::ContactOrder::interleaved;
         iarg += 2;
       } else if (value == "shuffle") {
         require_values("order shuffle", iarg + 1, 1, narg, error);
         const int seed = integer_for("order shuffle seed", arg[iarg + 2], error);
         if (seed <= 0) error->all(FLERR, "Fix contact/dynamics: order shuffle seed must be > 0, got {}", seed);
-        order = ContactOrder::shuffled;
-        shuffle_rng.seed(seed);
+        step_settings.order = cd::ContactOrder::shuffled;
+        shuffle_seed = static_cast<std::uint64_t>(seed);
         iarg += 3;
       } else {
         error->all(FLERR, "Fix contact/dynamics: order must be fixed or shuffle, got '{}'", value);
@@ -159,38 +172,39 @@ void FixContactDynamics::parse_arguments(int narg, char** arg)
     require_values(arg[iarg], iarg, 1, narg, error);
     const char* value = arg[iarg + 1];
     if (keyword == "theta") {
-      theta = number_for("theta", value, error);
-      if (theta < 0.5 || theta > 1.0)
-        error->all(FLERR, "Fix contact/dynamics: theta must be in [0.5,1], got {}", theta);
+      step_settings.theta = number_for("theta", value, error);
+      if (step_settings.theta < 0.5 || step_settings.theta > 1.0)
+        error->all(FLERR, "Fix contact/dynamics: theta must be in [0.5,1], got {}", step_settings.theta);
     } else if (keyword == "tolerance") {
-      solver_settings.tolerance = number_for("tolerance", value, error);
-      if (solver_settings.tolerance <= 0.0)
-        error->all(FLERR, "Fix contact/dynamics: tolerance must be > 0, got {}", solver_settings.tolerance);
+      step_settings.solver.tolerance = number_for("tolerance", value, error);
+      if (step_settings.solver.tolerance <= 0.0)
+        error->all(FLERR, "Fix contact/dynamics: tolerance must be > 0, got {}", step_settings.solver.tolerance);
     } else if (keyword == "max_iterations") {
-      solver_settings.max_iterations = integer_for("max_iterations", value, error);
-      if (solver_settings.max_iterations < 1)
-        error->all(FLERR, "Fix contact/dynamics: max_iterations must be >= 1, got {}", solver_settings.max_iterations);
+      step_settings.solver.max_iterations = integer_for("max_iterations", value, error);
+      if (step_settings.solver.max_iterations < 1)
+        error->all(FLERR, "Fix contact/dynamics: max_iterations must be >= 1, got {}",
+                   step_settings.solver.max_iterations);
     } else if (keyword == "relaxation") {
-      solver_settings.relaxation = number_for("relaxation", value, error);
-      if (solver_settings.relaxation <= 0.0 || solver_settings.relaxation > 1.0)
-        error->all(FLERR, "Fix contact/dynamics: relaxation must be in (0,1], got {}", solver_settings.relaxation);
+      step_settings.solver.relaxation = number_for("relaxation", value, error);
+      if (step_settings.solver.relaxation <= 0.0 || step_settings.solver.relaxation > 1.0)
+        error->all(FLERR, "Fix contact/dynamics: relaxation must be in (0,1], got {}", step_settings.solver.relaxation);
     } else if (keyword == "norm") {
       const std::string norm = value;
-      if (norm == "quadratic") solver_settings.norm = cd::ConvergenceNorm::quadratic;
-      else if (norm == "maximum") solver_settings.norm = cd::ConvergenceNorm::maximum;
+      if (norm == "quadratic") step_settings.solver.norm = cd::ConvergenceNorm::quadratic;
+      else if (norm == "maximum") step_settings.solver.norm = cd::ConvergenceNorm::maximum;
       else error->all(FLERR, "Fix contact/dynamics: norm must be quadratic or maximum, got '{}'", norm);
     } else if (keyword == "acceleration") {
       const std::string acceleration = value;
-      if (acceleration == "none") solver_settings.acceleration = cd::Acceleration::none;
-      else if (acceleration == "conjugate") solver_settings.acceleration = cd::Acceleration::conjugate;
+      if (acceleration == "none") step_settings.solver.acceleration = cd::Acceleration::none;
+      else if (acceleration == "conjugate") step_settings.solver.acceleration = cd::Acceleration::conjugate;
       else error->all(FLERR, "Fix contact/dynamics: acceleration must be none or conjugate, got '{}'", acceleration);
     } else if (keyword == "full_sweep_every") {
-      solver_settings.full_sweep_every = integer_for("full_sweep_every", value, error);
-      if (solver_settings.full_sweep_every < 1)
+      step_settings.solver.full_sweep_every = integer_for("full_sweep_every", value, error);
+      if (step_settings.solver.full_sweep_every < 1)
         error->all(FLERR, "Fix contact/dynamics: full_sweep_every must be >= 1, got {}",
-                   solver_settings.full_sweep_every);
+                   step_settings.solver.full_sweep_every);
     } else if (keyword == "warm_start") {
-      warm_start = yes_or_no("warm_start", value, error);
+      step_settings.warm_start = yes_or_no("warm_start", value, error);
     } else if (keyword == "pair_forces") {
       pair_forces = yes_or_no("pair_forces", value, error);
     } else if (keyword == "max_contacts") {
@@ -232,6 +246,7 @@ void FixContactDynamics::parse_arguments(int narg, char** arg)
                  step_grid.dt_max);
     step_grid.steps_per_align = static_cast<int>(std::lround(periods));
   }
+  contact_step = cd::MoreauJeanStep(step_settings, shuffle_seed);
 }
 
 void FixContactDynamics::parse_type_law(const char* keyword, int iarg, int narg, char** arg, bool friction)
@@ -425,7 +440,7 @@ void FixContactDynamics::survey_group()
   check_disk_masses();
   mean_diameter = group_mean_diameter();
   if (!alert_given) alert_distance = default_alert_fraction * mean_diameter;
-  reach.set_margin_floor(alert_distance);
+  contact_step.settings().alert = alert_distance;
   natoms_surveyed = atom->natoms;
 }
 
@@ -647,14 +662,15 @@ void FixContactDynamics::pre_force(int)
 
 void FixContactDynamics::initial_integrate(int)
 {
-  const double shift = (1.0 - theta) * update->dt;
+  const cd::StepParameters step = step_parameters();
   double** x = atom->x;
   double** v = atom->v;
   const int* mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++)
     if (mask[i] & groupbit) {
-      x[i][0] += shift * v[i][0];
-      x[i][1] += shift * v[i][1];
+      const cd::Displacement shift = cd::predicted_motion({v[i][0], v[i][1], 0.0}, step);
+      x[i][0] += shift.dx;
+      x[i][1] += shift.dy;
     }
 }
 
@@ -666,23 +682,15 @@ void FixContactDynamics::final_integrate()
   }
   if (neighbor->ago == 0) check_subdomains();
   gather_bodies();
-  const cd::StepParameters step{update->dt, theta};
-  reach.begin_step(bodies, step);
-  pairs.clear();
-  records.clear();
-  watched_records.clear();
-  collect_pairs(-std::numeric_limits<double>::infinity(), reach.margin());
-  if (order == ContactOrder::shuffled) shuffle_contacts();
-  else interleave_contacts();
-  if (warm_start) load_warm_start();
-
-  cd::apply_impulses(pairs.solved, bodies.velocity);
-  solve_contacts();
-
-  store_warm_start();
-  write_back_motion();
+  RankExchange exchange(*this);
+  if (distributed) exchange.synchronise_velocities();
+  LammpsHost host(*this);
+  const cd::StepReport report = contact_step.solve(bodies, update->dt, host, distributed ? &exchange : nullptr);
+  last_report = report.solve;
+  loaded_contacts = report.loaded_contacts;
   fill_local_output();
-  reduce_step_outputs(cd::measure_overlaps(pairs, bodies.velocity, step));
+  write_back_motion();
+  reduce_step_outputs(report.overlaps);
 
   total_iterations += last_report.iterations;
   total_steps += 1.0;
@@ -694,21 +702,13 @@ void FixContactDynamics::final_integrate()
       error->warning(FLERR,
                      "Fix contact/dynamics: iteration cap {} reached at step {} (residual {:.3g}); "
                      "{} step(s) unconverged so far",
-                     solver_settings.max_iterations, update->ntimestep, last_report.residual, count);
+                     contact_step.settings().solver.max_iterations, update->ntimestep, last_report.residual, count);
   }
 }
 
-// cd::solve_step: solves, lets watched pairs that the solution would drive into overlap join,
-// solves again; their records follow them.
-void FixContactDynamics::solve_contacts()
+cd::StepParameters FixContactDynamics::step_parameters() const
 {
-  RankExchange exchange(*this);
-  if (distributed) exchange.synchronise_velocities();
-  NeighbourPairs wider(*this);
-  promoted_records.clear();
-  last_report = cd::solve_step(pairs, promoted_records, bodies, {update->dt, theta}, solver_settings, reach, wider,
-                               distributed ? &exchange : nullptr);
-  for (const int k : promoted_records) records.push_back(watched_records[k]);
+  return {update->dt, contact_step.settings().theta};
 }
 
 /* ---------------------------------------------------------------------- */
@@ -765,10 +765,7 @@ void FixContactDynamics::gather_bodies()
     inertia.inv_mass = 1.0 / mass;
     inertia.inv_inertia = 1.0 / (disk_inertia_factor * mass * radius[i] * radius[i]);
     if (i >= nlocal) continue;  // ghosts receive their owner's free velocity below
-    cd::BodyVelocity& free = bodies.velocity[1 + i];
-    free.vx += dt * f[i][0] * inertia.inv_mass;
-    free.vy += dt * f[i][1] * inertia.inv_mass;
-    if (torque) free.spin += dt * torque[i][2] * inertia.inv_inertia;
+    bodies.velocity[1 + i] = cd::free_velocity(start, inertia, f[i][0], f[i][1], torque ? torque[i][2] : 0.0, dt);
   }
   if (distributed) {
     ghost_reference.resize(bodies.velocity.size());
@@ -776,30 +773,17 @@ void FixContactDynamics::gather_bodies()
   }
 }
 
-// Before the solve a pair is solved or watched (cd::StepContacts::add); found during the solve
-// (a wider look) it is watched, and joins only if promoted, its record with it.
-void FixContactDynamics::add_pair(const cd::ContactGeometry& geometry, const cd::ContactLaw& contact_law,
-                                  const ContactRecord& record, bool during_solve)
-{
-  const cd::StepParameters step{update->dt, theta};
-  const int watched_index = static_cast<int>(watched_records.size());
-  if (during_solve) pairs.watch(cd::contact_frame(geometry), contact_law, watched_index);
-  else if (pairs.add(cd::contact_frame(geometry), contact_law, watched_index, bodies, step, alert_distance)) {
-    records.push_back(record);
-    return;
-  }
-  watched_records.push_back(record);
-}
-
 // The listed pairs whose gap lies above their reach plus from_margin and at most their reach
-// plus to_margin (cd::PairReach), and the walls likewise: solved if candidates, else watched.
-void FixContactDynamics::collect_pairs(double from_margin, double to_margin)
+// plus to_margin (cd::PairReach), and the walls likewise, offered to the step's contacts.
+void FixContactDynamics::LammpsHost::collect_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
+                                                   cd::StepContacts& contacts)
 {
-  collect_grain_pairs(from_margin, to_margin);
-  collect_wall_pairs(from_margin, to_margin);
+  fix.collect_grain_pairs(reach, from_margin, to_margin, contacts);
+  fix.collect_wall_pairs(reach, from_margin, to_margin, contacts);
 }
 
-void FixContactDynamics::collect_grain_pairs(double from_margin, double to_margin)
+void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
+                                             cd::StepContacts& contacts)
 {
   double** x = atom->x;
   const double* radius = atom->radius;
@@ -828,39 +812,18 @@ void FixContactDynamics::collect_grain_pairs(double from_margin, double to_margi
                    "Fix contact/dynamics: atom {} touches its own periodic image; the cell "
                    "is too short",
                    tag[i]);
-      const cd::ContactGeometry geometry = cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j);
-      add_pair(geometry, law(type[i], type[j]), ContactRecord::between_atoms(tag, i, j, geometry), widening);
+      contacts.offer(cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j), law(type[i], type[j]), pair_key(i, j));
     }
   }
 }
 
-// By the rule of collect_grain_pairs the smaller ID is an owned atom.
-FixContactDynamics::ContactRecord FixContactDynamics::ContactRecord::between_atoms(const tagint* tag, int i, int j,
-                                                                                   const cd::ContactGeometry& geometry)
+// The warm start of a pair lives with its smaller atom ID, which the rule of
+// collect_grain_pairs makes an owned atom, keyed by the other ID.
+cd::PairKey FixContactDynamics::pair_key(int i, int j) const
 {
-  const int keeper = tag[i] < tag[j] ? i : j;
-  ContactRecord record;
-  record.atom_a = tag[i];
-  record.atom_b = tag[j];
-  record.history_atom = keeper;
-  record.history_key = static_cast<double>(keeper == i ? tag[j] : tag[i]);
-  record.point_x = geometry.point_x;
-  record.point_y = geometry.point_y;
-  return record;
-}
-
-FixContactDynamics::ContactRecord FixContactDynamics::ContactRecord::against_wall(const tagint* tag, int i, int slot,
-                                                                                  cd::WallPart part,
-                                                                                  const cd::ContactGeometry& geometry)
-{
-  ContactRecord record;
-  record.atom_a = tag[i];
-  record.wall = slot + 1;
-  record.history_atom = i;
-  record.history_key = wall_key(slot, part);
-  record.point_x = geometry.point_x;
-  record.point_y = geometry.point_y;
-  return record;
+  const tagint* tag = atom->tag;
+  if (tag[i] < tag[j]) return {i, static_cast<double>(tag[j])};
+  return {j, static_cast<double>(tag[i])};
 }
 
 cd::PeriodicBox FixContactDynamics::periodic_box() const
@@ -868,7 +831,8 @@ cd::PeriodicBox FixContactDynamics::periodic_box() const
   return {domain->xperiodic != 0, domain->yperiodic != 0, domain->xprd, domain->yprd};
 }
 
-void FixContactDynamics::collect_wall_pairs(double from_margin, double to_margin)
+void FixContactDynamics::collect_wall_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
+                                            cd::StepContacts& contacts)
 {
   if (walls.empty()) return;
   const cd::PeriodicBox box = periodic_box();
@@ -880,38 +844,8 @@ void FixContactDynamics::collect_wall_pairs(double from_margin, double to_margin
     for (int w = 0; w < static_cast<int>(walls.size()); w++) {
       const auto touch = cd::wall_contact(walls[w], 1 + i, disk, reach_i + to_margin, box);
       if (!touch || touch->geometry.gap <= reach_i + from_margin) continue;
-      add_pair(touch->geometry, walls[w].law,
-               ContactRecord::against_wall(atom->tag, i, w, touch->part, touch->geometry), std::isfinite(from_margin));
+      contacts.offer(touch->geometry, walls[w].law, {i, wall_key(w, touch->part)});
     }
-  }
-}
-
-void FixContactDynamics::interleave_contacts()
-{
-  reorder_contacts(cd::interleaved_order(pairs.solved, static_cast<int>(bodies.velocity.size())));
-}
-
-// Contacts (and their records) in the order of permutation: its k-th entry is the old index of
-// the new k-th contact.
-void FixContactDynamics::reorder_contacts(const std::vector<int>& permutation)
-{
-  reordered_contacts.clear();
-  reordered_records.clear();
-  for (int k : permutation) {
-    reordered_contacts.push_back(pairs.solved[k]);
-    reordered_records.push_back(records[k]);
-  }
-  pairs.solved.swap(reordered_contacts);
-  records.swap(reordered_records);
-}
-
-void FixContactDynamics::shuffle_contacts()
-{
-  for (std::size_t k = pairs.solved.size(); k > 1; k--) {
-    std::uniform_int_distribution<std::size_t> pick(0, k - 1);
-    const std::size_t other = pick(shuffle_rng);
-    std::swap(pairs.solved[k - 1], pairs.solved[other]);
-    std::swap(records[k - 1], records[other]);
   }
 }
 
@@ -921,56 +855,44 @@ void FixContactDynamics::shuffle_contacts()
    body the pair has the same (p_n, p_t): swapping a and b flips both normal and tangent.
 ------------------------------------------------------------------------- */
 
-void FixContactDynamics::load_warm_start()
+cd::Local2 FixContactDynamics::LammpsHost::carried_impulse(const cd::PairKey& key) const
 {
-  for (std::size_t k = 0; k < pairs.solved.size(); k++) {
-    const double* row = history[records[k].history_atom];
-    const int count = static_cast<int>(row[0]);
-    for (int slot = 0; slot < count; slot++) {
-      const double* entry = row + 1 + 3 * slot;
-      if (entry[0] != records[k].history_key) continue;
-      cd::warm_start(pairs.solved[k], {entry[1], entry[2]});
-      break;
-    }
+  const double* row = fix.history[key.row];
+  const int count = static_cast<int>(row[0]);
+  for (int slot = 0; slot < count; slot++) {
+    const double* entry = row + 1 + 3 * slot;
+    if (entry[0] == key.partner) return {entry[1], entry[2]};
   }
+  return {};
 }
 
-void FixContactDynamics::append_history(int atom_index, double key, cd::Local2 impulse)
+void FixContactDynamics::LammpsHost::forget_impulses()
 {
-  double* row = history[atom_index];
+  for (int i = 0; i < fix.atom->nlocal; i++) fix.history[i][0] = 0.0;
+}
+
+void FixContactDynamics::LammpsHost::remember_impulse(const cd::PairKey& key, cd::Local2 impulse)
+{
+  if (!std::isfinite(impulse.n) || !std::isfinite(impulse.t))
+    fix.error->one(FLERR, "Fix contact/dynamics: non-finite impulse between atom {} and {} at step {}",
+                   fix.atom->tag[key.row], partner_name(key.partner), fix.update->ntimestep);
+  double* row = fix.history[key.row];
   const int count = static_cast<int>(row[0]);
-  if (count == max_contacts)
-    error->one(FLERR,
-               "Fix contact/dynamics: atom {} has more than {} loaded contacts; raise "
-               "max_contacts",
-               atom->tag[atom_index], max_contacts);
+  if (count == fix.max_contacts)
+    fix.error->one(FLERR,
+                   "Fix contact/dynamics: atom {} has more than {} loaded contacts; raise "
+                   "max_contacts",
+                   fix.atom->tag[key.row], fix.max_contacts);
   double* entry = row + 1 + 3 * count;
-  entry[0] = key;
+  entry[0] = key.partner;
   entry[1] = impulse.n;
   entry[2] = impulse.t;
   row[0] = count + 1;
 }
 
-void FixContactDynamics::store_warm_start()
-{
-  for (int i = 0; i < atom->nlocal; i++) history[i][0] = 0.0;
-  loaded_contacts = 0;
-  for (std::size_t k = 0; k < pairs.solved.size(); k++) {
-    const cd::Local2 p = pairs.solved[k].impulse;
-    const ContactRecord& record = records[k];
-    if (!std::isfinite(p.n) || !std::isfinite(p.t))
-      error->one(FLERR, "Fix contact/dynamics: non-finite impulse between atom {} and {} {} at step {}", record.atom_a,
-                 record.wall ? "wall" : "atom", record.wall ? record.wall : record.atom_b, update->ntimestep);
-    if (p.n <= 0.0) continue;
-    ++loaded_contacts;
-    append_history(record.history_atom, record.history_key, p);
-  }
-}
-
 void FixContactDynamics::write_back_motion()
 {
-  const double dt = update->dt;
-  const double advance = theta * dt;
+  const cd::StepParameters step = step_parameters();
   // Neighbour lists are rebuilt once a grain has moved half the skin; a grain moving more than
   // that in one step could pass through a pair the list does not hold.
   const double step_limit_sq = 0.25 * neighbor->skin * neighbor->skin;
@@ -984,27 +906,26 @@ void FixContactDynamics::write_back_motion()
     if (!std::isfinite(velocity.vx) || !std::isfinite(velocity.vy) || !std::isfinite(velocity.spin))
       error->one(FLERR, "Fix contact/dynamics: non-finite velocity of atom {} at step {}", atom->tag[i],
                  update->ntimestep);
-    const cd::BodyVelocity& start = bodies.start_velocity[1 + i];
-    const double dx = dt * ((1.0 - theta) * start.vx + theta * velocity.vx);
-    const double dy = dt * ((1.0 - theta) * start.vy + theta * velocity.vy);
-    if (dx * dx + dy * dy > step_limit_sq)
+    const cd::Displacement moved = cd::step_motion(bodies.start_velocity[1 + i], velocity, step);
+    if (moved.dx * moved.dx + moved.dy * moved.dy > step_limit_sq)
       error->one(FLERR,
                  "Fix contact/dynamics: atom {} moved {} in step {}, more than half the "
                  "neighbour skin {}; reduce the time step or raise the skin",
-                 atom->tag[i], std::sqrt(dx * dx + dy * dy), update->ntimestep, neighbor->skin);
+                 atom->tag[i], std::hypot(moved.dx, moved.dy), update->ntimestep, neighbor->skin);
     v[i][0] = velocity.vx;
     v[i][1] = velocity.vy;
     omega[i][2] = velocity.spin;
-    x[i][0] += advance * velocity.vx;
-    x[i][1] += advance * velocity.vy;
+    const cd::Displacement shift = cd::corrected_motion(velocity, step);
+    x[i][0] += shift.dx;
+    x[i][1] += shift.dy;
   }
 }
 
 // The step's output vector: sums and maxima over ranks.
 void FixContactDynamics::reduce_step_outputs(const cd::OverlapSums& overlaps)
 {
-  const double local_sums[4] = {static_cast<double>(pairs.solved.size()), static_cast<double>(loaded_contacts),
-                                overlaps.total, last_report.contact_updates};
+  const double local_sums[4] = {static_cast<double>(contact_step.contacts().solved.size()),
+                                static_cast<double>(loaded_contacts), overlaps.total, last_report.contact_updates};
   double sums[4], deepest = 0.0;
   MPI_Allreduce(local_sums, sums, 4, MPI_DOUBLE, MPI_SUM, world);
   MPI_Allreduce(&overlaps.deepest, &deepest, 1, MPI_DOUBLE, MPI_MAX, world);
@@ -1033,7 +954,7 @@ void FixContactDynamics::RankExchange::after_sweep(cd::SweepChange& change)
   double sums[4] = {change.sum_change_sq, change.sum_scale_sq, change.sum_scale, change.contacts};
   MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, fix.world);
   // The largest change matters to the maximum norm only: spare the quadratic one a reduction.
-  if (fix.solver_settings.norm == cd::ConvergenceNorm::maximum)
+  if (fix.step_settings.solver.norm == cd::ConvergenceNorm::maximum)
     MPI_Allreduce(MPI_IN_PLACE, &change.max_change, 1, MPI_DOUBLE, MPI_MAX, fix.world);
   change.sum_change_sq = sums[0];
   change.sum_scale_sq = sums[1];
@@ -1102,6 +1023,9 @@ void FixContactDynamics::unpack_reverse_comm(int n, int* list, double* buf)
   }
 }
 
+// One row per loaded contact, at the predicted configuration (before the corrector): atom IDs
+// (0 for a wall), wall number (0 for a pair of atoms), p_n, p_t, the contact point midway
+// across the gap.
 void FixContactDynamics::fill_local_output()
 {
   if (loaded_contacts > local_rows_allocated) {
@@ -1109,18 +1033,23 @@ void FixContactDynamics::fill_local_output()
     memory->destroy(array_local);
     memory->create(array_local, local_rows_allocated, output_columns, "contact/dynamics:array_local");
   }
+  const cd::StepContacts& contacts = contact_step.contacts();
+  double** x = atom->x;
   int row = 0;
-  for (std::size_t k = 0; k < pairs.solved.size(); k++) {
-    if (pairs.solved[k].impulse.n <= 0.0) continue;
-    const ContactRecord& record = records[k];
+  for (std::size_t k = 0; k < contacts.solved.size(); k++) {
+    const cd::Contact& c = contacts.solved[k];
+    if (c.impulse.n <= 0.0) continue;
+    const int a = c.body_a - 1;  // an owned atom
+    const bool wall = c.body_b == cd::world_body;
+    const double to_point = c.lever_a + 0.5 * c.gap;
     double* out = array_local[row++];
-    out[0] = record.atom_a;
-    out[1] = record.atom_b;
-    out[2] = record.wall;
-    out[3] = pairs.solved[k].impulse.n;
-    out[4] = pairs.solved[k].impulse.t;
-    out[5] = record.point_x;
-    out[6] = record.point_y;
+    out[0] = atom->tag[a];
+    out[1] = wall ? 0 : atom->tag[c.body_b - 1];
+    out[2] = wall ? wall_number(contacts.keys[k].partner) : 0;
+    out[3] = c.impulse.n;
+    out[4] = c.impulse.t;
+    out[5] = x[a][0] - to_point * c.normal_x;
+    out[6] = x[a][1] - to_point * c.normal_y;
   }
   size_local_rows = row;
 }
@@ -1268,8 +1197,7 @@ int FixContactDynamics::maxsize_restart()
 double FixContactDynamics::memory_usage()
 {
   double bytes = static_cast<double>(atom->nmax) * history_width * sizeof(double);
-  bytes += pairs.solved.capacity() * sizeof(cd::Contact) + pairs.watched.capacity() * sizeof(cd::WatchedPair);
-  bytes += (records.capacity() + watched_records.capacity()) * sizeof(ContactRecord);
+  bytes += static_cast<double>(contact_step.contacts().memory_bytes());
   bytes += bodies.velocity.capacity() * (2 * sizeof(cd::BodyVelocity) + sizeof(cd::BodyInertia));
   bytes += static_cast<double>(local_rows_allocated) * output_columns * sizeof(double);
   return bytes;

@@ -12,11 +12,12 @@ FixStyle(contact/dynamics,FixContactDynamics);
 #ifndef LMP_FIX_CONTACT_DYNAMICS_H
 #define LMP_FIX_CONTACT_DYNAMICS_H
 
-#include <random>
+#include <cstdint>
 #include <vector>
 
 #include "cd/detection.h"
 #include "cd/gauss_seidel.h"
+#include "cd/step.h"
 #include "cd/time_step.h"
 #include "cd/walls.h"
 #include "fix.h"
@@ -56,23 +57,6 @@ class FixContactDynamics : public Fix {
   double memory_usage() override;
 
  private:
-  // Who touches whom, for warm starts and the local output.
-  struct ContactRecord {
-    tagint atom_a = 0;         // atom ID of body a (always an owned atom)
-    tagint atom_b = 0;         // atom ID of body b, 0 for a wall
-    int wall = 0;              // 1-based wall index, 0 for an atom pair
-    int history_atom = -1;     // owned atom whose row stores the warm start: the smaller ID of a pair
-    double history_key = 0.0;  // the partner in that row: the other atom ID, or -(wall slot)
-    double point_x = 0.0;      // contact point at the predicted configuration
-    double point_y = 0.0;
-
-    // Atoms of local indices i and j (i owned): the warm start lives with the smaller ID.
-    static ContactRecord between_atoms(const tagint* tag, int i, int j, const cd::ContactGeometry& geometry);
-    // Owned atom i against wall slot `slot` (0-based) at the part `part` of that wall.
-    static ContactRecord against_wall(const tagint* tag, int i, int slot, cd::WallPart part,
-                                      const cd::ContactGeometry& geometry);
-  };
-
   // Per-iteration exchange across MPI ranks: ghost velocity changes summed into their owners
   // (reverse comm), owners' velocities copied to ghosts (forward comm), norm sums reduced.
   class RankExchange : public cd::SweepExchange {
@@ -87,23 +71,25 @@ class FixContactDynamics : public Fix {
   };
   friend class RankExchange;
 
-  // The wider look cd::solve_step may ask for: the neighbour list again, further out.
-  class NeighbourPairs : public cd::PairCollector {
+  // The step's host (cd::StepHost): pairs from LAMMPS's neighbour list and the walls, carried
+  // impulses in the per-atom store (which travels with the atoms and into restarts).
+  class LammpsHost : public cd::StepHost {
    public:
-    explicit NeighbourPairs(FixContactDynamics& fix) : fix(fix) {}
-    void collect_between(double from_margin, double to_margin) override { fix.collect_pairs(from_margin, to_margin); }
+    explicit LammpsHost(FixContactDynamics& fix) : fix(fix) {}
+    void collect_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
+                       cd::StepContacts& contacts) override;
+    cd::Local2 carried_impulse(const cd::PairKey& key) const override;
+    void forget_impulses() override;
+    void remember_impulse(const cd::PairKey& key, cd::Local2 impulse) override;
 
    private:
     FixContactDynamics& fix;
   };
-
-  enum class ContactOrder { fixed, shuffled };
+  friend class LammpsHost;
 
   // --- settings (from the command line) ---
-  double theta = 0.5;
-  cd::SolverSettings solver_settings;
-  ContactOrder order = ContactOrder::fixed;
-  bool warm_start = true;
+  cd::StepSettings step_settings;  // as parsed; the step's own copy is contact_step.settings()
+  std::uint64_t shuffle_seed = 0;
   int max_contacts = 12;
   double disc_density = 0.0;     // > 0: masses reset to pi r^2 rho
   double alert_distance = -1.0;  // candidate pairs: gap closed at free velocity <= alert (m)
@@ -113,7 +99,6 @@ class FixContactDynamics : public Fix {
   int law_types = 0;                        // atom types when the fix was defined
   std::vector<cd::ContactLaw> type_laws;    // (law_types+1)^2, row-major
   std::vector<cd::Wall> walls;
-  std::mt19937_64 shuffle_rng;
   // The step that follows the flow (dt_max given): the grid, the travel bound as a fraction of
   // the neighbour skin, and where the run stands on the grid.
   bool adaptive_step = false;
@@ -133,13 +118,7 @@ class FixContactDynamics : public Fix {
   std::vector<int> body_of_atom;                  // body of every owned and ghost atom this step
   std::vector<cd::BodyVelocity> ghost_reference;  // ghost velocities at the last forward comm
   bool distributed = false;                       // more than one rank: exchange every sweep
-  cd::PairReach reach;                            // which listed pairs a step looks at
-  cd::StepContacts pairs;                         // solved and watched pairs of this step
-  std::vector<ContactRecord> records;             // of each solved pair, in sweep order
-  std::vector<ContactRecord> watched_records;     // indexed by cd::WatchedPair::record
-  std::vector<int> promoted_records;              // scratch of solve_contacts
-  std::vector<cd::Contact> reordered_contacts;    // scratch of reorder_contacts
-  std::vector<ContactRecord> reordered_records;
+  cd::MoreauJeanStep contact_step;                // the core's step: pairs, order, warm start, solve
   cd::SolveReport last_report;
   double max_overlap = 0.0, mean_overlap = 0.0;                     // in units of the mean diameter, over all ranks
   double solved_contacts_total = 0.0, loaded_contacts_total = 0.0;  // over all ranks
@@ -176,17 +155,11 @@ class FixContactDynamics : public Fix {
   void map_bodies();
   void gather_bodies();
   cd::BodyVelocity velocity_change_of_ghost(int ghost) const;
-  void collect_pairs(double from_margin, double to_margin);
-  void collect_grain_pairs(double from_margin, double to_margin);
-  void collect_wall_pairs(double from_margin, double to_margin);
-  void add_pair(const cd::ContactGeometry&, const cd::ContactLaw&, const ContactRecord&, bool during_solve);
-  void shuffle_contacts();
-  void interleave_contacts();
-  void reorder_contacts(const std::vector<int>& permutation);
-  void solve_contacts();
-  void load_warm_start();
-  void store_warm_start();
-  void append_history(int atom_index, double key, cd::Local2 impulse);
+  cd::StepParameters step_parameters() const;
+  void collect_grain_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
+                           cd::StepContacts& contacts);
+  void collect_wall_pairs(const cd::PairReach& reach, double from_margin, double to_margin, cd::StepContacts& contacts);
+  cd::PairKey pair_key(int i, int j) const;
   void write_back_motion();
   void reduce_step_outputs(const cd::OverlapSums& overlaps);
   void init_step_grid();

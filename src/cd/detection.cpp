@@ -39,20 +39,42 @@ void PairReach::end_step(double needed)
   margin_ = std::max(margin_floor_, margin_growth * needed);
 }
 
-bool StepContacts::add(const Contact& frame, const ContactLaw& law, int record, const BodySet& bodies,
-                       const StepParameters& step, double alert)
+void StepContacts::begin(const BodySet& bodies, const StepParameters& step, double alert)
 {
-  if (!is_candidate(frame, bodies, step, alert)) {
-    watch(frame, law, record);
-    return false;
-  }
-  solved.push_back(frame);
-  prepare_mechanics(solved.back(), law, bodies, step);
-  return true;
+  solved.clear();
+  keys.clear();
+  watched.clear();
+  bodies_ = &bodies;
+  step_ = step;
+  alert_ = alert;
+  watch_only_ = false;
 }
 
-bool promote_closing_pairs(StepContacts& contacts, std::vector<int>& promoted_records, const BodySet& bodies,
-                           const StepParameters& step)
+void StepContacts::offer(const ContactGeometry& geometry, const ContactLaw& law, const PairKey& key)
+{
+  const Contact frame = contact_frame(geometry);
+  if (watch_only_ || !is_candidate(frame, *bodies_, step_, alert_)) {
+    watched.push_back({frame, law, key});
+    return;
+  }
+  solved.push_back(frame);
+  keys.push_back(key);
+  prepare_mechanics(solved.back(), law, *bodies_, step_);
+}
+
+void StepContacts::reorder(const std::vector<int>& permutation)
+{
+  reordered_.clear();
+  reordered_keys_.clear();
+  for (const int k : permutation) {
+    reordered_.push_back(solved[k]);
+    reordered_keys_.push_back(keys[k]);
+  }
+  solved.swap(reordered_);
+  keys.swap(reordered_keys_);
+}
+
+bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const StepParameters& step)
 {
   const std::size_t before = contacts.solved.size();
   std::size_t kept = 0;
@@ -63,17 +85,18 @@ bool promote_closing_pairs(StepContacts& contacts, std::vector<int>& promoted_re
     }
     prepare_mechanics(pair.frame, pair.law, bodies, step);
     contacts.solved.push_back(pair.frame);
-    promoted_records.push_back(pair.record);
+    contacts.keys.push_back(pair.key);
   }
   contacts.watched.resize(kept);
   return contacts.solved.size() > before;
 }
 
-SolveReport solve_step(StepContacts& contacts, std::vector<int>& promoted_records, BodySet& bodies,
-                       const StepParameters& step, const SolverSettings& settings, PairReach& reach,
-                       PairCollector& collector, SweepExchange* exchange, int max_rounds)
+SolveReport solve_step(StepContacts& contacts, BodySet& bodies, const StepParameters& step,
+                       const SolverSettings& settings, PairReach& reach, PairCollector& collector,
+                       SweepExchange* exchange, int max_rounds)
 {
   SolveReport report = solve_gauss_seidel(contacts.solved, bodies.velocity, settings, exchange);
+  contacts.watch_only();
   double needed = 0.0;
   for (int round = 1;; round++) {
     needed = std::max(needed, reach.needed_margin(bodies.velocity, step));
@@ -83,7 +106,7 @@ SolveReport solve_step(StepContacts& contacts, std::vector<int>& promoted_record
       reach.widen_to(wider);
     }
     if (round == max_rounds) break;
-    bool promoted = promote_closing_pairs(contacts, promoted_records, bodies, step);
+    bool promoted = promote_closing_pairs(contacts, bodies, step);
     if (exchange) promoted = exchange->on_any_rank(promoted);
     if (!promoted) break;
     const SolveReport more = solve_gauss_seidel(contacts.solved, bodies.velocity, settings, exchange);

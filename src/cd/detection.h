@@ -61,41 +61,64 @@ class PairReach {
   std::vector<double> reach_;  // per body (m)
 };
 
-// A looked-at pair left out of the solve: its frame (no mechanics yet), its law, and the
-// caller's index of its record.
+// Identifies a pair from one step to the next: the host's storage row of the pair's keeper
+// (e.g. the atom with the smaller ID) and the partner's key within that row.
+struct PairKey {
+  int row = -1;
+  double partner = 0.0;
+};
+
+// A looked-at pair left out of the solve: its frame (no mechanics yet), its law and its key.
 struct WatchedPair {
   Contact frame;
   ContactLaw law;
-  int record = 0;
+  PairKey key;
 };
 
-// The contacts of one step: those solved, in sweep order, and those only watched.
-struct StepContacts {
+// The contacts of one step: those solved, in sweep order, each with its key (keys[k] is the
+// key of solved[k]: whatever reorders the contacts reorders the keys), and those only watched.
+class StepContacts {
+ public:
   std::vector<Contact> solved;
+  std::vector<PairKey> keys;
   std::vector<WatchedPair> watched;
 
-  void clear()
+  // Starts a step: offered pairs are solved if candidates (is_candidate at `alert`, m), watched
+  // otherwise; `bodies` must hold the free velocities and outlive the collection.
+  void begin(const BodySet& bodies, const StepParameters& step, double alert);
+  // From now on offered pairs are watched whatever their velocity: found during the solve, they
+  // join only by promotion (promote_closing_pairs).
+  void watch_only() { watch_only_ = true; }
+
+  // A pair the host found near enough to look at.
+  void offer(const ContactGeometry& geometry, const ContactLaw& law, const PairKey& key);
+
+  // Puts the solved contacts (and their keys) in the order of `permutation`, whose k-th entry
+  // is the old index of the new k-th contact.
+  void reorder(const std::vector<int>& permutation);
+
+  std::size_t memory_bytes() const
   {
-    solved.clear();
-    watched.clear();
+    return (solved.capacity() + reordered_.capacity()) * sizeof(Contact) +
+           (keys.capacity() + reordered_keys_.capacity()) * sizeof(PairKey) + watched.capacity() * sizeof(WatchedPair);
   }
-  // The pair is solved if it is a candidate (is_candidate), watched otherwise. Returns true if
-  // solved. Before the solve only: bodies.velocity must be the free velocity.
-  bool add(const Contact& frame, const ContactLaw& law, int record, const BodySet& bodies, const StepParameters& step,
-           double alert);
-  // Watched whatever its velocity: pairs found during the solve join only by promotion.
-  void watch(const Contact& frame, const ContactLaw& law, int record) { watched.push_back({frame, law, record}); }
+
+ private:
+  const BodySet* bodies_ = nullptr;
+  StepParameters step_;
+  double alert_ = 0.0;
+  bool watch_only_ = false;
+  std::vector<Contact> reordered_;  // scratch of reorder
+  std::vector<PairKey> reordered_keys_;
 };
 
 // Moves the watched pairs that would overlap at the end of the step with the solved velocities
-// (closes_after_solve) to the solved contacts, prepared; their records are appended to
-// `promoted_records` in the order the contacts are appended. True if any moved.
-bool promote_closing_pairs(StepContacts& contacts, std::vector<int>& promoted_records, const BodySet& bodies,
-                           const StepParameters& step);
+// (closes_after_solve) to the solved contacts, prepared, keys with them. True if any moved.
+bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const StepParameters& step);
 
-// What the solve asks of its caller: to look at the pairs whose gap lies between their reach
-// plus `from_margin` and their reach plus `to_margin` (none of them looked at yet), and to
-// watch them (StepContacts::watch).
+// What the solve asks of its caller: to offer the contacts (watched: StepContacts::watch_only)
+// the pairs whose gap lies between their reach plus `from_margin` and their reach plus
+// `to_margin`, none of them looked at yet.
 class PairCollector {
  public:
   virtual ~PairCollector() = default;
@@ -106,9 +129,9 @@ class PairCollector {
 // overlap join and solves again from where it stopped, looking wider first if bodies gained
 // more speed than the margin covers; at most `max_rounds` solves. The impulses must already be
 // applied to bodies.velocity. The report sums the sweeps of every solve.
-SolveReport solve_step(StepContacts& contacts, std::vector<int>& promoted_records, BodySet& bodies,
-                       const StepParameters& step, const SolverSettings& settings, PairReach& reach,
-                       PairCollector& collector, SweepExchange* exchange = nullptr, int max_rounds = 10);
+SolveReport solve_step(StepContacts& contacts, BodySet& bodies, const StepParameters& step,
+                       const SolverSettings& settings, PairReach& reach, PairCollector& collector,
+                       SweepExchange* exchange = nullptr, int max_rounds = 10);
 
 // Interpenetration at the end of the step, linearised (gap + theta dt u_n^+): deepest and sum
 // over the solved contacts, deepest over the watched pairs too.

@@ -110,29 +110,61 @@ bool rest_on_pair(const cd::Disk& i, const cd::Disk& j, double r, double& x, dou
 
 }  // namespace
 
+FrozenPairs::FrozenPairs(const FrozenStep& frozen) : frozen_(frozen)
+{
+  for (const NeighbourPair& pair : frozen.pairs) carried_[pair_key(pair.a, pair.b)] = pair.warm_impulse;
+}
+
+void FrozenPairs::collect_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
+                                cd::StepContacts& contacts)
+{
+  const bool widening = std::isfinite(from_margin);
+  for (const NeighbourPair& pair : frozen_.pairs) {
+    const cd::Disk& disk_a = frozen_.predicted[pair.a - 1];
+    const cd::PairKey key{pair.a, static_cast<double>(pair.b)};
+    if (pair.b == cd::world_body) {
+      const double reach_a = reach.reach(pair.a);
+      const auto touch = cd::wall_contact(frozen_.floor, pair.a, disk_a, reach_a + to_margin, frozen_.box);
+      if (!touch || touch->geometry.gap <= reach_a + from_margin) continue;
+      contacts.offer(touch->geometry, frozen_.floor.law, key);
+      continue;
+    }
+    cd::Disk disk_b = frozen_.predicted[pair.b - 1];
+    disk_b.x += pair.b_shift_x;
+    if (!reach.within(pair.a, disk_a, pair.b, disk_b, to_margin)) continue;
+    if (widening && reach.within(pair.a, disk_a, pair.b, disk_b, from_margin)) continue;
+    contacts.offer(cd::disk_disk_geometry(pair.a, disk_a, pair.b, disk_b), frozen_.grain_law, key);
+  }
+}
+
+cd::Local2 FrozenPairs::carried_impulse(const cd::PairKey& key) const
+{
+  const auto found = carried_.find(pair_key(key.row, static_cast<int>(key.partner)));
+  return found == carried_.end() ? cd::Local2{} : found->second;
+}
+
+void FrozenPairs::remember_impulse(const cd::PairKey& key, cd::Local2 impulse)
+{
+  remembered[pair_key(key.row, static_cast<int>(key.partner))] = impulse;
+}
+
+cd::StepSettings step_settings(const FrozenStep& frozen, const cd::SolverSettings& solver, bool warm)
+{
+  cd::StepSettings settings;
+  settings.theta = frozen.step.theta;
+  settings.solver = solver;
+  settings.alert = frozen.alert;
+  settings.warm_start = warm;
+  settings.order = cd::ContactOrder::as_offered;
+  return settings;
+}
+
 void prepare_contacts(const FrozenStep& frozen, bool warm, std::vector<cd::Contact>& contacts)
 {
-  contacts.clear();
-  for (const NeighbourPair& pair : frozen.pairs) {
-    const cd::Disk& disk_a = frozen.predicted[pair.a - 1];
-    cd::ContactGeometry geometry;
-    const cd::ContactLaw* law = &frozen.grain_law;
-    if (pair.b == cd::world_body) {
-      const auto touch = cd::wall_contact(frozen.floor, pair.a, disk_a, frozen.wall_alert, frozen.box);
-      if (!touch) continue;
-      geometry = touch->geometry;
-      law = &frozen.floor.law;
-    } else {
-      cd::Disk disk_b = frozen.predicted[pair.b - 1];
-      disk_b.x += pair.b_shift_x;
-      geometry = cd::disk_disk_geometry(pair.a, disk_a, pair.b, disk_b);
-    }
-    cd::Contact contact = cd::contact_frame(geometry);
-    if (!cd::is_candidate(contact, frozen.bodies, frozen.step, frozen.alert)) continue;
-    cd::prepare_mechanics(contact, *law, frozen.bodies, frozen.step);
-    if (warm) cd::warm_start(contact, pair.warm_impulse);
-    contacts.push_back(contact);
-  }
+  FrozenPairs host(frozen);
+  cd::MoreauJeanStep moreau_jean(step_settings(frozen, {}, warm));
+  moreau_jean.prepare(frozen.bodies, frozen.step.dt, host);
+  contacts = moreau_jean.contacts().solved;
 }
 
 GranularBed::GranularBed(const BedSpec& spec) : spec_(spec), length_x_(spec.cell_length * spec.mean_diameter)
@@ -284,15 +316,14 @@ FrozenStep GranularBed::freeze() const
   const int count = static_cast<int>(disks_.size());
   frozen.bodies.reset(1 + count);
   frozen.predicted = disks_;
-  const double lead = (1.0 - spec_.theta) * spec_.dt;
   for (int k = 0; k < count; k++) {
     frozen.bodies.inertia[1 + k] = inertia_[k];
     frozen.bodies.start_velocity[1 + k] = velocity_[k];
-    cd::BodyVelocity free = velocity_[k];
-    free.vy -= spec_.dt * spec_.gravity;
-    frozen.bodies.velocity[1 + k] = free;
-    frozen.predicted[k].x += lead * velocity_[k].vx;
-    frozen.predicted[k].y += lead * velocity_[k].vy;
+    const double weight = -spec_.gravity / inertia_[k].inv_mass;
+    frozen.bodies.velocity[1 + k] = cd::free_velocity(velocity_[k], inertia_[k], 0.0, weight, 0.0, spec_.dt);
+    const cd::Displacement lead = cd::predicted_motion(velocity_[k], frozen.step);
+    frozen.predicted[k].x += lead.dx;
+    frozen.predicted[k].y += lead.dy;
   }
   frozen.pairs = find_neighbour_pairs(frozen.predicted);
   immobilise_layer(frozen);
@@ -315,24 +346,21 @@ FrozenStep GranularBed::freeze() const
 cd::SolveReport GranularBed::step()
 {
   const FrozenStep frozen = freeze();
-  std::vector<cd::Contact> contacts;
-  prepare_contacts(frozen, true, contacts);
-  std::vector<cd::BodyVelocity> velocity = frozen.bodies.velocity;
-  cd::apply_impulses(contacts, velocity);
-  const cd::SolveReport report = cd::solve_gauss_seidel(contacts, velocity, spec_.solver);
-
-  carried_.clear();
-  for (const cd::Contact& c : contacts)
-    if (c.impulse.n > 0.0) carried_[pair_key(c.body_a, c.body_b)] = c.impulse;
-  const double advance = spec_.theta * spec_.dt;
+  FrozenPairs host(frozen);
+  moreau_jean_.settings() = step_settings(frozen, spec_.solver, true);
+  cd::BodySet bodies = frozen.bodies;
+  const cd::StepReport report = moreau_jean_.solve(bodies, frozen.step.dt, host);
+  carried_ = std::move(host.remembered);
+  const cd::StepParameters step = frozen.step;
   for (std::size_t k = 0; k < disks_.size(); k++) {
-    velocity_[k] = velocity[1 + k];
+    velocity_[k] = bodies.velocity[1 + k];
+    const cd::Displacement shift = cd::corrected_motion(velocity_[k], step);
     cd::Disk& disk = disks_[k];
-    disk.x = frozen.predicted[k].x + advance * velocity_[k].vx;
-    disk.y = frozen.predicted[k].y + advance * velocity_[k].vy;
+    disk.x = frozen.predicted[k].x + shift.dx;
+    disk.y = frozen.predicted[k].y + shift.dy;
     disk.x -= length_x_ * std::floor(disk.x / length_x_);
   }
-  return report;
+  return report.solve;
 }
 
 double GranularBed::kinetic_energy() const

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cd/gauss_seidel.h"
+#include "cd/step.h"
 
 namespace testbed {
 
@@ -58,9 +59,32 @@ struct FrozenStep {
   double alert = 0.0;       // m: cd::is_candidate
 };
 
-// The core's part of a step before the solve, in the fix's order: geometry, frame and
-// selection (cd::is_candidate) of every neighbour pair, mechanics of the selected ones, then
-// (if warm) the impulses carried over. The caller applies those impulses to a copy of the free velocity and solves.
+// The frozen step as a host of cd::MoreauJeanStep: its neighbour pairs and floor contacts,
+// offered in the order of frozen.pairs, the impulses they carried, and the impulses the step
+// leaves (remembered, by pair_key).
+class FrozenPairs : public cd::StepHost {
+ public:
+  explicit FrozenPairs(const FrozenStep& frozen);
+  void collect_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
+                     cd::StepContacts& contacts) override;
+  cd::Local2 carried_impulse(const cd::PairKey& key) const override;
+  void forget_impulses() override { remembered.clear(); }
+  void remember_impulse(const cd::PairKey& key, cd::Local2 impulse) override;
+
+  std::unordered_map<std::uint64_t, cd::Local2> remembered;
+
+ private:
+  const FrozenStep& frozen_;
+  std::unordered_map<std::uint64_t, cd::Local2> carried_;
+};
+
+// The frozen step's settings of cd::MoreauJeanStep: its theta and alert, the bed's solver, the
+// pairs in the order offered.
+cd::StepSettings step_settings(const FrozenStep& frozen, const cd::SolverSettings& solver, bool warm);
+
+// The core's step before the solve (cd::MoreauJeanStep::prepare): the candidates of the frozen
+// pairs, prepared, in the order offered, and (if warm) the impulses carried over. The caller
+// applies those impulses to a copy of the free velocity and solves.
 void prepare_contacts(const FrozenStep& frozen, bool warm, std::vector<cd::Contact>& contacts);
 
 class GranularBed {
@@ -93,6 +117,7 @@ class GranularBed {
   std::vector<cd::BodyVelocity> velocity_;
   std::vector<cd::BodyInertia> inertia_;
   std::unordered_map<std::uint64_t, cd::Local2> carried_;  // loaded pairs' impulses, by pair key
+  cd::MoreauJeanStep moreau_jean_;
   std::vector<cd::SolveReport> settle_reports_;
 };
 

@@ -1,5 +1,5 @@
 // Which pairs a step looks at (cd::PairReach) and the solve that lets watched pairs join
-// (cd::solve_step): the reach test against the gap it stands for, the margin a solve needs,
+// (cd::solve_step, through cd::MoreauJeanStep): the reach test against the gap it stands for, the margin a solve needs,
 // a step with the reach against the same step with every pair looked at, and the overlaps a
 // step leaves (cd::measure_overlaps).
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cd/detection.h"
+#include "cd/step.h"
 
 namespace {
 
@@ -35,14 +36,13 @@ struct Scene {
   Scene() { bodies.reset(1); }
 };
 
-// Collects as the fix does: pairs whose gap lies in (reach + from, reach + to], every pair once.
-class AllPairs : public cd::PairCollector {
+// A host as the fix is one: every pair (i < j) offered when its gap lies in (reach + from,
+// reach + to], keyed (i, j); no impulse carried.
+class AllPairs : public cd::StepHost {
  public:
-  AllPairs(const Scene& scene, const cd::PairReach& reach, cd::StepContacts& contacts)
-      : scene(scene), reach(reach), contacts(contacts)
-  {
-  }
-  void collect_between(double from_margin, double to_margin) override
+  explicit AllPairs(const Scene& scene) : scene(scene) {}
+  void collect_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
+                     cd::StepContacts& contacts) override
   {
     ++calls;
     const bool widening = std::isfinite(from_margin);
@@ -51,43 +51,41 @@ class AllPairs : public cd::PairCollector {
         const cd::Disk &a = scene.disks[i], &b = scene.disks[j];
         if (!reach.within(1 + i, a, 1 + j, b, to_margin)) continue;
         if (widening && reach.within(1 + i, a, 1 + j, b, from_margin)) continue;
-        const cd::Contact frame = cd::contact_frame(cd::disk_disk_geometry(1 + i, a, 1 + j, b));
-        if (widening) contacts.watch(frame, law, 0);
-        else contacts.add(frame, law, 0, scene.bodies, step, alert);
+        contacts.offer(cd::disk_disk_geometry(1 + i, a, 1 + j, b), law, {i, static_cast<double>(j)});
         ++looked_at;
       }
   }
+  cd::Local2 carried_impulse(const cd::PairKey&) const override { return {}; }
+  void forget_impulses() override {}
+  void remember_impulse(const cd::PairKey&, cd::Local2) override {}
+
   int calls = 0;
   int looked_at = 0;
 
  private:
   const Scene& scene;
-  const cd::PairReach& reach;
-  cd::StepContacts& contacts;
 };
 
 struct StepResult {
-  cd::StepContacts contacts;
   cd::BodySet bodies;
   int collections = 0;
   int looked_at = 0;
 };
 
-// One step of the core from the scene's free velocities, looking at pairs out to `margin_floor`
-// beyond their reach (infinity: every pair).
-StepResult solve(const Scene& scene, double margin_floor)
+// One step of the core from the scene's free velocities, solving the candidates at `alert`
+// (infinity: every pair, all solved).
+StepResult solve(const Scene& scene, double alert)
 {
   StepResult result;
   result.bodies = scene.bodies;
-  cd::PairReach reach(margin_floor);
-  reach.begin_step(result.bodies, step);
-  AllPairs collector(scene, reach, result.contacts);
-  collector.collect_between(-std::numeric_limits<double>::infinity(), reach.margin());
-  std::vector<int> promoted;
-  const cd::SolverSettings settings{1e-12, 100000, 1.0, cd::ConvergenceNorm::quadratic};
-  cd::solve_step(result.contacts, promoted, result.bodies, step, settings, reach, collector);
-  result.collections = collector.calls;
-  result.looked_at = collector.looked_at;
+  cd::StepSettings settings;
+  settings.solver = {1e-12, 100000, 1.0, cd::ConvergenceNorm::quadratic};
+  settings.alert = alert;
+  cd::MoreauJeanStep moreau_jean(settings);
+  AllPairs host(scene);
+  moreau_jean.solve(result.bodies, step.dt, host);
+  result.collections = host.calls;
+  result.looked_at = host.looked_at;
   return result;
 }
 
@@ -202,7 +200,7 @@ TEST(MeasureOverlaps, DeepestOverAllPairsAndTotalOverTheSolvedOnes)
   EXPECT_NEAR(sums.deepest, -closing, 1e-12);
   EXPECT_NEAR(sums.total, 1e-3 - closing, 1e-12);
 
-  contacts.watch(frame(7, 8), law, 0);
+  contacts.watched.push_back({frame(7, 8), law, {}});
   sums = cd::measure_overlaps(contacts, scene.bodies.velocity, step);
   EXPECT_NEAR(sums.deepest, 3e-3, 1e-12) << "the watched pair is the deepest";
   EXPECT_NEAR(sums.total, 1e-3 - closing, 1e-12) << "the watched pair adds nothing to the total";

@@ -1,0 +1,127 @@
+// One Moreau–Jean step of rigid disks, owned by the core: the host (the LAMMPS fix, the testbed)
+// holds positions, forces and the per-body storage of carried impulses; the step does the rest.
+//
+//   predictor   x_m = x_n + (1 - theta) dt v_n                       (host applies predicted_motion)
+//   free        v_free = v_n + dt F / m, spin likewise                 (free_velocity)
+//   pairs       the host offers the pairs near each other (StepHost::collect_pairs): solved if
+//               candidates, watched otherwise, each with the key of its carried impulse
+//   order       interleaved (cd::interleaved_order) or shuffled; keys travel with the contacts
+//   warm start  impulses carried from the last step, looked up by key (StepHost::carried_impulse)
+//   solve       Gauss–Seidel; watched pairs the solution would drive into overlap join and the
+//               solve goes on (cd::solve_step)
+//   store       every loaded contact's impulse, by key (StepHost::remember_impulse)
+//   corrector   x_{n+1} = x_m + theta dt v_{n+1}                       (host applies corrected_motion)
+#pragma once
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "cd/detection.h"
+#include "cd/gauss_seidel.h"
+
+namespace cd {
+
+// Displacement of a body's centre (m).
+struct Displacement {
+  double dx = 0.0;
+  double dy = 0.0;
+};
+
+// Predictor: the step's first displacement, to x_m = x_n + (1 - theta) dt v_n.
+inline Displacement predicted_motion(const BodyVelocity& start, const StepParameters& step)
+{
+  const double shift = (1.0 - step.theta) * step.dt;
+  return {shift * start.vx, shift * start.vy};
+}
+
+// Corrector: from x_m to x_{n+1} = x_m + theta dt v_{n+1}.
+inline Displacement corrected_motion(const BodyVelocity& end, const StepParameters& step)
+{
+  const double advance = step.theta * step.dt;
+  return {advance * end.vx, advance * end.vy};
+}
+
+// The whole step's displacement, dt ((1 - theta) v_n + theta v_{n+1}).
+inline Displacement step_motion(const BodyVelocity& start, const BodyVelocity& end, const StepParameters& step)
+{
+  const Displacement first = predicted_motion(start, step);
+  const Displacement second = corrected_motion(end, step);
+  return {first.dx + second.dx, first.dy + second.dy};
+}
+
+// v_n + dt (force / m, torque / I): the velocity the step would end with without contacts.
+inline BodyVelocity free_velocity(const BodyVelocity& start, const BodyInertia& inertia, double fx, double fy,
+                                  double torque, double dt)
+{
+  return {start.vx + dt * fx * inertia.inv_mass, start.vy + dt * fy * inertia.inv_mass,
+          start.spin + dt * torque * inertia.inv_inertia};
+}
+
+// What a step asks of its host.
+class StepHost {
+ public:
+  virtual ~StepHost() = default;
+  // Offers `contacts` (StepContacts::offer) every pair whose disks lie within their reach plus
+  // to_margin (PairReach::within) and not within their reach plus from_margin (-infinity: no
+  // lower bound), each pair once, with the key of its carried impulse.
+  virtual void collect_pairs(const PairReach& reach, double from_margin, double to_margin, StepContacts& contacts) = 0;
+  // The impulse the pair carried at the end of the previous step; {0, 0} if none.
+  virtual Local2 carried_impulse(const PairKey& key) const = 0;
+  // Forgets every carried impulse; remember_impulse then stores the step's loaded contacts'.
+  virtual void forget_impulses() = 0;
+  virtual void remember_impulse(const PairKey& key, Local2 impulse) = 0;
+};
+
+// The sweep order: interleaved (cd::interleaved_order), shuffled (seeded), or as the host
+// offered the pairs (a benchmark's baseline).
+enum class ContactOrder { interleaved, shuffled, as_offered };
+
+struct StepSettings {
+  double theta = 0.5;
+  SolverSettings solver;
+  double alert = 0.0;  // m: candidate selection (cd::is_candidate)
+  bool warm_start = true;
+  ContactOrder order = ContactOrder::interleaved;
+  int max_solves = 10;  // solves of one step, at most (cd::solve_step)
+};
+
+struct StepReport {
+  SolveReport solve;
+  OverlapSums overlaps;
+  int loaded_contacts = 0;  // solved contacts carrying a positive normal impulse
+};
+
+class MoreauJeanStep {
+ public:
+  explicit MoreauJeanStep(const StepSettings& settings = {}, std::uint64_t shuffle_seed = 0);
+
+  const StepSettings& settings() const { return settings_; }
+  StepSettings& settings() { return settings_; }
+  PairReach& reach() { return reach_; }
+
+  // Everything before the solve: the pairs, their order, the warm start (not yet applied to the
+  // velocities). contacts() then holds the step's problem. bodies.velocity: the free velocities.
+  void prepare(const BodySet& bodies, double dt, StepHost& host);
+
+  // Solves the step at the predicted configuration (prepare, then the solve): bodies.velocity must hold the free
+  // velocities, and holds v_{n+1} on return. `exchange` (a domain-decomposed run) is called
+  // after every sweep.
+  StepReport solve(BodySet& bodies, double dt, StepHost& host, SweepExchange* exchange = nullptr);
+
+  // The step's contacts after solve: solved (in sweep order, with their keys) and watched.
+  const StepContacts& contacts() const { return contacts_; }
+
+ private:
+  void reorder(int body_count);
+  void warm_start(const StepHost& host);
+  int store_impulses(StepHost& host) const;
+
+  StepSettings settings_;
+  PairReach reach_;
+  StepContacts contacts_;
+  std::mt19937_64 shuffle_rng_;
+  std::vector<int> permutation_;  // scratch of reorder
+};
+
+}  // namespace cd
