@@ -12,7 +12,6 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
-#include "fix_contact_dynamics_keywords.h"
 #include "force.h"
 #include "math_const.h"
 #include "group.h"
@@ -28,7 +27,6 @@
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
-using namespace LAMMPS_NS::fix_keywords;
 using MathConst::MY_PI;
 
 namespace {
@@ -42,9 +40,6 @@ constexpr double uniform_ratio_tolerance = 1.0e-6;
 // solves once a step (≤ 1.01 solves at mu 0.05 and mu 2, doc/benchmarks.md): a pair this close
 // is rarely closed by the step's impulses without being in the problem.
 constexpr double default_alert_fraction = 0.03;
-// Largest max_contacts: each atom carries 1 + 3 max_contacts doubles. A disk of radius R touches
-// at most pi / asin(r / (R + r)) disks of radius r: about 300 at a size ratio R/r of 100.
-constexpr int max_contacts_limit = 1000;
 // Overlaps deeper than this, in mean diameters, at the start of a run are reported.
 constexpr double initial_overlap_warning = 0.01;
 // Subdomains narrower than this many contact cutoffs are reported: there every grain is a
@@ -80,7 +75,8 @@ FixContactDynamics::FixContactDynamics(LAMMPS* lmp, int narg, char** arg) : Fix(
   if (domain->dimension != 2) error->all(FLERR, "Fix contact/dynamics requires dimension 2");
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
     error->all(FLERR, "Fix contact/dynamics requires atom_style sphere (per-atom radius, rmass, omega)");
-  parse_arguments(narg, arg);
+  settings = fix_keywords::parse_settings(narg, arg, atom->ntypes, domain->boxlo, domain->boxhi, error);
+  contact_step = cd::MoreauJeanStep(settings.step, settings.shuffle_seed);
 
   time_integrate = 1;
   vector_flag = 1;
@@ -101,7 +97,7 @@ FixContactDynamics::FixContactDynamics(LAMMPS* lmp, int narg, char** arg) : Fix(
   // version's reset_timestep keeps the time already run, e.g. a deposition before the chute).
   if (update->ntimestep == 0) set_clock(0.0);
 
-  history_width = 1 + 3 * max_contacts;
+  history_width = 1 + 3 * settings.max_contacts;
   maxexchange = history_width;
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
@@ -120,197 +116,9 @@ FixContactDynamics::~FixContactDynamics()
 int FixContactDynamics::setmask()
 {
   int mask = INITIAL_INTEGRATE | FINAL_INTEGRATE;
-  if (disc_density > 0.0) mask |= PRE_FORCE;
-  if (adaptive_step) mask |= END_OF_STEP;
+  if (settings.disc_density > 0.0) mask |= PRE_FORCE;
+  if (settings.adaptive_step()) mask |= END_OF_STEP;
   return mask;
-}
-
-/* ----------------------------------------------------------------------
-   command line: fix ID group contact/dynamics mu e keyword value ...
-------------------------------------------------------------------------- */
-
-void FixContactDynamics::parse_arguments(int narg, char** arg)
-{
-  if (narg < 5)
-    error->all(FLERR, "Fix contact/dynamics needs mu and e: fix ID group contact/dynamics mu e [keyword value ...]");
-  const double mu = number_for("mu", arg[3], error);
-  const double e = number_for("e", arg[4], error);
-  check_friction("mu", mu, error);
-  check_restitution("e", e, error);
-  law_types = atom->ntypes;
-  type_laws.assign((law_types + 1) * (law_types + 1), cd::ContactLaw{mu, e});
-
-  int iarg = 5;
-  while (iarg < narg) {
-    const std::string keyword = arg[iarg];
-    if (keyword == "wall") {
-      iarg = parse_wall(iarg, narg, arg);
-      continue;
-    }
-    if (keyword == "mu/types" || keyword == "e/types") {
-      parse_type_law(arg[iarg], iarg, narg, arg, keyword == "mu/types");
-      iarg += 4;
-      continue;
-    }
-    if (keyword == "order") {
-      require_values("order", iarg, 1, narg, error);
-      const std::string value = arg[iarg + 1];
-      if (value == "fixed") {
-        step_settings.order = cd::ContactOrder::interleaved;
-        iarg += 2;
-      } else if (value == "shuffle") {
-        require_values("order shuffle", iarg + 1, 1, narg, error);
-        const int seed = integer_for("order shuffle seed", arg[iarg + 2], error);
-        if (seed <= 0) error->all(FLERR, "Fix contact/dynamics: order shuffle seed must be > 0, got {}", seed);
-        step_settings.order = cd::ContactOrder::shuffled;
-        shuffle_seed = static_cast<std::uint64_t>(seed);
-        iarg += 3;
-      } else {
-        error->all(FLERR, "Fix contact/dynamics: order must be fixed or shuffle, got '{}'", value);
-      }
-      continue;
-    }
-
-    require_values(arg[iarg], iarg, 1, narg, error);
-    const char* value = arg[iarg + 1];
-    if (keyword == "theta") {
-      step_settings.theta = number_for("theta", value, error);
-      if (step_settings.theta < 0.5 || step_settings.theta > 1.0)
-        error->all(FLERR, "Fix contact/dynamics: theta must be in [0.5,1], got {}", step_settings.theta);
-    } else if (keyword == "tolerance") {
-      step_settings.solver.tolerance = number_for("tolerance", value, error);
-      if (step_settings.solver.tolerance <= 0.0)
-        error->all(FLERR, "Fix contact/dynamics: tolerance must be > 0, got {}", step_settings.solver.tolerance);
-    } else if (keyword == "max_iterations") {
-      step_settings.solver.max_iterations = integer_for("max_iterations", value, error);
-      if (step_settings.solver.max_iterations < 1)
-        error->all(FLERR, "Fix contact/dynamics: max_iterations must be >= 1, got {}",
-                   step_settings.solver.max_iterations);
-    } else if (keyword == "relaxation") {
-      step_settings.solver.relaxation = number_for("relaxation", value, error);
-      if (step_settings.solver.relaxation <= 0.0 || step_settings.solver.relaxation > 1.0)
-        error->all(FLERR, "Fix contact/dynamics: relaxation must be in (0,1], got {}", step_settings.solver.relaxation);
-    } else if (keyword == "norm") {
-      const std::string norm = value;
-      if (norm == "quadratic") step_settings.solver.norm = cd::ConvergenceNorm::quadratic;
-      else if (norm == "maximum") step_settings.solver.norm = cd::ConvergenceNorm::maximum;
-      else error->all(FLERR, "Fix contact/dynamics: norm must be quadratic or maximum, got '{}'", norm);
-    } else if (keyword == "acceleration") {
-      const std::string acceleration = value;
-      if (acceleration == "none") step_settings.solver.acceleration = cd::Acceleration::none;
-      else if (acceleration == "conjugate") step_settings.solver.acceleration = cd::Acceleration::conjugate;
-      else error->all(FLERR, "Fix contact/dynamics: acceleration must be none or conjugate, got '{}'", acceleration);
-    } else if (keyword == "full_sweep_every") {
-      step_settings.solver.full_sweep_every = integer_for("full_sweep_every", value, error);
-      if (step_settings.solver.full_sweep_every < 1)
-        error->all(FLERR, "Fix contact/dynamics: full_sweep_every must be >= 1, got {}",
-                   step_settings.solver.full_sweep_every);
-    } else if (keyword == "warm_start") {
-      step_settings.warm_start = yes_or_no("warm_start", value, error);
-    } else if (keyword == "pair_forces") {
-      pair_forces = yes_or_no("pair_forces", value, error);
-    } else if (keyword == "max_contacts") {
-      max_contacts = integer_for("max_contacts", value, error);
-      if (max_contacts < 1 || max_contacts > max_contacts_limit)
-        error->all(FLERR, "Fix contact/dynamics: max_contacts must be in [1,{}], got {}", max_contacts_limit,
-                   max_contacts);
-    } else if (keyword == "alert") {
-      alert_distance = number_for("alert", value, error);
-      alert_given = true;
-      if (alert_distance < 0.0) error->all(FLERR, "Fix contact/dynamics: alert must be >= 0, got {}", alert_distance);
-    } else if (keyword == "dt_max") {
-      step_grid.dt_max = number_for("dt_max", value, error);
-      if (step_grid.dt_max <= 0.0)
-        error->all(FLERR, "Fix contact/dynamics: dt_max must be > 0, got {}", step_grid.dt_max);
-      adaptive_step = true;
-    } else if (keyword == "dt_align") {
-      dt_align = number_for("dt_align", value, error);
-      if (dt_align <= 0.0) error->all(FLERR, "Fix contact/dynamics: dt_align must be > 0, got {}", dt_align);
-    } else if (keyword == "travel") {
-      travel_fraction = number_for("travel", value, error);
-      if (travel_fraction <= 0.0 || travel_fraction > 0.5)
-        error->all(FLERR, "Fix contact/dynamics: travel must be in (0,0.5] (a fraction of the neighbour skin), got {}",
-                   travel_fraction);
-    } else if (keyword == "density") {
-      disc_density = number_for("density", value, error);
-      if (disc_density <= 0.0) error->all(FLERR, "Fix contact/dynamics: density must be > 0, got {}", disc_density);
-    } else {
-      error->all(FLERR, "Fix contact/dynamics: unknown keyword '{}'", keyword);
-    }
-    iarg += 2;
-  }
-  if (dt_align > 0.0 && !adaptive_step)
-    error->all(FLERR, "Fix contact/dynamics: dt_align needs dt_max (the adaptive step)");
-  if (adaptive_step) {
-    const double periods = (dt_align > 0.0 ? dt_align : step_grid.dt_max) / step_grid.dt_max;
-    if (periods < 0.5 || std::fabs(periods - std::round(periods)) > 1e-6 * periods)
-      error->all(FLERR, "Fix contact/dynamics: dt_align {} must be a whole multiple of dt_max {}", dt_align,
-                 step_grid.dt_max);
-    step_grid.steps_per_align = static_cast<int>(std::lround(periods));
-  }
-  contact_step = cd::MoreauJeanStep(step_settings, shuffle_seed);
-}
-
-void FixContactDynamics::parse_type_law(const char* keyword, int iarg, int narg, char** arg, bool friction)
-{
-  require_values(keyword, iarg, 3, narg, error);
-  const auto [ilo, ihi] = type_range_for(keyword, arg[iarg + 1], law_types, error);
-  const auto [jlo, jhi] = type_range_for(keyword, arg[iarg + 2], law_types, error);
-  const double value = number_for(keyword, arg[iarg + 3], error);
-  if (friction) check_friction(keyword, value, error);
-  else check_restitution(keyword, value, error);
-  for (int i = ilo; i <= ihi; i++)
-    for (int j = jlo; j <= jhi; j++) {
-      cd::ContactLaw& ij = type_laws[i * (law_types + 1) + j];
-      cd::ContactLaw& ji = type_laws[j * (law_types + 1) + i];
-      (friction ? ij.mu : ij.restitution) = value;
-      (friction ? ji.mu : ji.restitution) = value;
-    }
-}
-
-// wall xplane X mu e | wall yplane Y mu e | wall segment x1 y1 x2 y2 mu e
-int FixContactDynamics::parse_wall(int iarg, int narg, char** arg)
-{
-  require_values("wall", iarg, 1, narg, error);
-  const std::string shape = arg[iarg + 1];
-  cd::Wall wall;
-  const double* lo = domain->boxlo;
-  const double* hi = domain->boxhi;
-  int next;
-  if (shape == "xplane" || shape == "yplane") {
-    require_values(("wall " + shape).c_str(), iarg + 1, 3, narg, error);
-    const int axis = shape == "xplane" ? 0 : 1;
-    const double position = number_for(("wall " + shape).c_str(), arg[iarg + 2], error);
-    if (position < lo[axis] || position > hi[axis])
-      error->all(FLERR, "Fix contact/dynamics: wall {} at {} is outside the box [{}, {}]", shape, position, lo[axis],
-                 hi[axis]);
-    wall.shape = cd::Wall::Shape::line;
-    if (axis == 0) wall.ax = wall.bx = position, wall.ay = lo[1], wall.by = hi[1];
-    else wall.ay = wall.by = position, wall.ax = lo[0], wall.bx = hi[0];
-    next = iarg + 3;
-  } else if (shape == "segment") {
-    require_values("wall segment", iarg + 1, 6, narg, error);
-    wall.shape = cd::Wall::Shape::segment;
-    wall.ax = number_for("wall segment", arg[iarg + 2], error);
-    wall.ay = number_for("wall segment", arg[iarg + 3], error);
-    wall.bx = number_for("wall segment", arg[iarg + 4], error);
-    wall.by = number_for("wall segment", arg[iarg + 5], error);
-    const double xs[2] = {wall.ax, wall.bx}, ys[2] = {wall.ay, wall.by};
-    for (int k = 0; k < 2; k++)
-      if (xs[k] < lo[0] || xs[k] > hi[0] || ys[k] < lo[1] || ys[k] > hi[1])
-        error->all(FLERR, "Fix contact/dynamics: wall segment end ({}, {}) is outside the box", xs[k], ys[k]);
-    if (wall.ax == wall.bx && wall.ay == wall.by)
-      error->all(FLERR, "Fix contact/dynamics: wall segment has zero length");
-    next = iarg + 6;
-  } else {
-    error->all(FLERR, "Fix contact/dynamics: wall must be xplane, yplane or segment, got '{}'", shape);
-  }
-  wall.law.mu = number_for("wall mu", arg[next], error);
-  wall.law.restitution = number_for("wall e", arg[next + 1], error);
-  check_friction("wall mu", wall.law.mu, error);
-  check_restitution("wall e", wall.law.restitution, error);
-  walls.push_back(wall);
-  return next + 2;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -331,7 +139,7 @@ void FixContactDynamics::init()
                "neigh_modify delay 0 every 1 check yes");
   if (utils::strmatch(update->integrate_style, "^respa"))
     error->all(FLERR, "Fix contact/dynamics does not support run_style respa");
-  if (atom->ntypes != law_types)
+  if (atom->ntypes != settings.law_types)
     error->all(FLERR, "Fix contact/dynamics: the number of atom types changed since the fix was defined");
   check_integrators();
   check_pair_style();
@@ -420,7 +228,7 @@ void FixContactDynamics::check_integrators()
 void FixContactDynamics::check_pair_style()
 {
   Pair* pair = force->pair;
-  if (pair_forces || !pair || !pair->cutsq || utils::strmatch(force->pair_style, "^zero")) return;
+  if (settings.pair_forces || !pair || !pair->cutsq || utils::strmatch(force->pair_style, "^zero")) return;
   const int ntypes = atom->ntypes;
   std::vector<int> present_local(ntypes + 1, igroup == 0 ? 1 : 0), present(ntypes + 1, 0);
   for (int i = 0; i < atom->nlocal; i++)
@@ -441,8 +249,7 @@ void FixContactDynamics::survey_group()
 {
   check_disk_masses();
   mean_diameter = group_mean_diameter();
-  if (!alert_given) alert_distance = default_alert_fraction * mean_diameter;
-  contact_step.settings().alert = alert_distance;
+  contact_step.settings().alert = settings.alert.value_or(default_alert_fraction * mean_diameter);
   natoms_surveyed = atom->natoms;
 }
 
@@ -467,7 +274,7 @@ void FixContactDynamics::check_disk_masses()
   }
   double global[4];
   MPI_Allreduce(local, global, 4, MPI_DOUBLE, MPI_MAX, world);
-  if (disc_density > 0.0 || global[0] == -HUGE_VAL) return;  // masses set here, or no grain
+  if (settings.disc_density > 0.0 || global[0] == -HUGE_VAL) return;  // masses set here, or no grain
   const bool area_uniform = global[0] <= -global[1] * (1.0 + uniform_ratio_tolerance);
   const bool volume_uniform = global[2] <= -global[3] * (1.0 + uniform_ratio_tolerance);
   if (!area_uniform && volume_uniform)
@@ -495,16 +302,16 @@ double FixContactDynamics::group_mean_diameter()
 void FixContactDynamics::assign_disc_masses()
 {
   for (int i = 0; i < atom->nlocal; i++)
-    if (atom->mask[i] & groupbit) atom->rmass[i] = MY_PI * atom->radius[i] * atom->radius[i] * disc_density;
+    if (atom->mask[i] & groupbit) atom->rmass[i] = MY_PI * atom->radius[i] * atom->radius[i] * settings.disc_density;
 }
 
 void FixContactDynamics::setup(int)
 {
-  if (disc_density > 0.0) assign_disc_masses();
+  if (settings.disc_density > 0.0) assign_disc_masses();
   survey_group();
   check_subdomains();
   warn_initial_overlaps();
-  if (adaptive_step) init_step_grid();
+  if (settings.adaptive_step()) init_step_grid();
 }
 
 /* ----------------------------------------------------------------------
@@ -515,29 +322,29 @@ void FixContactDynamics::setup(int)
 
 void FixContactDynamics::init_step_grid()
 {
-  step_grid.travel = travel_fraction * neighbor->skin;
+  settings.step_grid.travel = settings.travel_fraction * neighbor->skin;
   if (!step_state_known) {
     // Without the level and position a restart on this grid left, the grid starts afresh here:
     // only at a whole period, or the level changes would miss the sample times.
     const double time = current_time();
-    if (!step_grid.on_alignment(time))
+    if (!settings.step_grid.on_alignment(time))
       error->all(FLERR,
                  "Fix contact/dynamics: the step grid cannot start at time {:.10g} s, not a whole number of "
                  "alignment periods ({:.4g} s); continue from a restart written with the same dt_max and dt_align",
-                 time, step_grid.period());
+                 time, settings.step_grid.period());
     steps_into_period = 0;
     choose_step_level();
     step_state_known = true;
   }
-  set_timestep(step_grid.step(step_level));
+  set_timestep(settings.step_grid.step(step_level));
 }
 
 void FixContactDynamics::end_of_step()
 {
-  if (++steps_into_period < step_grid.steps_per_period(step_level)) return;
+  if (++steps_into_period < settings.step_grid.steps_per_period(step_level)) return;
   steps_into_period = 0;
   choose_step_level();
-  set_timestep(step_grid.step(step_level));
+  set_timestep(settings.step_grid.step(step_level));
 }
 
 void FixContactDynamics::choose_step_level()
@@ -553,7 +360,7 @@ void FixContactDynamics::choose_step_level()
     if (speed > local.speed) local = {speed, static_cast<int>(atom->tag[i])};
   }
   MPI_Allreduce(&local, &fastest, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
-  const int level = step_grid.level_for(fastest.speed);
+  const int level = settings.step_grid.level_for(fastest.speed);
   if (level >= 0) {
     step_level = level;
     return;
@@ -562,8 +369,9 @@ void FixContactDynamics::choose_step_level()
   error->all(FLERR,
              "Fix contact/dynamics: atom {} moves at {:.4g} m/s; the smallest step {:.4g} (dt_max/2^{}) "
              "moves it {:.4g}, more than travel x skin = {:.4g} (restart files written if a restart command is set)",
-             fastest.tag, fastest.speed, step_grid.step(step_grid.max_level), step_grid.max_level,
-             fastest.speed * step_grid.step(step_grid.max_level), step_grid.travel);
+             fastest.tag, fastest.speed, settings.step_grid.step(settings.step_grid.max_level),
+             settings.step_grid.max_level, fastest.speed * settings.step_grid.step(settings.step_grid.max_level),
+             settings.step_grid.travel);
 }
 
 // As fix dt/reset does: time so far at the old step, then the new step everywhere it is kept.
@@ -601,7 +409,7 @@ void FixContactDynamics::warn_initial_overlaps()
   }
   const cd::PeriodicBox box = periodic_box();
   for (int i = 0; i < atom->nlocal; i++)
-    for (const cd::Wall& wall : walls)
+    for (const cd::Wall& wall : settings.walls)
       if (const auto touch = cd::wall_contact(wall, 0, {x[i][0], x[i][1], radius[i]}, 0.0, box))
         note(touch->geometry.gap);
   double global[2];
@@ -679,7 +487,7 @@ void FixContactDynamics::initial_integrate(int)
 void FixContactDynamics::final_integrate()
 {
   if (atom->natoms != natoms_surveyed) {
-    if (disc_density > 0.0) assign_disc_masses();
+    if (settings.disc_density > 0.0) assign_disc_masses();
     survey_group();
   }
   if (neighbor->ago == 0) check_subdomains();
@@ -714,11 +522,6 @@ cd::StepParameters FixContactDynamics::step_parameters() const
 }
 
 /* ---------------------------------------------------------------------- */
-
-const cd::ContactLaw& FixContactDynamics::law(int itype, int jtype) const
-{
-  return type_laws[itype * (law_types + 1) + jtype];
-}
 
 // Bodies: 0 is the world, 1 + i an owned atom i, 1 + g a ghost g whose owner is on another
 // rank. A periodic image of an owned atom is that atom's body; several images of one remote
@@ -762,7 +565,7 @@ void FixContactDynamics::gather_bodies()
     bodies.velocity[1 + i] = start;
     if (!(mask[i] & groupbit)) continue;  // obstacle: infinite mass, keeps its velocity
     // Ghost masses are refreshed only at reneighbouring: take them from the density if set.
-    const double mass = disc_density > 0.0 ? MY_PI * radius[i] * radius[i] * disc_density : rmass[i];
+    const double mass = settings.disc_density > 0.0 ? MY_PI * radius[i] * radius[i] * settings.disc_density : rmass[i];
     cd::BodyInertia& inertia = bodies.inertia[1 + i];
     inertia.inv_mass = 1.0 / mass;
     inertia.inv_inertia = 1.0 / (disk_inertia_factor * mass * radius[i] * radius[i]);
@@ -814,7 +617,8 @@ void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double 
                    "Fix contact/dynamics: atom {} touches its own periodic image; the cell "
                    "is too short",
                    tag[i]);
-      contacts.offer(cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j), law(type[i], type[j]), pair_key(i, j));
+      contacts.offer(cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j), settings.law(type[i], type[j]),
+                     pair_key(i, j));
     }
   }
 }
@@ -836,17 +640,17 @@ cd::PeriodicBox FixContactDynamics::periodic_box() const
 void FixContactDynamics::collect_wall_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
                                             cd::StepContacts& contacts)
 {
-  if (walls.empty()) return;
+  if (settings.walls.empty()) return;
   const cd::PeriodicBox box = periodic_box();
   double** x = atom->x;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(atom->mask[i] & groupbit)) continue;
     const cd::Disk disk{x[i][0], x[i][1], atom->radius[i]};
     const double reach_i = reach.reach(1 + i);
-    for (int w = 0; w < static_cast<int>(walls.size()); w++) {
-      const auto touch = cd::wall_contact(walls[w], 1 + i, disk, reach_i + to_margin, box);
+    for (int w = 0; w < static_cast<int>(settings.walls.size()); w++) {
+      const auto touch = cd::wall_contact(settings.walls[w], 1 + i, disk, reach_i + to_margin, box);
       if (!touch || touch->geometry.gap <= reach_i + from_margin) continue;
-      contacts.offer(touch->geometry, walls[w].law, {i, wall_key(w, touch->part)});
+      contacts.offer(touch->geometry, settings.walls[w].law, {i, wall_key(w, touch->part)});
     }
   }
 }
@@ -880,11 +684,11 @@ void FixContactDynamics::LammpsHost::remember_impulse(const cd::PairKey& key, cd
                    fix.atom->tag[key.row], partner_name(key.partner), fix.update->ntimestep);
   double* row = fix.history[key.row];
   const int count = static_cast<int>(row[0]);
-  if (count == fix.max_contacts)
+  if (count == fix.settings.max_contacts)
     fix.error->one(FLERR,
                    "Fix contact/dynamics: atom {} has more than {} loaded contacts; raise "
                    "max_contacts",
-                   fix.atom->tag[key.row], fix.max_contacts);
+                   fix.atom->tag[key.row], fix.settings.max_contacts);
   double* entry = row + 1 + 3 * count;
   entry[0] = key.partner;
   entry[1] = impulse.n;
@@ -956,7 +760,7 @@ void FixContactDynamics::RankExchange::after_sweep(cd::SweepChange& change)
   double sums[4] = {change.sum_change_sq, change.sum_scale_sq, change.sum_scale, change.contacts};
   MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, fix.world);
   // The largest change matters to the maximum norm only: spare the quadratic one a reduction.
-  if (fix.step_settings.solver.norm == cd::ConvergenceNorm::maximum)
+  if (fix.settings.step.solver.norm == cd::ConvergenceNorm::maximum)
     MPI_Allreduce(MPI_IN_PLACE, &change.max_change, 1, MPI_DOUBLE, MPI_MAX, fix.world);
   change.sum_change_sq = sums[0];
   change.sum_scale_sq = sums[1];
@@ -1090,12 +894,12 @@ constexpr double restart_version_without_grid = -2.0;
 void FixContactDynamics::write_restart(FILE* fp)
 {
   if (comm->me != 0) return;
-  const bool known = adaptive_step && step_state_known;
+  const bool known = settings.adaptive_step() && step_state_known;
   const double elapsed = current_time();
   const double record[9] = {
       restart_version, total_iterations,          total_unconverged_steps,
       total_steps,     known ? step_level : -1.0, known ? static_cast<double>(steps_into_period) : -1.0,
-      elapsed,         step_grid.dt_max,          static_cast<double>(step_grid.steps_per_align)};
+      elapsed,         settings.step_grid.dt_max, static_cast<double>(settings.step_grid.steps_per_align)};
   const int size = sizeof(record);
   fwrite(&size, sizeof(int), 1, fp);
   fwrite(record, sizeof(double), 9, fp);
@@ -1114,8 +918,8 @@ void FixContactDynamics::restart(char* buf)
   // versions of the fix came from fixed steps: step x dt.
   set_clock(versioned ? totals[5] : static_cast<double>(update->ntimestep) * update->dt);
   // The level and position hold on the grid they were written on only.
-  const bool same_grid = record[0] == restart_version && totals[6] == step_grid.dt_max &&
-                         static_cast<int>(totals[7]) == step_grid.steps_per_align;
+  const bool same_grid = record[0] == restart_version && totals[6] == settings.step_grid.dt_max &&
+                         static_cast<int>(totals[7]) == settings.step_grid.steps_per_align;
   if (!same_grid || totals[3] < 0.0) return;
   step_level = static_cast<int>(totals[3]);
   steps_into_period = static_cast<long long>(totals[4]);
@@ -1178,11 +982,11 @@ void FixContactDynamics::unpack_restart(int nlocal, int nth)
   for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
   m++;
   const int count = static_cast<int>(extra[nlocal][m]);
-  if (count > max_contacts)
+  if (count > settings.max_contacts)
     error->one(FLERR,
                "Fix contact/dynamics: restart holds {} contacts for atom {}, more than "
                "max_contacts {}",
-               count, atom->tag[nlocal], max_contacts);
+               count, atom->tag[nlocal], settings.max_contacts);
   std::memcpy(history[nlocal], &extra[nlocal][m], sizeof(double) * (1 + 3 * count));
 }
 

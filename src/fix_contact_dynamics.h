@@ -12,15 +12,14 @@ FixStyle(contact/dynamics,FixContactDynamics);
 #ifndef LMP_FIX_CONTACT_DYNAMICS_H
 #define LMP_FIX_CONTACT_DYNAMICS_H
 
-#include <cstdint>
 #include <vector>
 
 #include "cd/detection.h"
 #include "cd/gauss_seidel.h"
 #include "cd/step.h"
-#include "cd/time_step.h"
 #include "cd/walls.h"
 #include "fix.h"
+#include "fix_contact_dynamics_settings.h"
 
 namespace LAMMPS_NS {
 
@@ -87,24 +86,10 @@ class FixContactDynamics : public Fix {
   };
   friend class LammpsHost;
 
-  // --- settings (from the command line) ---
-  cd::StepSettings step_settings;  // as parsed; the step's own copy is contact_step.settings()
-  std::uint64_t shuffle_seed = 0;
-  int max_contacts = 12;
-  double disc_density = 0.0;     // > 0: masses reset to pi r^2 rho
-  double alert_distance = -1.0;  // candidate pairs: gap closed at free velocity <= alert (m)
-  bool alert_given = false;
+  // --- settings (from the command line; the step grid's travel is set at setup) ---
+  fix_keywords::FixSettings settings;
   bool narrow_subdomains_reported = false;  // the narrow-subdomain warning is given once per fix
-  bool pair_forces = false;                 // a pair style may act on the group's pairs too
-  int law_types = 0;                        // atom types when the fix was defined
-  std::vector<cd::ContactLaw> type_laws;    // (law_types+1)^2, row-major
-  std::vector<cd::Wall> walls;
-  // The step that follows the flow (dt_max given): the grid, the travel bound as a fraction of
-  // the neighbour skin, and where the run stands on the grid.
-  bool adaptive_step = false;
-  cd::StepGrid step_grid;
-  double dt_align = 0.0;  // s; 0: dt_max
-  double travel_fraction = 0.4;
+  // Where a run stands on the step grid of the adaptive step (settings.step_grid).
   int step_level = 0;
   long long steps_into_period = 0;
   bool step_state_known = false;  // level and position set (by a run or a restart)
@@ -135,9 +120,6 @@ class FixContactDynamics : public Fix {
   // --- local output: one row per loaded contact ---
   int local_rows_allocated = 0;
 
-  void parse_arguments(int narg, char** arg);
-  int parse_wall(int iarg, int narg, char** arg);
-  void parse_type_law(const char* keyword, int iarg, int narg, char** arg, bool friction);
   void check_insertion_map();
   void check_integrators();
   void check_pair_style();
@@ -147,7 +129,6 @@ class FixContactDynamics : public Fix {
   void assign_disc_masses();
   void request_neighbor_list();
 
-  const cd::ContactLaw& law(int itype, int jtype) const;
   void check_subdomains();
   double narrowest_split_subdomain();
   void warn_initial_overlaps();

@@ -1,0 +1,49 @@
+// The settings of fix contact/dynamics as its command line gives them, and the parser that
+// reads them (fix ID group contact/dynamics mu e keyword value ...). Bad input stops the run
+// with one error line naming the keyword (LAMMPS's Error::all).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "cd/step.h"
+#include "cd/time_step.h"
+#include "cd/walls.h"
+
+namespace LAMMPS_NS {
+class Error;
+
+namespace fix_keywords {
+
+struct FixSettings {
+  // theta, the solver's settings (tolerance, max_iterations, relaxation, norm, acceleration,
+  // full_sweep_every), warm_start and order; its alert is set by the fix (see alert below).
+  cd::StepSettings step;
+  std::uint64_t shuffle_seed = 0;  // order shuffle's seed (> 0); 0 with the fixed order
+  // m: candidate pairs are those whose gap closes to within it at free velocity; not given:
+  // the fix takes a fraction of the group's mean diameter.
+  std::optional<double> alert;
+  int max_contacts = 12;      // contacts carried per atom in the warm-start store
+  double disc_density = 0.0;  // kg/m^2; > 0: masses reset to pi r^2 rho
+  bool pair_forces = false;   // a pair style may act on the group's pairs too
+  int law_types = 0;          // atom types when the fix was defined
+  // mu and e of every type pair, (law_types+1)^2 row-major (law()): mu e, then mu/types, e/types.
+  std::vector<cd::ContactLaw> type_laws;
+  std::vector<cd::Wall> walls;  // in the order given
+  // The step that follows the flow (dt_max given): dt_max (s) and the alignment period in
+  // steps of dt_max (dt_align / dt_max); its travel is set by the fix from the neighbour skin.
+  cd::StepGrid step_grid;
+  double dt_align = 0.0;         // s; 0: dt_max
+  double travel_fraction = 0.4;  // largest travel of a grain in one step, in neighbour skins
+
+  bool adaptive_step() const { return step_grid.dt_max > 0.0; }
+  const cd::ContactLaw& law(int itype, int jtype) const { return type_laws[itype * (law_types + 1) + jtype]; }
+};
+
+// Reads arg[3..narg) (mu, e, then keywords). ntypes: the atom types (mu/types, e/types ranges);
+// boxlo, boxhi: the box the walls must lie in.
+FixSettings parse_settings(int narg, char** arg, int ntypes, const double* boxlo, const double* boxhi, Error* error);
+
+}  // namespace fix_keywords
+}  // namespace LAMMPS_NS
