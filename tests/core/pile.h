@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "cd/detection.h"
 #include "cd/gauss_seidel.h"
 
 namespace {
@@ -47,18 +48,18 @@ Pile make_pile(double grain_mu, double floor_mu)
     pile.bodies.velocity[1 + k].vy -= gravity * step.dt;
   }
 
-  auto add = [&](const cd::ContactGeometry& g, const cd::ContactLaw& law) {
-    cd::Contact c = cd::contact_frame(g);
-    if (!cd::is_candidate(c, pile.bodies, step, 0.01 * radius)) return;
-    cd::prepare_mechanics(c, law, pile.bodies, step);
-    pile.contacts.push_back(c);
-  };
+  // The step's own selection (cd::StepContacts::offer): candidates within 0.01 radius, prepared.
+  cd::StepContacts selected;
+  selected.begin(pile.bodies, step, 0.01 * radius);
   for (int i = 0; i < count; i++) {
-    if (disks[i].y < 1.5 * radius) add(cd::disk_world_geometry(1 + i, disks[i], 0.0, disks[i].y, 0.0, 1.0), floor_law);
+    if (disks[i].y < 1.5 * radius)
+      selected.offer(cd::disk_world_geometry(1 + i, disks[i], 0.0, disks[i].y, 0.0, 1.0), floor_law, {i, -1.0});
     for (int j = i + 1; j < count; j++)
       if (std::hypot(disks[i].x - disks[j].x, disks[i].y - disks[j].y) < 2.5 * radius)
-        add(cd::disk_disk_geometry(1 + i, disks[i], 1 + j, disks[j]), grain_law);
+        selected.offer(cd::disk_disk_geometry(1 + i, disks[i], 1 + j, disks[j]), grain_law,
+                       {i, static_cast<double>(j)});
   }
+  pile.contacts = selected.solved;
   return pile;
 }
 
