@@ -10,7 +10,7 @@ using cdtest::LammpsSession;
 
 // Two disks of d = 0.5 mm falling at 3 m/s in a column, the lower one 0.02 d above the floor,
 // the upper one 0.02 d above it. In step 1 the floor is a candidate (its gap closes within the
-// step); the pair is not (both fall alike, and 0.02 d is above the alert distance, 0.01 d).
+// step); the pair is not (both fall alike, and 0.02 d is above the alert distance given, 0.01 d).
 // The first solve stops the lower disk (e = 0); the upper one, still falling 1.5e-5 m in half a
 // step, would overlap it by 0.01 d: the pair joins and the step solves again.
 TEST(IterationCap, CapsEachSolveOfAStepNotTheStep)
@@ -27,7 +27,7 @@ set group all diameter 5e-4 density/disc 2500
 velocity all set 0 -3 0 units box
 neighbor 1e-4 bin
 timestep 1e-5
-fix cd all contact/dynamics 0.5 0.0 max_iterations 1 wall yplane 0.0 0.5 0.0
+fix cd all contact/dynamics 0.5 0.0 max_iterations 1 alert 5e-6 wall yplane 0.0 0.5 0.0
 run 1
 )");
   LAMMPS_NS::Fix* fix = s.fix("cd");
