@@ -492,7 +492,6 @@ void FixContactDynamics::final_integrate()
   if (neighbor->ago == 0) check_subdomains();
   gather_bodies();
   RankExchange exchange(*this);
-  if (distributed) exchange.synchronise_velocities();
   LammpsHost host(*this);
   const cd::StepReport report = contact_step.solve(bodies, update->dt, host, distributed ? &exchange : nullptr);
   last_report = report.solve;
@@ -747,7 +746,7 @@ void FixContactDynamics::reduce_step_outputs(const cd::OverlapSums& overlaps)
    then every ghost takes its owner's velocity again.
 ------------------------------------------------------------------------- */
 
-void FixContactDynamics::RankExchange::synchronise_velocities()
+void FixContactDynamics::RankExchange::share_velocities()
 {
   fix.comm->reverse_comm_fix(&fix);
   fix.comm->forward_comm_fix(&fix);
@@ -755,7 +754,7 @@ void FixContactDynamics::RankExchange::synchronise_velocities()
 
 void FixContactDynamics::RankExchange::after_sweep(cd::SweepChange& change)
 {
-  synchronise_velocities();
+  share_velocities();
   double sums[4] = {change.sum_change_sq, change.sum_scale_sq, change.sum_scale, change.contacts};
   MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, fix.world);
   // The largest change matters to the maximum norm only: spare the quadratic one a reduction.

@@ -63,7 +63,7 @@ class FixContactDynamics : public Fix {
     explicit RankExchange(FixContactDynamics& fix) : fix(fix) {}
     void after_sweep(cd::SweepChange& change) override;
     bool on_any_rank(bool here) override;
-    void synchronise_velocities();
+    void share_velocities() override;
 
    private:
     FixContactDynamics& fix;

@@ -135,6 +135,10 @@ struct SolveReport {
 class SweepExchange {
  public:
   virtual ~SweepExchange() = default;
+  // Every rank's copy of every body's velocity made the same (each rank's changes to its
+  // copies of bodies owned elsewhere summed into the owner, then copied back): before the
+  // first sweep, once the warm start is applied.
+  virtual void share_velocities() = 0;
   virtual void after_sweep(SweepChange& change) = 0;
   virtual bool on_any_rank(bool here) = 0;
 };

@@ -49,6 +49,7 @@ StepReport MoreauJeanStep::solve(BodySet& bodies, double dt, StepHost& host, Swe
   const StepParameters step{dt, settings_.theta};
   prepare(bodies, dt, host);
   apply_impulses(contacts_.solved, bodies.velocity);
+  if (exchange) exchange->share_velocities();
 
   HostPairs wider(host, reach_, contacts_);
   StepReport report;
