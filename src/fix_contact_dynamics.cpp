@@ -594,7 +594,6 @@ void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double 
   const int* type = atom->type;
   const int* mask = atom->mask;
   const int nlocal = atom->nlocal;
-  const bool widening = std::isfinite(from_margin);
 
   for (int ii = 0; ii < list->inum; ii++) {
     const int i = list->ilist[ii];
@@ -608,8 +607,7 @@ void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double 
       if (j >= nlocal && tag[i] > tag[j]) continue;
       const int body_j = body_of_atom[j];
       const cd::Disk disk_j{x[j][0], x[j][1], radius[j]};
-      if (!reach.within(1 + i, disk_i, body_j, disk_j, to_margin)) continue;
-      if (widening && reach.within(1 + i, disk_i, body_j, disk_j, from_margin)) continue;
+      if (!reach.in_look(1 + i, disk_i, body_j, disk_j, from_margin, to_margin)) continue;
       if (body_j == 1 + i)
         error->one(FLERR,
                    "Fix contact/dynamics: atom {} touches its own periodic image; the cell "
@@ -647,7 +645,7 @@ void FixContactDynamics::collect_wall_pairs(const cd::PairReach& reach, double f
     const double reach_i = reach.reach(1 + i);
     for (int w = 0; w < static_cast<int>(settings.walls.size()); w++) {
       const auto touch = cd::wall_contact(settings.walls[w], 1 + i, disk, reach_i + to_margin, box);
-      if (!touch || touch->geometry.gap <= reach_i + from_margin) continue;
+      if (!touch || !reach.wall_in_look(1 + i, touch->geometry.gap, from_margin)) continue;
       contacts.offer(touch->geometry, settings.walls[w].law, {i, wall_key(w, touch->part)});
     }
   }

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "cd/gauss_seidel.h"
@@ -35,6 +36,15 @@ class PairReach {
     const double limit = a.radius + b.radius + reach_[body_a] + reach_[body_b] + margin;
     return dx * dx + dy * dy <= limit * limit;
   }
+
+  // The looks of a step: a pair (or a disk and a wall at `gap`) is looked at by the look out to
+  // to_margin unless an earlier look, out to from_margin, took it (-infinity: no earlier look).
+  bool in_look(int body_a, const Disk& a, int body_b, const Disk& b, double from_margin, double to_margin) const
+  {
+    if (!within(body_a, a, body_b, b, to_margin)) return false;
+    return !std::isfinite(from_margin) || !within(body_a, a, body_b, b, from_margin);
+  }
+  bool wall_in_look(int body, double gap, double from_margin) const { return gap > reach_[body] + from_margin; }
 
   double margin() const { return margin_; }
   // A new floor (the alert distance once the grain size is known); the margin rises to it.

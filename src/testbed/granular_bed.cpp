@@ -118,21 +118,19 @@ FrozenPairs::FrozenPairs(const FrozenStep& frozen) : frozen_(frozen)
 void FrozenPairs::collect_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
                                 cd::StepContacts& contacts)
 {
-  const bool widening = std::isfinite(from_margin);
   for (const NeighbourPair& pair : frozen_.pairs) {
     const cd::Disk& disk_a = frozen_.predicted[pair.a - 1];
     const cd::PairKey key{pair.a, static_cast<double>(pair.b)};
     if (pair.b == cd::world_body) {
       const double reach_a = reach.reach(pair.a);
       const auto touch = cd::wall_contact(frozen_.floor, pair.a, disk_a, reach_a + to_margin, frozen_.box);
-      if (!touch || touch->geometry.gap <= reach_a + from_margin) continue;
+      if (!touch || !reach.wall_in_look(pair.a, touch->geometry.gap, from_margin)) continue;
       contacts.offer(touch->geometry, frozen_.floor.law, key);
       continue;
     }
     cd::Disk disk_b = frozen_.predicted[pair.b - 1];
     disk_b.x += pair.b_shift_x;
-    if (!reach.within(pair.a, disk_a, pair.b, disk_b, to_margin)) continue;
-    if (widening && reach.within(pair.a, disk_a, pair.b, disk_b, from_margin)) continue;
+    if (!reach.in_look(pair.a, disk_a, pair.b, disk_b, from_margin, to_margin)) continue;
     contacts.offer(cd::disk_disk_geometry(pair.a, disk_a, pair.b, disk_b), frozen_.grain_law, key);
   }
 }

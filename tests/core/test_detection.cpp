@@ -45,12 +45,10 @@ class AllPairs : public cd::StepHost {
                      cd::StepContacts& contacts) override
   {
     ++calls;
-    const bool widening = std::isfinite(from_margin);
     for (int i = 0; i < static_cast<int>(scene.disks.size()); i++)
       for (int j = i + 1; j < static_cast<int>(scene.disks.size()); j++) {
         const cd::Disk &a = scene.disks[i], &b = scene.disks[j];
-        if (!reach.within(1 + i, a, 1 + j, b, to_margin)) continue;
-        if (widening && reach.within(1 + i, a, 1 + j, b, from_margin)) continue;
+        if (!reach.in_look(1 + i, a, 1 + j, b, from_margin, to_margin)) continue;
         contacts.offer(cd::disk_disk_geometry(1 + i, a, 1 + j, b), law, {i, static_cast<double>(j)});
         ++looked_at;
       }

@@ -44,12 +44,10 @@ class Pile : public cd::StepHost {
   void collect_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
                      cd::StepContacts& contacts) override
   {
-    const bool widening = std::isfinite(from_margin);
     for (int i = 0; i < static_cast<int>(disks.size()); i++)
       for (int j = i + 1; j < static_cast<int>(disks.size()); j++) {
         if (j < columns) continue;  // two obstacles: no contact, as the fix lists none
-        if (!reach.within(1 + i, disks[i], 1 + j, disks[j], to_margin)) continue;
-        if (widening && reach.within(1 + i, disks[i], 1 + j, disks[j], from_margin)) continue;
+        if (!reach.in_look(1 + i, disks[i], 1 + j, disks[j], from_margin, to_margin)) continue;
         contacts.offer(cd::disk_disk_geometry(1 + i, disks[i], 1 + j, disks[j]), law, {i, static_cast<double>(j)});
       }
   }
