@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "cd/step.h"
 #include "testbed/granular_bed.h"
 
 namespace {
@@ -250,36 +251,42 @@ void BM_Prepare(benchmark::State& state)
 }
 BENCHMARK(BM_Prepare)->Unit(benchmark::kMicrosecond);
 
-// (b) A whole step of the core: prepare, order, warm start, Gauss–Seidel to 1e-4, plain or
-// with conjugate acceleration. Counters: sweeps per step, and the contact updates per second
-// of the whole step.
+// (b) A whole step of the core (cd::MoreauJeanStep::solve): pairs, order, warm start, Gauss–Seidel
+// to 1e-4, plain or with conjugate acceleration, the watched pairs that close joining, the store of
+// impulses. Counters: sweeps and solves per step, and the contact updates per second of the step.
+cd::ContactOrder step_order(Order order)
+{
+  if (order == shuffled_order) return cd::ContactOrder::shuffled;
+  if (order == interleaved_order) return cd::ContactOrder::interleaved;
+  return cd::ContactOrder::as_offered;
+}
+
 void time_whole_steps(benchmark::State& state, const Scene& s, bool warm, Order order, bool frictionless_shortcut,
                       cd::Acceleration acceleration = cd::Acceleration::none)
 {
-  const int body_count = static_cast<int>(s.frozen.bodies.velocity.size());
-  cd::SolverSettings settings = s.bed.spec().solver;
-  settings.frictionless_shortcut = frictionless_shortcut;
-  settings.acceleration = acceleration;
-  std::vector<cd::Contact> contacts;
-  std::vector<cd::BodyVelocity> velocity;
-  std::mt19937_64 rng(shuffle_seed);
-  double sweeps = 0.0, updates = 0.0;
+  cd::SolverSettings solver = s.bed.spec().solver;
+  solver.frictionless_shortcut = frictionless_shortcut;
+  solver.acceleration = acceleration;
+  cd::StepSettings settings = testbed::step_settings(s.frozen, solver, warm);
+  settings.order = step_order(order);
+  cd::MoreauJeanStep moreau_jean(settings, shuffle_seed);
+  testbed::FrozenPairs host(s.frozen);
+  double sweeps = 0.0, solves = 0.0, updates = 0.0;
   bool converged = true;
   for (auto _ : state) {
-    testbed::prepare_contacts(s.frozen, warm, contacts);
-    put_in_order(contacts, order, body_count, rng);
-    velocity = s.frozen.bodies.velocity;
-    cd::apply_impulses(contacts, velocity);
-    const cd::SolveReport report = cd::solve_gauss_seidel(contacts, velocity, settings);
+    cd::BodySet bodies = s.frozen.bodies;
+    const cd::SolveReport report = moreau_jean.solve(bodies, s.frozen.step.dt, host).solve;
     sweeps += report.iterations;
-    updates += static_cast<double>(report.iterations) * static_cast<double>(contacts.size());
+    solves += report.solves;
+    updates += report.contact_updates;
     converged = converged && report.converged;
   }
   state.SetItemsProcessed(state.iterations());
   state.counters["sweeps"] = benchmark::Counter(sweeps, benchmark::Counter::kAvgIterations);
+  state.counters["solves"] = benchmark::Counter(solves, benchmark::Counter::kAvgIterations);
   state.counters["updates_per_second"] = benchmark::Counter(updates, benchmark::Counter::kIsRate);
   state.counters["converged"] = converged ? 1.0 : 0.0;
-  set_contact_counters(state, contacts.size());
+  set_contact_counters(state, moreau_jean.contacts().solved.size());
 }
 
 void BM_WholeStep(benchmark::State& state)
