@@ -462,14 +462,15 @@ STATIC_TILT, STATIC_DURATION, SETTLE_TIME = 12, 0.4, 0.1
 
 def case_static_tilt(args):
     """Tilted by 12 degrees, well below the 23 degrees at which the flow of this layer stops
-    (mu = 0.5), the packing stays at rest after a short readjustment (0.1 s), without creeping.
-    A solver stopped at tolerance 1e-3 leaves velocity errors ~ 1e-3 g dt that do not add up
-    from step to step (each step re-solves the contacts), hence a drift of at most
-    ~ 1e-3 g dt T = 1.2e-4 d over T = 0.3 s: the mean downslope displacement must stay below
-    1e-3 d and no grain may move 0.01 d. (A creep at the solver's velocity noise g dt, e.g. a
-    restitution or contact-detection error, would carry grains g dt T = 0.12 d.) The mean
-    velocities must stay below g dt = 0.0028 sqrt(g d) over the last 0.1 s."""
-    folder, _ = chute(args, "static_tilt", STATIC_TILT, STATIC_DURATION, snapshot_interval=0.05)
+    (mu = 0.5), the packing stays at rest after a short readjustment (0.1 s), without creeping:
+    over T = 0.3 s the mean downslope displacement stays below 1e-3 d and no grain moves 0.01 d.
+    (A creep at the solver's velocity noise g dt, e.g. a restitution or contact-detection error,
+    would carry grains g dt T = 0.12 d.) The mean velocities stay below g dt = 0.0028 sqrt(g d)
+    over the last 0.1 s. Solved at tolerance 1e-4: at the chute's 1e-3 the solver's errors add
+    up from step to step in a fixed contact order, and the packing creeps 0.5-4.2e-3 d over
+    six other rains of this cell; at 1e-4 at most 1.2e-4 d on those rains."""
+    folder, _ = chute(args, "static_tilt", STATIC_TILT, STATIC_DURATION, snapshot_interval=0.05,
+                      tolerance="1e-4", max_iterations=5000)
     frames = read_dump(os.path.join(folder, "dump.chute.gz"))
     settled = unwrapped(next(f for f in frames if f[0] * 2e-5 >= SETTLE_TIME - 1e-9))
     last = unwrapped(frames[-1])
