@@ -23,6 +23,7 @@ import json
 import math
 import os
 import random
+import re
 import shutil
 import subprocess
 import sys
@@ -216,6 +217,21 @@ def check_readings(results, readme):
     check("![U_vs_theta](series/readings/figures/U_vs_theta.png)" in section
           and "![phi_vs_I](series/readings/figures/phi_vs_I.png)" in section,
           "the readings' figures are not shown:\n" + section[:1500])
+    # Per friction, the layer's thickness in each reading and their difference at the same angles:
+    # H_LAYER - H at each of LAYER_ANGLES, with the standard error of those differences.
+    h_of = {name: float(read_csv(os.path.join(results, "runs", name, "results.csv"))["h"]["value"])
+            for name in os.listdir(os.path.join(results, "runs"))}
+    differences = [h_of[f"mu0.5_theta{t}_L45_layer"] - h_of[f"mu0.5_theta{t}_L45"] for t in LAYER_ANGLES]
+    mean = sum(differences) / len(differences)
+    error = math.sqrt(sum((d - mean) ** 2 for d in differences) / (len(differences) - 1) / len(differences))
+    check(abs(mean - (H_LAYER - H)) < 0.05 * (H - H_LAYER), f"h differs by {mean} between readings, expected "
+          f"{H_LAYER - H}")
+    line = next((r for r in section.splitlines() if r.startswith("| h (d) | 0.5 |")), "")
+    shown = re.search(r"\| (-?[0-9.]+)(?: ± ([0-9.]+))? \((\d+) angles\) \|$", line)   # no ± when all agree
+    check(shown and int(shown.group(3)) == len(LAYER_ANGLES)
+          and abs(float(shown.group(1)) - mean) <= 1e-3 * abs(mean) + error
+          and abs(float(shown.group(2) or 0) - error) <= 0.05 * error,
+          f"the readings' h difference is not {mean} ± {error} over {LAYER_ANGLES}:\n{line}")
 
 
 def main():

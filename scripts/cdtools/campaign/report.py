@@ -20,7 +20,7 @@ import shutil
 import sys
 
 from ..cdpost import read_results
-from ..stats import pooled_sd
+from ..stats import mean_sd_se, pooled_sd
 from ..text import markdown_table, number, with_error
 from .jobs import read_json
 from .legs import run_cost
@@ -251,8 +251,8 @@ def section_fits(title, folder, prefixes, figures, destination):
 READINGS = (("count", "flow_rules"), ("layer", "layer_flow_rules"))
 # The comparison's figures shown, and the per-run quantities shown per friction beside its table.
 READING_FIGURES = ("U_vs_theta", "phi_vs_U", "phi_vs_I", "f_vs_scale", "f_vs_shear_rate", "A_vs_phi")
-READING_MEANS = (("h", "h (d)"), ("phi", "φ"), ("creep_lambda", "creep length λ (d)"),
-                 ("bagnold_amplitude", "Bagnold a (√(gd)/d^1.5)"))
+READING_MEANS = (("h", "h (d)"), ("phi", "φ"), ("f", "f (Hz)"), ("A", "A (√(gd))"),
+                 ("creep_lambda", "creep length λ (d)"), ("bagnold_amplitude", "Bagnold a (√(gd)/d^1.5)"))
 
 
 def publish_readings(copied_series, cdpost, args):
@@ -282,19 +282,38 @@ def read_compared_fits(path):
                 for row in csv.DictReader(src)]
 
 
-def series_means(records, name):
-    """{(reading, mu): (mean of `name` over the analysed L = 45 d runs, their count)}."""
-    groups = {}
+def paired_readings(records, name):
+    """{mu: {"count": [...], "layer": [...], "difference": [layer - count at each angle both ran]}}
+    of `name` over the analysed L = 45 d runs of each series' own rain (replicas left out)."""
+    values = {}
     for r in records:
-        if r.results and r.get(name) and float(r.vars["L"]) == 45:
-            groups.setdefault((reading(r.vars), r.vars["mu"]), []).append(r.get(name)[0])
-    return {key: (sum(v) / len(v), len(v)) for key, v in groups.items()}
+        if r.results and r.get(name) and float(r.vars["L"]) == 45 and not r.series.endswith("replicas"):
+            values[(reading(r.vars), r.vars["mu"], r.vars["theta"])] = r.get(name)[0]
+    by_mu = {}
+    for (which, mu, theta), value in values.items():
+        entry = by_mu.setdefault(mu, {"count": [], "layer": [], "difference": []})
+        entry[which].append(value)
+        if which == "layer" and ("count", mu, theta) in values:
+            entry["difference"].append(value - values[("count", mu, theta)])
+    return by_mu
+
+
+def mean_cell(values):
+    return f"{number(sum(values) / len(values), 4)} ({len(values)} runs)" if values else "–"
+
+
+def difference_cell(differences):
+    """Mean of the paired differences ± its standard error (the scatter over the angles)."""
+    if not differences:
+        return "–"
+    mean, _, error = mean_sd_se(differences)
+    return f"{with_error(mean, error if math.isfinite(error) else None)} ({len(differences)} angles)"
 
 
 def section_readings(records, readings, destination):
     """Both readings of the 45 d cell side by side (publish_readings): every series fit with the
-    difference, the figures, and the per-friction means of the layer's thickness, packing, creep
-    length and Bagnold amplitude."""
+    difference, the figures, and per friction the means of READING_MEANS' quantities in each
+    reading with their layer − count difference at the same angles."""
     if readings is None:
         return ""
     folder, ok = readings
@@ -315,13 +334,14 @@ def section_readings(records, readings, destination):
     text += "".join(f"![{f}]({relative}/figures/{f}.png) " for f in shown) + "\n"
     mean_rows = []
     for name, heading in READING_MEANS:
-        means = series_means(records, name)
-        for mu in sorted({mu for _, mu in means}, key=float):
-            cells = [f"{number(means[(r, mu)][0], 4)} ({means[(r, mu)][1]} runs)" if (r, mu) in means else "–"
-                     for r, _ in READINGS]
-            mean_rows.append([heading, mu] + cells)
-    return text + "\nMeans over each friction's analysed runs:\n\n" + markdown_table(
-        ["quantity", "mu", "count", "layer"], mean_rows)
+        by_mu = paired_readings(records, name)
+        for mu in sorted(by_mu, key=float):
+            entry = by_mu[mu]
+            mean_rows.append([heading, mu, mean_cell(entry["count"]), mean_cell(entry["layer"]),
+                              difference_cell(entry["difference"])])
+    return text + ("\nMeans over each friction's analysed runs (replicas left out), and the layer − count "
+                   "difference at the angles both readings ran, its mean ± standard error over those "
+                   "angles:\n\n") + markdown_table(["quantity", "mu", "count", "layer", "layer − count"], mean_rows)
 
 
 def section_replicas(pairs, scatter):
