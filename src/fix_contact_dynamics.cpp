@@ -322,7 +322,7 @@ void FixContactDynamics::setup(int)
 void FixContactDynamics::init_step_grid()
 {
   settings.step_grid.travel = settings.travel_fraction * neighbor->skin;
-  if (!step_state_known) {
+  if (!step_clock.known) {
     // Without the level and position a restart on this grid left, the grid starts afresh here:
     // only at a whole period, or the level changes would miss the sample times.
     const double time = current_time();
@@ -331,22 +331,21 @@ void FixContactDynamics::init_step_grid()
                  "Fix contact/dynamics: the step grid cannot start at time {:.10g} s, not a whole number of "
                  "alignment periods ({:.4g} s); continue from a restart written with the same dt_max and dt_align",
                  time, settings.step_grid.period());
-    steps_into_period = 0;
-    choose_step_level();
-    step_state_known = true;
+    step_clock.start(fastest_grain_level());
   }
-  set_timestep(settings.step_grid.step(step_level));
+  set_timestep(settings.step_grid.step(step_clock.level));
 }
 
 void FixContactDynamics::end_of_step()
 {
-  if (++steps_into_period < settings.step_grid.steps_per_period(step_level)) return;
-  steps_into_period = 0;
-  choose_step_level();
-  set_timestep(settings.step_grid.step(step_level));
+  if (!step_clock.advance(settings.step_grid)) return;
+  step_clock.level = fastest_grain_level();
+  set_timestep(settings.step_grid.step(step_clock.level));
 }
 
-void FixContactDynamics::choose_step_level()
+// The level of the grid that keeps the fastest grain's travel per step within the bound; a
+// grain too fast for the smallest step stops the run after a restart is written.
+int FixContactDynamics::fastest_grain_level()
 {
   struct {
     double speed;
@@ -360,17 +359,16 @@ void FixContactDynamics::choose_step_level()
   }
   MPI_Allreduce(&local, &fastest, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
   const int level = settings.step_grid.level_for(fastest.speed);
-  if (level >= 0) {
-    step_level = level;
-    return;
+  if (level < 0) {
+    output->write_restart(update->ntimestep);
+    error->all(FLERR,
+               "Fix contact/dynamics: atom {} moves at {:.4g} m/s; the smallest step {:.4g} (dt_max/2^{}) "
+               "moves it {:.4g}, more than travel x skin = {:.4g} (restart files written if a restart command is set)",
+               fastest.tag, fastest.speed, settings.step_grid.step(settings.step_grid.max_level),
+               settings.step_grid.max_level, fastest.speed * settings.step_grid.step(settings.step_grid.max_level),
+               settings.step_grid.travel);
   }
-  output->write_restart(update->ntimestep);
-  error->all(FLERR,
-             "Fix contact/dynamics: atom {} moves at {:.4g} m/s; the smallest step {:.4g} (dt_max/2^{}) "
-             "moves it {:.4g}, more than travel x skin = {:.4g} (restart files written if a restart command is set)",
-             fastest.tag, fastest.speed, settings.step_grid.step(settings.step_grid.max_level),
-             settings.step_grid.max_level, fastest.speed * settings.step_grid.step(settings.step_grid.max_level),
-             settings.step_grid.travel);
+  return level;
 }
 
 // As fix dt/reset does: time so far at the old step, then the new step everywhere it is kept.
@@ -384,6 +382,24 @@ void FixContactDynamics::set_timestep(double dt)
   for (int f = 0; f < modify->nfix; f++) modify->fix[f]->reset_dt();
 }
 
+// A pair across a periodic or rank boundary is listed from both sides: the side with the
+// smaller atom ID takes it (on the rank that owns that atom).
+template <class Visit>
+void FixContactDynamics::for_each_listed_pair(Visit&& visit) const
+{
+  const tagint* tag = atom->tag;
+  const int nlocal = atom->nlocal;
+  for (int ii = 0; ii < list->inum; ii++) {
+    const int i = list->ilist[ii];
+    const int* neighbours = list->firstneigh[i];
+    for (int jj = 0; jj < list->numneigh[i]; jj++) {
+      const int j = neighbours[jj] & NEIGHMASK;
+      if (j >= nlocal && tag[i] > tag[j]) continue;
+      visit(i, j);
+    }
+  }
+}
+
 // Rigid contacts never push overlapping grains apart: grains created overlapping (random
 // placement, a lattice that does not fit the periodic cell) stay so. Say it at the start.
 void FixContactDynamics::warn_initial_overlaps()
@@ -391,21 +407,15 @@ void FixContactDynamics::warn_initial_overlaps()
   const double threshold = initial_overlap_warning * mean_diameter;
   double** x = atom->x;
   const double* radius = atom->radius;
-  const tagint* tag = atom->tag;
   double local[2] = {0.0, 0.0};  // count, deepest
   auto note = [&](double gap) {
     if (-gap <= threshold) return;
     local[0] += 1.0;
     local[1] = std::max(local[1], -gap);
   };
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = list->ilist[ii];
-    for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      const int j = list->firstneigh[i][jj] & NEIGHMASK;
-      if (j >= atom->nlocal && tag[i] > tag[j]) continue;
-      note(cd::disk_disk_geometry(0, {x[i][0], x[i][1], radius[i]}, 0, {x[j][0], x[j][1], radius[j]}).gap);
-    }
-  }
+  for_each_listed_pair([&](int i, int j) {
+    note(cd::disk_disk_geometry(0, {x[i][0], x[i][1], radius[i]}, 0, {x[j][0], x[j][1], radius[j]}).gap);
+  });
   const cd::PeriodicBox box = periodic_box();
   for (int i = 0; i < atom->nlocal; i++)
     for (const cd::Wall& wall : settings.walls)
@@ -590,33 +600,19 @@ void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double 
 {
   double** x = atom->x;
   const double* radius = atom->radius;
-  const tagint* tag = atom->tag;
   const int* type = atom->type;
   const int* mask = atom->mask;
-  const int nlocal = atom->nlocal;
-
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = list->ilist[ii];
-    const int* neighbours = list->firstneigh[i];
-    const cd::Disk disk_i{x[i][0], x[i][1], radius[i]};
-    for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      const int j = neighbours[jj] & NEIGHMASK;
-      if (!(mask[i] & groupbit) && !(mask[j] & groupbit)) continue;
-      // A pair across a periodic or rank boundary is listed from both sides: the side with
-      // the smaller atom ID solves it (on the rank that owns that atom).
-      if (j >= nlocal && tag[i] > tag[j]) continue;
-      const int body_j = body_of_atom[j];
-      const cd::Disk disk_j{x[j][0], x[j][1], radius[j]};
-      if (!reach.in_look(1 + i, disk_i, body_j, disk_j, from_margin, to_margin)) continue;
-      if (body_j == 1 + i)
-        error->one(FLERR,
-                   "Fix contact/dynamics: atom {} touches its own periodic image; the cell "
-                   "is too short",
-                   tag[i]);
-      contacts.offer(cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j), settings.law(type[i], type[j]),
-                     pair_key(i, j));
-    }
-  }
+  for_each_listed_pair([&](int i, int j) {
+    if (!(mask[i] & groupbit) && !(mask[j] & groupbit)) return;
+    const int body_j = body_of_atom[j];
+    const cd::Disk disk_i{x[i][0], x[i][1], radius[i]}, disk_j{x[j][0], x[j][1], radius[j]};
+    if (!reach.in_look(1 + i, disk_i, body_j, disk_j, from_margin, to_margin)) return;
+    if (body_j == 1 + i)
+      error->one(FLERR, "Fix contact/dynamics: atom {} touches its own periodic image; the cell is too short",
+                 atom->tag[i]);
+    contacts.offer(cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j), settings.law(type[i], type[j]),
+                   pair_key(i, j));
+  });
 }
 
 // The warm start of a pair lives with its smaller atom ID, which the rule of
@@ -890,12 +886,17 @@ constexpr double restart_version_without_grid = -2.0;
 void FixContactDynamics::write_restart(FILE* fp)
 {
   if (comm->me != 0) return;
-  const bool known = settings.adaptive_step() && step_state_known;
+  const bool known = settings.adaptive_step() && step_clock.known;
   const double elapsed = current_time();
-  const double record[9] = {
-      restart_version, total_iterations,          total_unconverged_steps,
-      total_steps,     known ? step_level : -1.0, known ? static_cast<double>(steps_into_period) : -1.0,
-      elapsed,         settings.step_grid.dt_max, static_cast<double>(settings.step_grid.steps_per_align)};
+  const double record[9] = {restart_version,
+                            total_iterations,
+                            total_unconverged_steps,
+                            total_steps,
+                            known ? step_clock.level : -1.0,
+                            known ? static_cast<double>(step_clock.steps_into_period) : -1.0,
+                            elapsed,
+                            settings.step_grid.dt_max,
+                            static_cast<double>(settings.step_grid.steps_per_align)};
   const int size = sizeof(record);
   fwrite(&size, sizeof(int), 1, fp);
   fwrite(record, sizeof(double), 9, fp);
@@ -917,9 +918,7 @@ void FixContactDynamics::restart(char* buf)
   const bool same_grid = record[0] == restart_version && totals[6] == settings.step_grid.dt_max &&
                          static_cast<int>(totals[7]) == settings.step_grid.steps_per_align;
   if (!same_grid || totals[3] < 0.0) return;
-  step_level = static_cast<int>(totals[3]);
-  steps_into_period = static_cast<long long>(totals[4]);
-  step_state_known = true;
+  step_clock = {static_cast<int>(totals[3]), static_cast<long long>(totals[4]), true};
 }
 
 double FixContactDynamics::current_time() const

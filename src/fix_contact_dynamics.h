@@ -90,9 +90,7 @@ class FixContactDynamics : public Fix {
   fix_keywords::FixSettings settings;
   bool narrow_subdomains_reported = false;  // the narrow-subdomain warning is given once per fix
   // Where a run stands on the step grid of the adaptive step (settings.step_grid).
-  int step_level = 0;
-  long long steps_into_period = 0;
-  bool step_state_known = false;  // level and position set (by a run or a restart)
+  cd::StepClock step_clock;
 
   // --- per-step state ---
   class NeighList* list = nullptr;
@@ -131,6 +129,9 @@ class FixContactDynamics : public Fix {
 
   void check_subdomains();
   double narrowest_split_subdomain();
+  // Every pair of LAMMPS's neighbour list once, as visit(i, j) (definition in the .cpp).
+  template <class Visit>
+  void for_each_listed_pair(Visit&& visit) const;
   void warn_initial_overlaps();
   cd::PeriodicBox periodic_box() const;
   void map_bodies();
@@ -144,7 +145,7 @@ class FixContactDynamics : public Fix {
   void write_back_motion();
   void reduce_step_outputs(const cd::OverlapSums& overlaps);
   void init_step_grid();
-  void choose_step_level();
+  int fastest_grain_level();
   void set_timestep(double dt);
   double current_time() const;  // LAMMPS's time now (s)
   void set_clock(double time);  // sets it

@@ -22,4 +22,27 @@ struct StepGrid {
   bool on_alignment(double time) const;  // time (s) a whole number of periods, to 1e-9 of one
 };
 
+// Where a run stands on the grid: its level and the steps taken into the current alignment
+// period; the level may change only when a period ends.
+struct StepClock {
+  int level = 0;
+  long long steps_into_period = 0;
+  bool known = false;  // set by a run's start or read from a restart
+
+  // Starts at a whole period, at `at_level`.
+  void start(int at_level)
+  {
+    level = at_level;
+    steps_into_period = 0;
+    known = true;
+  }
+  // Counts one step; true when it ended an alignment period (the level may change now).
+  bool advance(const StepGrid& grid)
+  {
+    if (++steps_into_period < grid.steps_per_period(level)) return false;
+    steps_into_period = 0;
+    return true;
+  }
+};
+
 }  // namespace cd

@@ -36,4 +36,27 @@ TEST(StepGrid, AlignmentTimesAreWholePeriods)
   EXPECT_FALSE(grid.on_alignment(5e-5));
 }
 
+// The clock lets the level change only at the ends of alignment periods: a period at level L
+// is 10 x 2^L steps, whatever level the one before had.
+TEST(StepClock, APeriodEndsAfterItsLevelsStepsOnly)
+{
+  cd::StepClock clock;
+  EXPECT_FALSE(clock.known);
+  clock.start(1);
+  EXPECT_TRUE(clock.known);
+  for (int step = 1; step < 20; step++) EXPECT_FALSE(clock.advance(grid)) << "step " << step;
+  EXPECT_TRUE(clock.advance(grid)) << "a period at level 1 is 20 steps";
+  EXPECT_EQ(clock.steps_into_period, 0);
+  clock.level = 3;
+  for (int step = 1; step < 80; step++) EXPECT_FALSE(clock.advance(grid)) << "step " << step;
+  EXPECT_TRUE(clock.advance(grid)) << "a period at level 3 is 80 steps";
+}
+
+TEST(StepClock, ARestartedClockFinishesThePeriodItWasIn)
+{
+  cd::StepClock clock{2, 37, true};  // as a restart written 37 steps into a level-2 period left it
+  for (int step = 38; step < 40; step++) EXPECT_FALSE(clock.advance(grid)) << "step " << step;
+  EXPECT_TRUE(clock.advance(grid));
+}
+
 }  // namespace
