@@ -127,6 +127,11 @@ void SettingsParser::parse_value(const std::string& keyword, const char* value)
     step.solver.full_sweep_every = integer_for("full_sweep_every", value, error);
     if (step.solver.full_sweep_every < 1)
       error->all(FLERR, "Fix contact/dynamics: full_sweep_every must be >= 1, got {}", step.solver.full_sweep_every);
+  } else if (keyword == "join") {
+    const std::string joining = value;
+    if (joining == "during") step.joining = cd::Joining::during_solve;
+    else if (joining == "after") step.joining = cd::Joining::after_solve;
+    else error->all(FLERR, "Fix contact/dynamics: join must be during or after, got '{}'", joining);
   } else if (keyword == "warm_start") {
     step.warm_start = yes_or_no("warm_start", value, error);
   } else if (keyword == "pair_forces") {

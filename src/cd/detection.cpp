@@ -91,12 +91,38 @@ bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const 
   return contacts.solved.size() > before;
 }
 
+namespace {
+
+// Watched pairs joining a running solve (Joining::during_solve).
+class ClosingPairs : public JoiningContacts {
+ public:
+  ClosingPairs(StepContacts& contacts, const BodySet& bodies, const StepParameters& step, SweepExchange* exchange)
+      : contacts_(contacts), bodies_(bodies), step_(step), exchange_(exchange)
+  {
+  }
+  bool join(bool converged) override
+  {
+    const bool joined = promote_closing_pairs(contacts_, bodies_, step_);
+    return converged && exchange_ ? exchange_->on_any_rank(joined) : joined;
+  }
+
+ private:
+  StepContacts& contacts_;
+  const BodySet& bodies_;
+  StepParameters step_;
+  SweepExchange* exchange_;
+};
+
+}  // namespace
+
 SolveReport solve_step(StepContacts& contacts, BodySet& bodies, const StepParameters& step,
                        const SolverSettings& settings, PairReach& reach, PairCollector& collector,
-                       SweepExchange* exchange, int max_rounds)
+                       SweepExchange* exchange, int max_rounds, Joining joining)
 {
-  SolveReport report = solve_gauss_seidel(contacts.solved, bodies.velocity, settings, exchange);
   contacts.watch_only();
+  ClosingPairs closing(contacts, bodies, step, exchange);
+  JoiningContacts* during = joining == Joining::during_solve ? &closing : nullptr;
+  SolveReport report = solve_gauss_seidel(contacts.solved, bodies.velocity, settings, exchange, during);
   double needed = 0.0;
   for (int round = 1;; round++) {
     needed = std::max(needed, reach.needed_margin(bodies.velocity, step));
@@ -109,7 +135,7 @@ SolveReport solve_step(StepContacts& contacts, BodySet& bodies, const StepParame
     bool promoted = promote_closing_pairs(contacts, bodies, step);
     if (exchange) promoted = exchange->on_any_rank(promoted);
     if (!promoted) break;
-    const SolveReport more = solve_gauss_seidel(contacts.solved, bodies.velocity, settings, exchange);
+    const SolveReport more = solve_gauss_seidel(contacts.solved, bodies.velocity, settings, exchange, during);
     report.iterations += more.iterations;
     report.solves += 1;
     report.contact_updates += more.contact_updates;

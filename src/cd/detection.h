@@ -135,13 +135,19 @@ class PairCollector {
   virtual void collect_between(double from_margin, double to_margin) = 0;
 };
 
+// When watched pairs that the velocities drive into overlap join the solved contacts:
+//   after_solve   once the solve has converged, and the solve starts again from where it stopped;
+//   during_solve  also at every full sweep of the solve (cd::JoiningContacts), which goes on
+//                 with them: the same problem and tolerance, usually in one solve.
+enum class Joining { after_solve, during_solve };
+
 // Solves the step's contacts, then lets watched pairs that the solution would drive into
 // overlap join and solves again from where it stopped, looking wider first if bodies gained
 // more speed than the margin covers; at most `max_rounds` solves. The impulses must already be
 // applied to bodies.velocity. The report sums the sweeps of every solve.
 SolveReport solve_step(StepContacts& contacts, BodySet& bodies, const StepParameters& step,
                        const SolverSettings& settings, PairReach& reach, PairCollector& collector,
-                       SweepExchange* exchange = nullptr, int max_rounds = 10);
+                       SweepExchange* exchange = nullptr, int max_rounds = 10, Joining joining = Joining::after_solve);
 
 // Interpenetration at the end of the step, linearised (gap + theta dt u_n^+): deepest and sum
 // over the solved contacts, deepest over the watched pairs too.

@@ -313,6 +313,12 @@ class ConjugateBeta {
   int failures_ = 0;
 };
 
+// Whether a solve asks for joining contacts after its full_sweeps-th full sweep.
+bool looks_for_joining(int full_sweeps, bool converged)
+{
+  return converged || (full_sweeps & (full_sweeps - 1)) == 0;
+}
+
 // Counts one sweep of `updates` local solves into the report; true if it met the tolerance.
 bool count_sweep(SolveReport& report, const SweepChange& change, std::size_t updates, const SolverSettings& settings)
 {
@@ -324,7 +330,7 @@ bool count_sweep(SolveReport& report, const SweepChange& change, std::size_t upd
 
 // Every sweep over every contact (full_sweep_every 1).
 SolveReport solve_in_full_sweeps(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                                 const SolverSettings& settings, SweepExchange* exchange)
+                                 const SolverSettings& settings, SweepExchange* exchange, JoiningContacts* joining)
 {
   SolveReport report;
   ConjugateBeta conjugate;
@@ -332,7 +338,9 @@ SolveReport solve_in_full_sweeps(std::vector<Contact>& contacts, std::vector<Bod
   while (report.iterations < settings.max_iterations) {
     SweepChange change = sweep(contacts, velocity, settings, beta);
     if (exchange) exchange->after_sweep(change);
-    if (count_sweep(report, change, contacts.size(), settings)) return report;
+    const bool converged = count_sweep(report, change, contacts.size(), settings);
+    const bool joined = joining && looks_for_joining(report.iterations, converged) && joining->join(converged);
+    if (converged && !joined) return report;
     if (settings.acceleration == Acceleration::conjugate)
       beta = conjugate.next(change.sum_change_sq, report.iterations, settings.max_iterations);
   }
@@ -385,7 +393,7 @@ constexpr double quiet_fraction = 0.5;
 // Cycles of one full sweep and up to full_sweep_every - 1 sweeps over the active contacts. The
 // full sweep runs plain (conjugate directions restart after it) and alone decides convergence.
 SolveReport solve_in_cycles(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                            const SolverSettings& settings, SweepExchange* exchange)
+                            const SolverSettings& settings, SweepExchange* exchange, JoiningContacts* joining)
 {
   static thread_local CycleWorkspace work;
   work.change_sq.resize(contacts.size());
@@ -395,11 +403,15 @@ SolveReport solve_in_cycles(std::vector<Contact>& contacts, std::vector<BodyVelo
   SolveReport report;
   ConjugateBeta conjugate;
   double previous_full_residual = std::numeric_limits<double>::infinity();
-  while (report.iterations < settings.max_iterations) {
+  for (int full_sweeps = 1; report.iterations < settings.max_iterations; full_sweeps++) {
     SweepChange change = sweep_measuring(contacts.data(), contacts.data() + contacts.size(), velocity.data(),
                                          full_sweep, 0.0, work.change_sq.data());
     if (exchange) exchange->after_sweep(change);
-    if (count_sweep(report, change, contacts.size(), settings)) return report;
+    const bool converged = count_sweep(report, change, contacts.size(), settings);
+    // Contacts that join are active in the cycle: they have not been swept yet.
+    if (joining && looks_for_joining(full_sweeps, converged) && joining->join(converged))
+      work.change_sq.resize(contacts.size(), std::numeric_limits<double>::infinity());
+    else if (converged) return report;
     work.active.select(contacts, work.change_sq,
                        change.quiet_change_sq(settings.norm, settings.tolerance, quiet_fraction));
     conjugate.restart(report.residual < previous_full_residual);
@@ -420,13 +432,13 @@ SolveReport solve_in_cycles(std::vector<Contact>& contacts, std::vector<BodyVelo
 }  // namespace
 
 SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                               const SolverSettings& settings, SweepExchange* exchange)
+                               const SolverSettings& settings, SweepExchange* exchange, JoiningContacts* joining)
 {
   // Without an exchange there is nothing to do; with one, every rank takes part in every
   // sweep's exchange, contacts or not.
   if (contacts.empty() && !exchange) return {};
-  return settings.full_sweep_every > 1 ? solve_in_cycles(contacts, velocity, settings, exchange)
-                                       : solve_in_full_sweeps(contacts, velocity, settings, exchange);
+  return settings.full_sweep_every > 1 ? solve_in_cycles(contacts, velocity, settings, exchange, joining)
+                                       : solve_in_full_sweeps(contacts, velocity, settings, exchange, joining);
 }
 
 double end_of_step_gap(double gap, double normal_velocity, const StepParameters& step)

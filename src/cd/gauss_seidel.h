@@ -153,11 +153,26 @@ SweepChange sweep(Contact* first, Contact* last, BodyVelocity* velocity, const S
 SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const SolverSettings& settings,
                   double beta = 0.0);
 
+// Contacts that may join a solve while it runs (cd::solve_step: pairs the iterate drives shut).
+// The solve asks after each full sweep; one that converged ends only if none joined.
+class JoiningContacts {
+ public:
+  virtual ~JoiningContacts() = default;
+  // Appends to the contacts the solve runs on those that join at its current velocities, their
+  // impulses zero; true if any did. `converged`: the full sweep met the tolerance (every rank
+  // sees the same); the answer must then be the same on every rank: it decides whether the
+  // solve ends.
+  virtual bool join(bool converged) = 0;
+};
+
 // Sweeps until the norm falls to the tolerance or the iteration cap is reached, in cycles of
 // SolverSettings::full_sweep_every. The contacts' impulses must already be applied to
-// `velocity` (apply_impulses).
+// `velocity` (apply_impulses). `joining` (optional) is asked after the 1st, 2nd, 4th, 8th, ...
+// full sweep (the step's collisions drive pairs shut in its first sweeps; looking after every
+// sweep would cost a twentieth of the step) and after every converged one.
 SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                               const SolverSettings& settings, SweepExchange* exchange = nullptr);
+                               const SolverSettings& settings, SweepExchange* exchange = nullptr,
+                               JoiningContacts* joining = nullptr);
 
 // Linearised gap at the end of the step: gap + theta dt u_n^+ (m).
 double end_of_step_gap(double gap, double normal_velocity, const StepParameters& step);

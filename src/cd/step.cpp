@@ -53,7 +53,8 @@ StepReport MoreauJeanStep::solve(BodySet& bodies, double dt, StepHost& host, Swe
 
   HostPairs wider(host, reach_, contacts_);
   StepReport report;
-  report.solve = solve_step(contacts_, bodies, step, settings_.solver, reach_, wider, exchange, settings_.max_solves);
+  report.solve = solve_step(contacts_, bodies, step, settings_.solver, reach_, wider, exchange, settings_.max_solves,
+                            settings_.joining);
   report.overlaps = measure_overlaps(contacts_, bodies.velocity, step);
   report.loaded_contacts = store_impulses(host);
   return report;

@@ -84,6 +84,7 @@ struct StepSettings {
   bool warm_start = true;
   ContactOrder order = ContactOrder::interleaved;
   int max_solves = 10;  // solves of one step, at most (cd::solve_step)
+  Joining joining = Joining::after_solve;
 };
 
 struct StepReport {

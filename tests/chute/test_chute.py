@@ -553,6 +553,7 @@ BAD_VARS = [
     ("warm_start", "1", "-var warm_start 1"),
     ("norm", "2", "-var norm 2"),
     ("order", "random", "-var order random"),
+    ("join", "before", "-var join before"),
     ("acceleration", "anderson", "-var acceleration anderson"),
     ("full_sweep_every", "0", "-var full_sweep_every 0"),
     ("full_sweep_every", "2.5", "-var full_sweep_every 2.5"),

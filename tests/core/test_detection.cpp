@@ -1,7 +1,7 @@
 // Which pairs a step looks at (cd::PairReach) and the solve that lets watched pairs join
 // (cd::solve_step, through cd::MoreauJeanStep): the reach test against the gap it stands for, the margin a solve needs,
-// a step with the reach against the same step with every pair looked at, and the overlaps a
-// step leaves (cd::measure_overlaps).
+// pairs joining after the solve and during it, a step with the reach against the same step
+// with every pair looked at, and the overlaps a step leaves (cd::measure_overlaps).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -68,24 +68,30 @@ struct StepResult {
   cd::BodySet bodies;
   int collections = 0;
   int looked_at = 0;
+  int solves = 0;
 };
 
 // One step of the core from the scene's free velocities, solving the candidates at `alert`
-// (infinity: every pair, all solved).
-StepResult solve(const Scene& scene, double alert)
+// (infinity: every pair, all solved), closing pairs joining as `joining` says.
+StepResult solve(const Scene& scene, double alert, cd::Joining joining = cd::Joining::after_solve,
+                 int full_sweep_every = 1)
 {
   StepResult result;
   result.bodies = scene.bodies;
   cd::StepSettings settings;
   settings.solver = {1e-12, 100000, 1.0, cd::ConvergenceNorm::quadratic};
+  settings.solver.full_sweep_every = full_sweep_every;
   settings.alert = alert;
+  settings.joining = joining;
   cd::MoreauJeanStep moreau_jean(settings);
   AllPairs host(scene);
-  moreau_jean.solve(result.bodies, step.dt, host);
+  result.solves = moreau_jean.solve(result.bodies, step.dt, host).solve.solves;
   result.collections = host.calls;
   result.looked_at = host.looked_at;
   return result;
 }
+
+constexpr cd::Joining both_joinings[] = {cd::Joining::after_solve, cd::Joining::during_solve};
 
 double end_gap(const Scene& scene, const cd::BodySet& bodies, int i, int j)
 {
@@ -148,8 +154,34 @@ TEST(SolveStep, BodiesFasterThanTheMarginMakeTheSolveLookWider)
   for (int b = 1; b <= 3; b++) EXPECT_NEAR(narrow.bodies.velocity[b].vx, everything.bodies.velocity[b].vx, 1e-9);
 }
 
+// A fast disk hits a resting one, which is driven into a third, watched (looked at, moving
+// away too slowly to be a candidate): joining during the solve takes it in one solve, joining
+// after takes two; both reach the solution of every pair solved, in full sweeps and in cycles.
+TEST(SolveStep, PairsJoiningDuringTheSolveNeedOneSolve)
+{
+  const double v = 10.0;    // m/s; the second disk leaves the hit at 7.5 m/s (e = 0.5)
+  const double away = 2.0;  // m/s: the third disk's reach theta dt away = 1e-3 m
+  const double gap = 1e-3;  // above the alert, within the look; closed by 5.5 m/s in theta dt
+  Scene scene;
+  scene.add({0.0, radius, radius}, {v, 0.0, 0.0});
+  scene.add({2.0 * radius, radius, radius}, {0.0, 0.0, 0.0});
+  scene.add({4.0 * radius + gap, radius, radius}, {away, 0.0, 0.0});
+  const StepResult everything = solve(scene, std::numeric_limits<double>::infinity());
+  for (const int full_sweep_every : {1, 8}) {
+    const StepResult after = solve(scene, alert, cd::Joining::after_solve, full_sweep_every);
+    const StepResult during = solve(scene, alert, cd::Joining::during_solve, full_sweep_every);
+    EXPECT_EQ(after.solves, 2);
+    EXPECT_EQ(during.solves, 1);
+    for (int b = 1; b <= 3; b++) {
+      EXPECT_NEAR(after.bodies.velocity[b].vx, everything.bodies.velocity[b].vx, 1e-9) << "body " << b;
+      EXPECT_NEAR(during.bodies.velocity[b].vx, everything.bodies.velocity[b].vx, 1e-9) << "body " << b;
+    }
+    EXPECT_GT(during.bodies.velocity[3].vx, away) << "the third disk is pushed";
+  }
+}
+
 // A random gas of disks, fast and slow: the reach looks at fewer pairs and reaches the same
-// solution as looking at every pair.
+// solution as looking at every pair, whenever closing pairs join.
 TEST(SolveStep, TheReachGivesTheSameStepAsLookingAtEveryPair)
 {
   std::mt19937_64 rng(17);
@@ -161,16 +193,18 @@ TEST(SolveStep, TheReachGivesTheSameStepAsLookingAtEveryPair)
         scene.add({column * 2.02 * radius + 0.002 * unit(rng), row * 2.02 * radius + 0.002 * unit(rng),
                    radius * (1.0 - 0.05 * std::abs(unit(rng)))},
                   {(row == 3 ? 20.0 : 1.0) * unit(rng), unit(rng), unit(rng)});
-    const StepResult narrow = solve(scene, alert);
     const StepResult everything = solve(scene, std::numeric_limits<double>::infinity());
-    EXPECT_LT(narrow.looked_at, everything.looked_at) << "trial " << trial;
-    for (std::size_t b = 1; b < scene.bodies.velocity.size(); b++) {
-      EXPECT_NEAR(narrow.bodies.velocity[b].vx, everything.bodies.velocity[b].vx, 1e-8) << "trial " << trial;
-      EXPECT_NEAR(narrow.bodies.velocity[b].vy, everything.bodies.velocity[b].vy, 1e-8) << "trial " << trial;
+    for (const cd::Joining joining : both_joinings) {
+      const StepResult narrow = solve(scene, alert, joining);
+      EXPECT_LT(narrow.looked_at, everything.looked_at) << "trial " << trial;
+      for (std::size_t b = 1; b < scene.bodies.velocity.size(); b++) {
+        EXPECT_NEAR(narrow.bodies.velocity[b].vx, everything.bodies.velocity[b].vx, 1e-8) << "trial " << trial;
+        EXPECT_NEAR(narrow.bodies.velocity[b].vy, everything.bodies.velocity[b].vy, 1e-8) << "trial " << trial;
+      }
+      for (int i = 0; i < 36; i++)
+        for (int j = i + 1; j < 36; j++)
+          EXPECT_GE(end_gap(scene, narrow.bodies, i, j), -1e-9) << "trial " << trial << " pair " << i << " " << j;
     }
-    for (int i = 0; i < 36; i++)
-      for (int j = i + 1; j < 36; j++)
-        EXPECT_GE(end_gap(scene, narrow.bodies, i, j), -1e-9) << "trial " << trial << " pair " << i << " " << j;
   }
 }
 

@@ -50,6 +50,7 @@ const BadCase bad_cases[] = {
     {"relaxation_out_of_range", with_fix("0.5 0.5 relaxation 1.5"), "relaxation must be in (0,1], got 1.5"},
     {"unknown_norm", with_fix("0.5 0.5 norm l2"), "norm must be quadratic or maximum, got 'l2'"},
     {"unknown_order", with_fix("0.5 0.5 order random"), "order must be fixed or shuffle, got 'random'"},
+    {"unknown_join", with_fix("0.5 0.5 join before"), "join must be during or after, got 'before'"},
     {"unknown_acceleration", with_fix("0.5 0.5 acceleration anderson"),
      "acceleration must be none or conjugate, got 'anderson'"},
     {"zero_full_sweep_every", with_fix("0.5 0.5 full_sweep_every 0"), "full_sweep_every must be >= 1, got 0"},
