@@ -54,7 +54,7 @@ void StepContacts::offer(const ContactGeometry& geometry, const ContactLaw& law,
 {
   const Contact frame = contact_frame(geometry);
   if (watch_only_ || !is_candidate(frame, *bodies_, step_, alert_)) {
-    watched.push_back({frame, law, key});
+    watched.push_back({geometry, law, key});
     return;
   }
   solved.push_back(frame);
@@ -79,12 +79,12 @@ bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const 
   const std::size_t before = contacts.solved.size();
   std::size_t kept = 0;
   for (WatchedPair& pair : contacts.watched) {
-    if (!closes_after_solve(pair.frame, bodies.velocity, step)) {
+    if (!closes_after_solve(pair.geometry, bodies.velocity, step)) {
       contacts.watched[kept++] = pair;
       continue;
     }
-    prepare_mechanics(pair.frame, pair.law, bodies, step);
-    contacts.solved.push_back(pair.frame);
+    contacts.solved.push_back(contact_frame(pair.geometry));
+    prepare_mechanics(contacts.solved.back(), pair.law, bodies, step);
     contacts.keys.push_back(pair.key);
   }
   contacts.watched.resize(kept);
@@ -159,7 +159,10 @@ OverlapSums measure_overlaps(const StepContacts& contacts, const std::vector<Bod
     sums.deepest = std::max(sums.deepest, overlap);
     sums.total += overlap;
   }
-  for (const WatchedPair& pair : contacts.watched) sums.deepest = std::max(sums.deepest, overlap_of(pair.frame));
+  for (const WatchedPair& pair : contacts.watched) {
+    const double overlap = -end_of_step_gap(pair.geometry.gap, normal_velocity(pair.geometry, velocity), step);
+    sums.deepest = std::max(sums.deepest, overlap);
+  }
   return sums;
 }
 

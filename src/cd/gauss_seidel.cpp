@@ -441,15 +441,4 @@ SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyV
                                        : solve_in_full_sweeps(contacts, velocity, settings, exchange, joining);
 }
 
-double end_of_step_gap(double gap, double normal_velocity, const StepParameters& step)
-{
-  return gap + step.theta * step.dt * normal_velocity;
-}
-
-bool closes_after_solve(const Contact& frame, const std::vector<BodyVelocity>& velocity, const StepParameters& step)
-{
-  const double u_n = relative_velocity(frame, velocity[frame.body_a], velocity[frame.body_b]).n;
-  return end_of_step_gap(frame.gap, u_n, step) < 0.0;
-}
-
 }  // namespace cd

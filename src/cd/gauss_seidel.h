@@ -174,12 +174,28 @@ SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyV
                                const SolverSettings& settings, SweepExchange* exchange = nullptr,
                                JoiningContacts* joining = nullptr);
 
+// u_n of a pair not (yet) solved: relative_velocity(contact_frame(pair), ...).n.
+inline double normal_velocity(const ContactGeometry& pair, const std::vector<BodyVelocity>& velocity)
+{
+  const BodyVelocity& a = velocity[pair.body_a];
+  const BodyVelocity& b = velocity[pair.body_b];
+  return (a.vx - b.vx) * pair.normal_x + (a.vy - b.vy) * pair.normal_y;
+}
+
 // Linearised gap at the end of the step: gap + theta dt u_n^+ (m).
-double end_of_step_gap(double gap, double normal_velocity, const StepParameters& step);
+inline double end_of_step_gap(double gap, double normal_velocity, const StepParameters& step)
+{
+  return gap + step.theta * step.dt * normal_velocity;
+}
 
 // True if a pair left out of the solve would overlap at the end of the step with the solved
 // velocities: other impulses (a grain stopped by the floor, say) drove it shut faster than
 // the candidate selection foresaw. Such pairs join the contacts and the solve continues.
-bool closes_after_solve(const Contact& frame, const std::vector<BodyVelocity>& velocity, const StepParameters& step);
+// Inline: a solve asks it of every watched pair several times.
+inline bool closes_after_solve(const ContactGeometry& pair, const std::vector<BodyVelocity>& velocity,
+                               const StepParameters& step)
+{
+  return end_of_step_gap(pair.gap, normal_velocity(pair, velocity), step) < 0.0;
+}
 
 }  // namespace cd

@@ -232,7 +232,7 @@ TEST(MeasureOverlaps, DeepestOverAllPairsAndTotalOverTheSolvedOnes)
   EXPECT_NEAR(sums.deepest, -closing, 1e-12);
   EXPECT_NEAR(sums.total, 1e-3 - closing, 1e-12);
 
-  contacts.watched.push_back({frame(7, 8), law, {}});
+  contacts.watched.push_back({cd::disk_disk_geometry(7, scene.disks[6], 8, scene.disks[7]), law, {}});
   sums = cd::measure_overlaps(contacts, scene.bodies.velocity, step);
   EXPECT_NEAR(sums.deepest, 3e-3, 1e-12) << "the watched pair is the deepest";
   EXPECT_NEAR(sums.total, 1e-3 - closing, 1e-12) << "the watched pair adds nothing to the total";
