@@ -18,7 +18,8 @@ PARTS = [
     ("LAMMPS neighbour builds", r"NPair|NBin|NStencil|Neighbor::"),
     ("pair collection and selection", r"collect_|disk_disk_geometry|is_candidate|StepContacts::offer|StepContacts::add|"
                                       r"contact_frame|wall_contact|pair_key|between_atoms|against_wall|add_pair|"
-                                      r"minimum_image|PairReach|promote_closing|closes_after_solve"),
+                                      r"minimum_image|PairReach"),
+    ("pairs joining (watched pairs checked)", r"promote_closing|closes_after_solve|ClosingPairs"),
     ("contact mechanics", r"prepare_mechanics"),
     ("warm start and its store", r"carried_impulse|remember_impulse|forget_impulses|store_impulses|load_warm_start|"
                                  r"store_warm_start|append_history|warm_start|apply_impulses"),

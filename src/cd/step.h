@@ -83,8 +83,8 @@ struct StepSettings {
   double alert = 0.0;  // m: candidate selection (cd::is_candidate)
   bool warm_start = true;
   ContactOrder order = ContactOrder::interleaved;
-  int max_solves = 10;  // solves of one step, at most (cd::solve_step)
-  Joining joining = Joining::after_solve;
+  int max_solves = 10;                     // solves of one step, at most (cd::solve_step)
+  Joining joining = Joining::after_solve;  // when watched pairs driven shut join (cd::Joining)
 };
 
 struct StepReport {
