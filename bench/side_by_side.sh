@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# The cost of two settings of the chute deck from one restart, side by side: setting A on core 0
+# and B on core 1, then swapped, each run continuing START to DURATION (chute time, s). Prints
+# each run's user time and the ratio B / A of the sums: both sides ran under the same load.
+#
+#   bench/side_by_side.sh START DURATION "A's -var pairs" "B's -var pairs" [common -var pairs]
+#   bench/side_by_side.sh runs/mu0.5_theta24/chute.restart 8.5 "-var join after" "-var join during" \
+#       "-var mu 0.5 -var theta 24"
+#
+# Environment: LMP (default build/lmp_cd), DECK (inputs/in.chute), OUT (a new temporary folder).
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+lmp=${LMP:-$here/../build/lmp_cd}
+deck=${DECK:-$here/../inputs/in.chute}
+[ $# -ge 4 ] || { echo "usage: side_by_side.sh START DURATION A_VARS B_VARS [COMMON_VARS]" >&2; exit 1; }
+start=$(realpath "$1") duration=$2 vars_a=$3 vars_b=$4 common=${5:-}
+[ -f "$start" ] || { echo "side_by_side.sh: no restart file $start" >&2; exit 1; }
+[ -x "$lmp" ] || { echo "side_by_side.sh: no executable $lmp: build lmp_cd first" >&2; exit 1; }
+out=${OUT:-$(mktemp -d /tmp/side_by_side.XXXXXX)}
+mkdir -p "$out"
+
+# run NAME CORE VARS: one run in $out/NAME, its user time in $out/NAME/user.txt
+run() {
+  mkdir -p "$out/$1"
+  # shellcheck disable=SC2086  # the -var pairs are split on purpose
+  (cd "$out/$1" && taskset -c "$2" /usr/bin/time -f %U -o user.txt "$lmp" -in "$deck" -var stage flow \
+    -var start "$start" -var duration "$duration" $common $3 -screen none -log log.lammps)
+}
+run a1 0 "$vars_a" & run b1 1 "$vars_b" & wait
+run a2 1 "$vars_a" & run b2 0 "$vars_b" & wait
+
+python3 - "$out" <<'PY'
+import sys
+out = sys.argv[1]
+user = {name: float(open(f"{out}/{name}/user.txt").read().split()[-1]) for name in ("a1", "a2", "b1", "b2")}
+print(f"A: {user['a1']:.2f} s (core 0), {user['a2']:.2f} s (core 1)")
+print(f"B: {user['b1']:.2f} s (core 1), {user['b2']:.2f} s (core 0)")
+print(f"B / A: {(user['b1'] + user['b2']) / (user['a1'] + user['a2']):.3f}   (runs in {out})")
+PY
