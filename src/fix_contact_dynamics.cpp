@@ -37,7 +37,7 @@ constexpr double disk_inertia_factor = 0.5;  // I = m r^2 / 2 for a uniform disk
 constexpr double uniform_ratio_tolerance = 1.0e-6;
 // Default alert distance, in mean diameters: pairs this close are solved even when their free
 // motion does not close them (see cd::is_candidate). 0.03 solves the 45 d chute once a step
-// at 0.90-1.02x the cost but slows the bed of the mu 0.05 flow (doc/benchmarks.md).
+// at 0.90-1.02x the cost but slows the bed of the mu 0.05 flow (doc/accuracy.md, One solve a step).
 constexpr double default_alert_fraction = 0.01;
 // Overlaps deeper than this, in mean diameters, at the start of a run are reported.
 constexpr double initial_overlap_warning = 0.01;
