@@ -25,6 +25,8 @@
 #include "update.h"
 #include "utils.h"
 
+#include "cd/impulse_row.h"
+
 using namespace LAMMPS_NS;
 using namespace FixConst;
 using MathConst::MY_PI;
@@ -96,12 +98,12 @@ FixContactDynamics::FixContactDynamics(LAMMPS* lmp, int narg, char** arg) : Fix(
   // version's reset_timestep keeps the time already run, e.g. a deposition before the chute).
   if (update->ntimestep == 0) set_clock(0.0);
 
-  history_width = 1 + 3 * settings.max_contacts;
+  history_width = cd::impulse_row::width(settings.max_contacts);
   maxexchange = history_width;
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
   atom->add_callback(Atom::RESTART);
-  for (int i = 0; i < atom->nlocal; i++) history[i][0] = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) cd::impulse_row::clear(history[i]);
 }
 
 FixContactDynamics::~FixContactDynamics()
@@ -655,18 +657,12 @@ void FixContactDynamics::collect_wall_pairs(const cd::PairReach& reach, double f
 
 cd::Local2 FixContactDynamics::LammpsHost::carried_impulse(const cd::PairKey& key) const
 {
-  const double* row = fix.history[key.row];
-  const int count = static_cast<int>(row[0]);
-  for (int slot = 0; slot < count; slot++) {
-    const double* entry = row + 1 + 3 * slot;
-    if (entry[0] == key.partner) return {entry[1], entry[2]};
-  }
-  return {};
+  return cd::impulse_row::find(fix.history[key.row], key.partner);
 }
 
 void FixContactDynamics::LammpsHost::forget_impulses()
 {
-  for (int i = 0; i < fix.atom->nlocal; i++) fix.history[i][0] = 0.0;
+  for (int i = 0; i < fix.atom->nlocal; i++) cd::impulse_row::clear(fix.history[i]);
 }
 
 void FixContactDynamics::LammpsHost::remember_impulse(const cd::PairKey& key, cd::Local2 impulse)
@@ -674,18 +670,9 @@ void FixContactDynamics::LammpsHost::remember_impulse(const cd::PairKey& key, cd
   if (!std::isfinite(impulse.n) || !std::isfinite(impulse.t))
     fix.error->one(FLERR, "Fix contact/dynamics: non-finite impulse between atom {} and {} at step {}",
                    fix.atom->tag[key.row], partner_name(key.partner), fix.update->ntimestep);
-  double* row = fix.history[key.row];
-  const int count = static_cast<int>(row[0]);
-  if (count == fix.settings.max_contacts)
-    fix.error->one(FLERR,
-                   "Fix contact/dynamics: atom {} has more than {} loaded contacts; raise "
-                   "max_contacts",
+  if (!cd::impulse_row::append(fix.history[key.row], fix.settings.max_contacts, key.partner, impulse))
+    fix.error->one(FLERR, "Fix contact/dynamics: atom {} has more than {} loaded contacts; raise max_contacts",
                    fix.atom->tag[key.row], fix.settings.max_contacts);
-  double* entry = row + 1 + 3 * count;
-  entry[0] = key.partner;
-  entry[1] = impulse.n;
-  entry[2] = impulse.t;
-  row[0] = count + 1;
 }
 
 void FixContactDynamics::write_back_motion()
@@ -940,31 +927,31 @@ void FixContactDynamics::grow_arrays(int nmax)
 
 void FixContactDynamics::copy_arrays(int i, int j, int)
 {
-  std::memcpy(history[j], history[i], sizeof(double) * (1 + 3 * static_cast<int>(history[i][0])));
+  std::memcpy(history[j], history[i], sizeof(double) * cd::impulse_row::used(history[i]));
 }
 
 void FixContactDynamics::set_arrays(int i)
 {
-  history[i][0] = 0.0;
+  cd::impulse_row::clear(history[i]);
 }
 
 int FixContactDynamics::pack_exchange(int i, double* buf)
 {
-  const int n = 1 + 3 * static_cast<int>(history[i][0]);
+  const int n = cd::impulse_row::used(history[i]);
   std::memcpy(buf, history[i], sizeof(double) * n);
   return n;
 }
 
 int FixContactDynamics::unpack_exchange(int nlocal, double* buf)
 {
-  const int n = 1 + 3 * static_cast<int>(buf[0]);
+  const int n = cd::impulse_row::used(buf);
   std::memcpy(history[nlocal], buf, sizeof(double) * n);
   return n;
 }
 
 int FixContactDynamics::pack_restart(int i, double* buf)
 {
-  const int n = 1 + 3 * static_cast<int>(history[i][0]);
+  const int n = cd::impulse_row::used(history[i]);
   buf[0] = n + 1;  // LAMMPS convention: the first value counts the values of this fix
   std::memcpy(buf + 1, history[i], sizeof(double) * n);
   return n + 1;
@@ -976,18 +963,18 @@ void FixContactDynamics::unpack_restart(int nlocal, int nth)
   int m = 0;
   for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
   m++;
-  const int count = static_cast<int>(extra[nlocal][m]);
+  const int count = cd::impulse_row::entries(&extra[nlocal][m]);
   if (count > settings.max_contacts)
     error->one(FLERR,
                "Fix contact/dynamics: restart holds {} contacts for atom {}, more than "
                "max_contacts {}",
                count, atom->tag[nlocal], settings.max_contacts);
-  std::memcpy(history[nlocal], &extra[nlocal][m], sizeof(double) * (1 + 3 * count));
+  std::memcpy(history[nlocal], &extra[nlocal][m], sizeof(double) * cd::impulse_row::width(count));
 }
 
 int FixContactDynamics::size_restart(int i)
 {
-  return 2 + 3 * static_cast<int>(history[i][0]);
+  return 1 + cd::impulse_row::used(history[i]);
 }
 
 int FixContactDynamics::maxsize_restart()

@@ -126,13 +126,17 @@ SolveReport solve_step(StepContacts& contacts, BodySet& bodies, const StepParame
   double needed = 0.0;
   for (int round = 1;; round++) {
     needed = std::max(needed, reach.needed_margin(bodies.velocity, step));
-    if (needed > reach.margin()) {
+    const bool widened = needed > reach.margin();
+    if (widened) {
       const double wider = margin_growth * needed;
       collector.collect_between(reach.margin(), wider);
       reach.widen_to(wider);
     }
     if (round == max_rounds) break;
-    bool promoted = promote_closing_pairs(contacts, bodies, step);
+    // A solve that converged joining during its sweeps has just checked every watched pair at
+    // these velocities: only pairs the wider look added are new (the vote is every rank's).
+    const bool checked = during && report.converged && !widened;
+    bool promoted = !checked && promote_closing_pairs(contacts, bodies, step);
     if (exchange) promoted = exchange->on_any_rank(promoted);
     if (!promoted) break;
     const SolveReport more = solve_gauss_seidel(contacts.solved, bodies.velocity, settings, exchange, during);

@@ -434,9 +434,10 @@ SolveReport solve_in_cycles(std::vector<Contact>& contacts, std::vector<BodyVelo
 SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
                                const SolverSettings& settings, SweepExchange* exchange, JoiningContacts* joining)
 {
-  // Without an exchange there is nothing to do; with one, every rank takes part in every
+  // Without an exchange and without contacts there is nothing to do unless some join (a
+  // problem without contacts has converged); with an exchange, every rank takes part in every
   // sweep's exchange, contacts or not.
-  if (contacts.empty() && !exchange) return {};
+  if (contacts.empty() && !exchange && !(joining && joining->join(true))) return {};
   return settings.full_sweep_every > 1 ? solve_in_cycles(contacts, velocity, settings, exchange, joining)
                                        : solve_in_full_sweeps(contacts, velocity, settings, exchange, joining);
 }
