@@ -1,0 +1,192 @@
+#!/usr/bin/env python3
+"""The erodible bed against the solver's tolerance (doc/bed.md): the runs.
+
+One layer-reading deposition (L 45 d, seed 20261122, the published series' own) serves every run:
+
+    floor/tol<T>_<order>        the packing at rest: mu 0.5, gravity tilted to 12 deg (below
+                                the flow threshold), tolerance T, 0.6 s from the tilt
+    start/mu<mu>_theta<theta>   a stationary flow: 6 s at tolerance 1e-2 from the tilt
+    flow/mu<mu>_theta<theta>/tol<T>_<order>
+                                continued from the start's chute.restart for 1.2 s at
+                                tolerance T, the deck's defaults otherwise
+
+with <order> fixed, or shuffle<seed> (the contact order shuffled by that seed): replicas of one
+setting from one state. Every job runs in legs (legs/NN, one lmp_cd each); started again with
+the same options, finished jobs are skipped and an unfinished one continues from its newest
+restart (the deck writes one every 0.1 s); a job whose origin is not finished waits for it
+(another runner of the study may be running it on the other core). The outputs of the legs are spliced by time step
+into the job's folder. Analysis: bench/bed_profiles.py.
+
+    bench/bed_study.py --out runs/bed --core 0 --only 'floor/*1e-3*' --only 'start/*'
+
+Standard library only.
+"""
+
+import argparse
+import fnmatch
+import math
+import os
+import shlex
+import shutil
+import subprocess
+import sys
+import time
+
+# cdtools, found from this file (scripts/cdtools/__init__.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, "scripts"))
+
+from cdtools.campaign.legs import LEG_OUTPUTS, splice_legs
+from cdtools.lammps_files import time_span
+from cdtools.logs import read_progress
+from cdtools.run import BUILT_LMP_CD, DECK, lmp_command
+
+CELL = dict(reading="layer", L="45", seed="20261122")
+FLOOR = dict(mu="0.5", theta="12", duration="0.6", max_iterations="100000")
+FLOWS = (("0.5", "24"), ("0.05", "20"), ("2", "28"))
+START = dict(tolerance="1e-2", duration="6")
+CONTINUATION_SECONDS = 1.2
+TOLERANCES = ("1e-3", "1e-4")
+ORDERS = ("fixed", "shuffle1", "shuffle2")
+
+
+def order_variables(order):
+    """'fixed' or 'shuffle<seed>' -> the deck's order and seed variables."""
+    if order == "fixed":
+        return dict(order="fixed")
+    return dict(order="shuffle", seed=order[len("shuffle"):])
+
+
+class Job:
+    """One run of the study: its folder, deck variables, and the job whose end it starts from."""
+
+    def __init__(self, name, variables, origin):
+        self.name, self.vars, self.origin = name, variables, origin
+
+    def folder(self, out):
+        return os.path.join(out, self.name)
+
+    def start_file(self, out):
+        if self.origin == "deposition":
+            return os.path.join(out, "deposition", "deposition.restart")
+        return os.path.join(out, self.origin, "chute.restart")
+
+
+def plan():
+    """Every job of the study, in the order they are run."""
+    jobs = []
+    for tolerance in TOLERANCES + ("1e-5",):
+        for order in ORDERS:
+            jobs.append(Job(f"floor/tol{tolerance}_{order}",
+                            dict(CELL, **FLOOR, tolerance=tolerance, **order_variables(order)), "deposition"))
+    for mu, theta in FLOWS:
+        start = f"start/mu{mu}_theta{theta}"
+        jobs.append(Job(start, dict(CELL, mu=mu, theta=theta, **START), "deposition"))
+        end = float(START["duration"]) + CONTINUATION_SECONDS
+        for tolerance in TOLERANCES + ("1e-5",):
+            for order in ORDERS:
+                variables = dict(CELL, mu=mu, theta=theta, tolerance=tolerance, duration=f"{end:g}",
+                                 max_iterations="100000", **order_variables(order))
+                jobs.append(Job(f"flow/mu{mu}_theta{theta}/tol{tolerance}_{order}", variables, start))
+    return jobs
+
+
+def legs(folder):
+    path = os.path.join(folder, "legs")
+    return sorted(os.path.join(path, n) for n in os.listdir(path)) if os.path.isdir(path) else []
+
+
+def newest_restart(folder):
+    """The newest non-empty restart.a/b of the job's legs, or None."""
+    files = [os.path.join(leg, n) for leg in legs(folder) for n in ("restart.a", "restart.b")]
+    files = [f for f in files if os.path.exists(f) and os.path.getsize(f) > 0]
+    return max(files, key=os.path.getmtime) if files else None
+
+
+def splice(folder):
+    """The legs' outputs joined by time step into the job's folder (later legs win)."""
+    leg_dirs = legs(folder)
+    starts = []
+    for leg in leg_dirs:
+        first = read_progress(os.path.join(leg, "log.lammps")).first_step
+        starts.append(first if first is not None else math.inf)
+    for name, kind in LEG_OUTPUTS:
+        if name != "dump.chute.gz":
+            splice_legs(leg_dirs, starts, name, kind, os.path.join(folder, name))
+    shutil.copy2(os.path.join(leg_dirs[-1], "chute.restart"), os.path.join(folder, "chute.restart"))
+    shutil.copy2(os.path.join(leg_dirs[-1], "chute.params"), os.path.join(folder, "chute.params"))
+
+
+def cpu_seconds(folder):
+    return sum(read_progress(os.path.join(leg, "log.lammps")).cpu for leg in legs(folder))
+
+
+def run_deposition(out, args):
+    folder = os.path.join(out, "deposition")
+    if os.path.exists(os.path.join(folder, "deposition.restart")):
+        return
+    os.makedirs(folder, exist_ok=True)
+    command = args.pin + lmp_command(args.lmp, DECK, dict(CELL, stage="deposition"), screen="none")
+    subprocess.run(command, cwd=folder, check=True)
+
+
+def run_job(job, args):
+    """Legs until the job reaches its duration, then the splice; a failed leg stops the study."""
+    folder = job.folder(args.out)
+    if os.path.exists(os.path.join(folder, "DONE")):
+        return
+    duration = float(job.vars["duration"])
+    origin_done = os.path.join(args.out, job.origin, "DONE" if job.origin != "deposition" else "deposition.restart")
+    while not os.path.exists(origin_done):    # run by another runner of the study (another core)
+        print(f"{job.name}: waiting for {job.origin}", flush=True)
+        time.sleep(60)
+    while True:
+        done = [time_span(os.path.join(leg, "flow.time")) for leg in legs(folder)]
+        reached = max((span[1] for span in done if span), default=0.0)
+        finished = legs(folder) and os.path.exists(os.path.join(legs(folder)[-1], "chute.restart"))
+        if finished and reached >= duration - 1e-9:
+            break
+        start = newest_restart(folder) or job.start_file(args.out)
+        leg = os.path.join(folder, "legs", f"{len(legs(folder)):02d}")
+        os.makedirs(leg)
+        variables = dict(job.vars, stage="flow", start=start)
+        command = args.pin + lmp_command(args.lmp, DECK, variables, screen="none")
+        with open(os.path.join(leg, "command.sh"), "w") as script:
+            script.write("#!/bin/sh\ncd " + shlex.quote(leg) + " && " + shlex.join(command) + "\n")
+        print(f"{job.name}: leg {os.path.basename(leg)} from {os.path.relpath(start, args.out)}", flush=True)
+        if subprocess.run(command, cwd=leg).returncode != 0:
+            raise RuntimeError(f"{job.name}: leg {leg} failed (see its log.lammps)")
+    splice(folder)
+    with open(os.path.join(folder, "DONE"), "w") as mark:
+        mark.write(f"cpu_seconds {cpu_seconds(folder):.1f}\n")
+    print(f"{job.name}: done, {cpu_seconds(folder):.0f} CPU s", flush=True)
+
+
+def options(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", required=True, help="study folder (resumable)")
+    parser.add_argument("--only", action="append", metavar="GLOB", required=True,
+                        help="jobs to run, by name (repeatable), e.g. 'floor/tol1e-3_*'")
+    parser.add_argument("--core", type=int, help="pin the runs to this CPU core (taskset)")
+    parser.add_argument("--lmp", default=BUILT_LMP_CD)
+    parser.add_argument("--list", action="store_true", help="list the jobs the globs select, run nothing")
+    args = parser.parse_args(argv)
+    args.out = os.path.abspath(args.out)
+    args.pin = ["taskset", "-c", str(args.core)] if args.core is not None else []
+    return args
+
+
+def main(argv=None):
+    args = options(argv)
+    jobs = [job for job in plan() if any(fnmatch.fnmatch(job.name, glob) for glob in args.only)]
+    if not jobs:
+        sys.exit(f"bed_study.py: --only {' '.join(args.only)}: no job of the study matches")
+    if args.list:
+        print("\n".join(job.name for job in jobs))
+        return
+    run_deposition(args.out, args)
+    for job in jobs:
+        run_job(job, args)
+
+
+if __name__ == "__main__":
+    main()
