@@ -120,12 +120,23 @@ def cpu_seconds(folder):
     return sum(read_progress(os.path.join(leg, "log.lammps")).cpu for leg in legs(folder))
 
 
+def study_deck(out):
+    """The study's own copy of in.chute, taken at its first run: LAMMPS reads a deck as it goes,
+    so an edit of inputs/in.chute must never reach a run under way."""
+    deck = os.path.join(out, "in.chute")
+    if not os.path.exists(deck):
+        os.makedirs(out, exist_ok=True)
+        shutil.copy2(DECK, deck + ".tmp")
+        os.replace(deck + ".tmp", deck)
+    return deck
+
+
 def run_deposition(out, args):
     folder = os.path.join(out, "deposition")
     if os.path.exists(os.path.join(folder, "deposition.restart")):
         return
     os.makedirs(folder, exist_ok=True)
-    command = args.pin + lmp_command(args.lmp, DECK, dict(CELL, stage="deposition"), screen="none")
+    command = args.pin + lmp_command(args.lmp, study_deck(out), dict(CELL, stage="deposition"), screen="none")
     subprocess.run(command, cwd=folder, check=True)
 
 
@@ -149,7 +160,7 @@ def run_job(job, args):
         leg = os.path.join(folder, "legs", f"{len(legs(folder)):02d}")
         os.makedirs(leg)
         variables = dict(job.vars, stage="flow", start=start)
-        command = args.pin + lmp_command(args.lmp, DECK, variables, screen="none")
+        command = args.pin + lmp_command(args.lmp, study_deck(args.out), variables, screen="none")
         with open(os.path.join(leg, "command.sh"), "w") as script:
             script.write("#!/bin/sh\ncd " + shlex.quote(leg) + " && " + shlex.join(command) + "\n")
         print(f"{job.name}: leg {os.path.basename(leg)} from {os.path.relpath(start, args.out)}", flush=True)

@@ -25,6 +25,7 @@ import argparse
 import csv
 import math
 import os
+import shutil
 import sys
 
 # cdtools, found from this file (scripts/cdtools/__init__.py)
@@ -53,7 +54,10 @@ def options(argv=None):
                         help="in.chute -vars of the snapshots' run, 'name=value ...'")
     parser.add_argument("--dt", type=float, default=1.0e-4, help="the step solved (s)")
     parser.add_argument("--band", type=float, default=3.0, help="depth band width (d)")
-    parser.add_argument("--solver", default="", help="extra in.chute -vars of every solve, 'name=value ...'")
+    parser.add_argument("--solver", default="",
+                        help="extra in.chute -vars of the compared solves, 'name=value ...' (e.g. frozen_depth=20)")
+    parser.add_argument("--reference-solver", default="",
+                        help="extra in.chute -vars of the reference solve (default none: the deck's full problem)")
     parser.add_argument("--lmp", default=BUILT_LMP_CD)
     args = parser.parse_args(argv)
     if args.max_iterations < 1 or args.dt <= 0 or args.band <= 0:
@@ -66,9 +70,10 @@ def options(argv=None):
     try:
         args.cell_vars = name_value_pairs(args.cell)
         args.solver_vars = name_value_pairs(args.solver)
+        args.reference_vars = name_value_pairs(args.reference_solver)
     except ValueError as error:
-        parser.error(f"--cell/--solver: {error}")
-    taken = (set(args.cell_vars) | set(args.solver_vars)) & STUDY_VARIABLES
+        parser.error(f"--cell/--solver/--reference-solver: {error}")
+    taken = (set(args.cell_vars) | set(args.solver_vars) | set(args.reference_vars)) & STUDY_VARIABLES
     if taken:
         parser.error(f"--cell/--solver set {', '.join(sorted(taken))}, which the study sets itself")
     return args
@@ -91,16 +96,27 @@ def state_dump(args, restart, dump):
     return atoms, step
 
 
-def solve_one_step(args, snapshot, start_step, folder, tolerance):
-    """One step of dt from snapshot at `tolerance` (fixed step): the state after it and its work."""
+def study_deck(args):
+    """The study's own copy of in.chute (LAMMPS reads a deck as it goes: an edit of
+    inputs/in.chute must never reach a solve under way)."""
+    deck = os.path.join(args.out, "in.chute")
+    if not os.path.exists(deck):
+        shutil.copy2(DECK, deck + ".tmp")
+        os.replace(deck + ".tmp", deck)
+    return deck
+
+
+def solve_one_step(args, snapshot, start_step, folder, tolerance, solver_vars):
+    """One step of dt from snapshot at `tolerance` (fixed step) with the in.chute -vars
+    solver_vars: the state after it and its work."""
     if not os.path.exists(os.path.join(folder, "after.dump")):
         one_step = {"stage": "flow", "start": os.path.abspath(snapshot), "adapt_dt": "no", "dt": f"{args.dt:.17g}",
                     "duration": f"{(start_step + 1) * args.dt:.17g}", "sample_rate": f"{1 / args.dt:.17g}",
                     "solver_interval": f"{args.dt:.17g}", "profile_interval": f"{args.dt:.17g}",
                     "snapshot_interval": f"{args.dt:.17g}", "restart_interval": f"{args.dt:.17g}",
                     "tolerance": f"{tolerance:g}", "max_iterations": str(args.max_iterations)}
-        variables = {**args.cell_vars, **args.solver_vars, **one_step}
-        run_checked(lmp_command(args.lmp, DECK, variables, screen="none"), folder)
+        variables = {**args.cell_vars, **solver_vars, **one_step}
+        run_checked(lmp_command(args.lmp, study_deck(args), variables, screen="none"), folder)
         state_dump(args, os.path.join(folder, "chute.restart"), os.path.join(folder, "after.dump"))
     after, step = state_dump(args, None, os.path.join(folder, "after.dump"))
     if step != start_step + 1:
@@ -136,15 +152,17 @@ def study_snapshot(args, index, snapshot):
     base = os.path.join(args.out, f"snapshot{index}")
     os.makedirs(base, exist_ok=True)
     start, step = state_dump(args, snapshot, os.path.join(base, "start.dump"))
-    reference, reference_work = solve_one_step(args, snapshot, step, os.path.join(base, "reference"),
-                                               args.reference_tolerance)
+    reference_name = "_".join(["reference"] + [f"{k}{v}" for k, v in args.reference_vars.items()])
+    reference, reference_work = solve_one_step(args, snapshot, step, os.path.join(base, reference_name),
+                                               args.reference_tolerance, args.reference_vars)
     if not reference_work["converged"]:
         raise RuntimeError(f"{snapshot}: the reference solve hit the sweep cap ({args.max_iterations})")
     rows = []
     for tolerance in args.tolerances:
-        after, work = solve_one_step(args, snapshot, step, os.path.join(base, f"tol{tolerance:g}"), tolerance)
+        name = "_".join([f"tol{tolerance:g}"] + [f"{k}{v}" for k, v in args.solver_vars.items()])
+        after, work = solve_one_step(args, snapshot, step, os.path.join(base, name), tolerance, args.solver_vars)
         for band in band_rows(args, start, after, reference):
-            rows.append(dict(snapshot=index, tolerance=tolerance, **band, **work))
+            rows.append(dict(snapshot=index, solver=args.solver, tolerance=tolerance, **band, **work))
     return rows, reference_work
 
 
@@ -159,7 +177,8 @@ def main(argv=None):
                   f"{reference_work['sweeps']:g} sweeps, {reference_work['loop_seconds']:.1f} s")
     except RuntimeError as error:
         sys.exit(f"solve_error_by_depth: {error}")
-    with open(os.path.join(args.out, "error_by_depth.csv"), "w", newline="") as out:
+    label = "_".join(f"{k}{v}" for k, v in args.solver_vars.items())
+    with open(os.path.join(args.out, f"error_by_depth{'_' + label if label else ''}.csv"), "w", newline="") as out:
         writer = csv.DictWriter(out, fieldnames=list(rows[0]))
         writer.writeheader()
         writer.writerows(rows)

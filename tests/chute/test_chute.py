@@ -457,6 +457,25 @@ def case_static(args):
           f"{max(u_all, u_flow, v_flow):.2e} sqrt(g d)")
 
 
+def case_frozen_bed(args):
+    """frozen_depth 4: the grains deeper than 4 d below the wall tops at the tilt are obstacles:
+    over 0.05 s of flow at 24 degrees they do not move at all (position and velocity exactly as
+    dumped at the start) while the layer above flows (its mean velocity > 0.1 sqrt(g d))."""
+    folder, output = chute(args, "frozen_bed", FLOW_THETA, 0.05, frozen_depth=4, snapshot_interval=0.01)
+    frames = read_dump(os.path.join(folder, "dump.chute.gz"))
+    first, last = frames[0][2], frames[-1][2]
+    frozen = [i for i, a in first.items() if a["y"] < WALL_TOP - 4 * D]
+    check(len(frozen) > 20, f"only {len(frozen)} grains deeper than 4 d")
+    moved = [i for i in frozen if (last[i]["x"], last[i]["y"], last[i]["vx"], last[i]["vy"]) !=
+             (first[i]["x"], first[i]["y"], 0.0, 0.0)]
+    check(not moved, f"{len(moved)} frozen grains moved, e.g. {moved[:3]}")
+    check(f"{len(frozen)} atoms in group frozen" in output, "the deck's frozen group is not the grains below 4 d")
+    above = [a["vx"] for i, a in last.items() if a["y"] > WALL_TOP]
+    u_layer = sum(above) / len(above) / SQRT_GD
+    check(u_layer > 0.1, f"the layer above the frozen bed flows at {u_layer:.3f} sqrt(g d)")
+    print(f"frozen bed: {len(frozen)} grains held exactly; the layer flows at {u_layer:.2f} sqrt(g d)")
+
+
 STATIC_TILT, STATIC_DURATION, SETTLE_TIME = 12, 0.4, 0.1
 
 
@@ -559,6 +578,8 @@ BAD_VARS = [
     ("full_sweep_every", "2.5", "-var full_sweep_every 2.5"),
     ("reading", "both", "-var reading both"),
     ("column_width", "0", "-var column_width 0"),
+    ("frozen_depth", "31", "-var frozen_depth 31: must be in [0, wall_height]"),
+    ("frozen_depth", "deep", "frozen_depth_is_not_a_number"),
     ("grains", "100", "-var grains 100: too few to cover the wall tops (at least 1425"),
 ]
 
@@ -689,6 +710,7 @@ CASES = {
     "static_tilt": case_static_tilt,
     "runaway": case_runaway,
     "bad_var": case_bad_var,
+    "frozen_bed": case_frozen_bed,
     "columns": case_columns,
     "reading": case_reading,
     "start_mismatch": case_start_mismatch,
