@@ -25,6 +25,7 @@ Standard library and gnuplot.
 import argparse
 import csv
 import glob
+import json
 import math
 import os
 import re
@@ -95,7 +96,7 @@ def time_mean(window_list, width):
 
 
 def mean_se(values):
-    values = list(values)
+    values = [v for v in values if not math.isnan(v)]
     if len(values) < 2:
         return (values[0] if values else math.nan), math.nan
     return statistics.mean(values), statistics.stdev(values) / math.sqrt(len(values))
@@ -165,11 +166,7 @@ def flow_tables(args):
                 for end, window_bins in all_windows:
                     for b, u in band_means(window_bins, args.band).items():
                         relax.setdefault((round(end - start, 3), b), []).append(u)
-                rows = [r for r in read_time_file(os.path.join(folder, "flow.time"))
-                        if r["v_time"] > used[0][0] - 0.1 + 1e-9]
-                layer.append(dict(U=statistics.mean(r["v_u_flow"] for r in rows) / SCALE,
-                                  phi=statistics.mean(r["v_phi_flow"] for r in rows),
-                                  h=statistics.mean(r["v_h"] for r in rows) / D))
+                layer.append(layer_quantities(folder, used))
                 costs.append(cost(folder))
             per_tolerance[tolerance] = dict(
                 replicas=len(folders),
@@ -183,9 +180,33 @@ def flow_tables(args):
     return flows
 
 
-def verdict(u, se, floor, tighter):
-    """'resolved', 'floor' (within 10x the floor) or 'moves' (differs from the next tighter
-    tolerance by more than two combined standard errors)."""
+POSTED = ("f", "A", "bagnold_slip", "bagnold_amplitude", "creep_lambda")
+
+
+def layer_quantities(folder, used):
+    """U, phi, h over the used windows (flow.time), the bed's mean u (count-weighted over
+    -30 <= z < 0), and cdpost's f, A, Bagnold fit and creep length over the same windows
+    (post/results.json of bench/bed_study.py --collect; NaN where missing)."""
+    rows = [r for r in read_time_file(os.path.join(folder, "flow.time")) if r["v_time"] > used[0][0] - 0.1 + 1e-9]
+    count = sum(n for _, bins in used for z, (n, _) in bins.items() if -30 <= z < 0)
+    bed = sum(n * u for _, bins in used for z, (n, u) in bins.items() if -30 <= z < 0) / count
+    quantities = dict(U=statistics.mean(r["v_u_flow"] for r in rows) / SCALE,
+                      phi=statistics.mean(r["v_phi_flow"] for r in rows),
+                      h=statistics.mean(r["v_h"] for r in rows) / D, u_bed=bed)
+    try:
+        with open(os.path.join(folder, "post", "results.json")) as src:
+            posted = {r["name"]: r["value"] for r in json.load(src)["results"]}
+    except (OSError, ValueError, KeyError):
+        posted = {}
+    quantities.update({name: posted.get(name) if posted.get(name) is not None else math.nan for name in POSTED})
+    return quantities
+
+
+def verdict(z_low, u, se, floor, tighter):
+    """Below the wall tops: 'resolved', 'floor' (within 10x the floor) or 'moves' (differs from
+    the next tighter tolerance by more than two combined standard errors); 'layer' above."""
+    if z_low >= 0:
+        return "layer"
     if floor is None or abs(u) < RESOLVED_OVER_FLOOR * floor:
         return "floor"
     if tighter is not None:
@@ -260,17 +281,20 @@ def flow_section(args, name, per_tolerance, floor, writer):
             u, se = per_tolerance[t]["bands"].get(b, (math.nan, math.nan))
             floor_rms = floor.get(t, {}).get(b, (None,))[0]
             tighter = per_tolerance[tolerances[i + 1]]["bands"].get(b) if i + 1 < len(tolerances) else None
-            v = verdict(u, se, floor_rms, tighter)
+            v = verdict(b * args.band, u, se, floor_rms, tighter)
             writer.writerow([name, t, per_tolerance[t]["replicas"], b * args.band, (b + 1) * args.band,
                              f"{u:.4g}", f"{se:.3g}", "" if floor_rms is None else f"{floor_rms:.3g}", v])
             cells.append(f"{u:+.2e} ± {se:.1e} | {v}")
         lines.append(f"| {band_label(b, args.band)} | " + " | ".join(cells) + " |")
-    lines += ["", "| tolerance | U | phi | h (d) | CPU s per chute s (median) |", "|---|---|---|---|---|"]
+    names = list(per_tolerance[tolerances[0]]["layer"])
+    lines += ["", "Means ± standard errors over the replicas (u_bed: mean u over −30 ≤ z < 0; f, A, the Bagnold "
+              "fit and the creep length from cdpost over the same windows).", "",
+              "| tolerance | " + " | ".join(names) + " | CPU s per chute s (median) |",
+              "|---|" + "---|" * (len(names) + 1)]
     for t in tolerances:
         layer = per_tolerance[t]["layer"]
-        lines.append(f"| {t} | {layer['U'][0]:.3f} ± {layer['U'][1]:.3f} | {layer['phi'][0]:.4f} ± "
-                     f"{layer['phi'][1]:.4f} | {layer['h'][0]:.2f} ± {layer['h'][1]:.2f} | "
-                     f"{per_tolerance[t]['cost']:.0f} |")
+        lines.append(f"| {t} | " + " | ".join(f"{layer[n][0]:.4g} ± {layer[n][1]:.2g}" for n in names) +
+                     f" | {per_tolerance[t]['cost']:.0f} |")
     lines += ["", "Relaxation after the change of settings: replica mean of the band's u per 0.1 s window "
               "(time since the change, s).", ""]
     for t in tolerances:

@@ -15,9 +15,11 @@ setting from one state. Every job runs in legs (legs/NN, one lmp_cd each); start
 the same options, finished jobs are skipped and an unfinished one continues from its newest
 restart (the deck writes one every 0.1 s); a job whose origin is not finished waits for it
 (another runner of the study may be running it on the other core). The outputs of the legs are spliced by time step
-into the job's folder. Analysis: bench/bed_profiles.py.
+into the job's folder. --collect copies the small outputs of the finished jobs (and cdpost's
+results of each continuation) into a folder of the repository; analysis: bench/bed_profiles.py.
 
     bench/bed_study.py --out runs/bed --core 0 --only 'floor/*1e-3*' --only 'start/*'
+    bench/bed_study.py --out runs/bed --only '*' --collect results/bed
 
 Standard library only.
 """
@@ -26,6 +28,7 @@ import argparse
 import fnmatch
 import math
 import os
+import re
 import shlex
 import shutil
 import subprocess
@@ -38,7 +41,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.
 from cdtools.campaign.legs import LEG_OUTPUTS, splice_legs
 from cdtools.lammps_files import time_span
 from cdtools.logs import read_progress
-from cdtools.run import BUILT_LMP_CD, DECK, lmp_command
+from cdtools.run import BUILT_CDPOST, BUILT_LMP_CD, DECK, lmp_command
 
 CELL = dict(reading="layer", L="45", seed="20261122")
 FLOOR = dict(mu="0.5", theta="12", duration="0.6", max_iterations="100000")
@@ -172,6 +175,35 @@ def run_job(job, args):
     print(f"{job.name}: done, {cpu_seconds(folder):.0f} CPU s", flush=True)
 
 
+KEPT_FILES = ("profile.chunk", "packing.chunk", "flow.time", "solver.time", "chute.params", "DONE")
+
+
+def collect(job, args):
+    """The small outputs of a finished job into --collect (the study's layout): its profiles,
+    flow.time and solver.time, each leg's command and LAMMPS timers, and for a continuation
+    cdpost's results over the windows bench/bed_profiles.py averages (--flow-from 0.4 s on)."""
+    folder, kept = job.folder(args.out), os.path.join(args.collect, job.name)
+    if not os.path.exists(os.path.join(folder, "DONE")) or job.name.startswith("start/"):
+        return
+    os.makedirs(kept, exist_ok=True)
+    for name in KEPT_FILES:
+        shutil.copy2(os.path.join(folder, name), kept)
+    for leg in legs(folder):
+        os.makedirs(os.path.join(kept, "legs", os.path.basename(leg)), exist_ok=True)
+        shutil.copy2(os.path.join(leg, "command.sh"), os.path.join(kept, "legs", os.path.basename(leg)))
+        with open(os.path.join(leg, "log.lammps")) as log, \
+                open(os.path.join(kept, "legs", os.path.basename(leg), "timers.txt"), "w") as timers:
+            timers.writelines(line for line in log if re.match(r"Loop time of|.*% CPU use|Total wall time", line))
+    if job.name.startswith("flow/") and args.cdpost:
+        end = float(job.vars["duration"])
+        command = [args.cdpost, "run", folder, "--t-start", f"{end - CONTINUATION_SECONDS + 0.4:g}",
+                   "--t-end", f"{end:g}", "--segment", "0.4", "--cell-length", CELL["L"],
+                   "--out", os.path.join(folder, "post")]
+        if subprocess.run(command, stdout=subprocess.DEVNULL).returncode == 0:
+            os.makedirs(os.path.join(kept, "post"), exist_ok=True)
+            shutil.copy2(os.path.join(folder, "post", "results.json"), os.path.join(kept, "post"))
+
+
 def options(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--out", required=True, help="study folder (resumable)")
@@ -180,6 +212,9 @@ def options(argv=None):
     parser.add_argument("--core", type=int, help="pin the runs to this CPU core (taskset)")
     parser.add_argument("--lmp", default=BUILT_LMP_CD)
     parser.add_argument("--list", action="store_true", help="list the jobs the globs select, run nothing")
+    parser.add_argument("--collect", metavar="DIR",
+                        help="run nothing: copy the small outputs of the finished jobs into DIR (e.g. results/bed)")
+    parser.add_argument("--cdpost", default=BUILT_CDPOST, help="cdpost for --collect ('' for none)")
     args = parser.parse_args(argv)
     args.out = os.path.abspath(args.out)
     args.pin = ["taskset", "-c", str(args.core)] if args.core is not None else []
@@ -193,6 +228,10 @@ def main(argv=None):
         sys.exit(f"bed_study.py: --only {' '.join(args.only)}: no job of the study matches")
     if args.list:
         print("\n".join(job.name for job in jobs))
+        return
+    if args.collect:
+        for job in jobs:
+            collect(job, args)
         return
     run_deposition(args.out, args)
     for job in jobs:
