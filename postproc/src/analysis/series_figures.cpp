@@ -1,6 +1,7 @@
 // Figures, tables and the Markdown report of a series.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 
@@ -451,12 +452,10 @@ std::vector<std::string> creep_cells(const SeriesRun& run)
   for (const auto& row : run.analysis.results.rows())
     if (auto band = creep_band_of(row.name))
       bands += (bands.empty() ? "" : "; ") + *band + ": " + format_estimate(row.value, row.error);
-  return {run_label(run.entry),
-          measured,
-          low && high ? plain(low) + " to " + plain(high) : "",
-          plain(points),
-          floor ? format_estimate(floor->value, std::nullopt) : "",
-          bands};
+  char floor_text[32] = "";  // two digits: a noise level
+  if (floor) std::snprintf(floor_text, sizeof floor_text, "%.2g", floor->value);
+  return {run_label(run.entry), measured,   low && high ? plain(low) + " to " + plain(high) : "",
+          plain(points),        floor_text, bands};
 }
 
 void creep_table(MarkdownReport& report, const SeriesAnalysis& series)
