@@ -29,9 +29,12 @@ struct SyntheticRun {
   double amplitude = 0.2;     // sqrt(g d)
   double noise = 0.3;         // sqrt(g d), white noise on v(t)
   double creep_lambda = 3.0;  // d
-  double phi_bed = 0.82;      // packing below the wall tops
-  double phi_bulk = 0.80;     // packing of the layer's bulk, falling to half of it at z = h
-  double tail_width = 2.0;    // d, width of the dilute surface: phi = phi_bulk erfc((z - h)/w)/2
+  // sqrt(g d): sign-changing noise on u below the wall tops in each profile block, the solver's
+  // floor (the creep measure estimates it from the deep bed)
+  double bed_noise = 1e-3;
+  double phi_bed = 0.82;    // packing below the wall tops
+  double phi_bulk = 0.80;   // packing of the layer's bulk, falling to half of it at z = h
+  double tail_width = 2.0;  // d, width of the dilute surface: phi = phi_bulk erfc((z - h)/w)/2
   unsigned seed = 1;
   double y_top = 0;  // m: height of the wall tops, z = y - y_top
   bool with_chunks_and_dump = true;
@@ -86,7 +89,9 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const Syntheti
 
   std::vector<long> profile_steps;
   for (long step = 10000; step <= steps; step += 10000) profile_steps.push_back(step);
-  const size_t bins = 80;  // z from -30 d to 50 d
+  const size_t bins = 80;              // z from -30 d to 50 d
+  std::mt19937 bed_rng(run.seed + 1);  // its own stream: the other files' noise as without it
+  std::normal_distribution<double> bed_gauss(0, 1);
   auto z_of = [&](size_t bin) { return -30.0 + bin + 0.5; };
   write_file(dir / "profile.chunk",
              ave_chunk_text({"Coord1", "Ncount", "vx"}, profile_steps, bins, [&](size_t, size_t bin, size_t column) {
@@ -94,7 +99,9 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const Syntheti
                const bool occupied = z < run.h;
                if (column == 0) return z * run.d + run.y_top;
                if (column == 1) return occupied ? 20.0 : 0.0;
-               return occupied ? run.u_of_z(z) * v0 * std::exp(0.02 * gauss(rng)) : 0.0;
+               if (!occupied) return 0.0;
+               const double floor = z < 0 ? run.bed_noise * bed_gauss(bed_rng) : 0.0;
+               return (run.u_of_z(z) * std::exp(0.02 * gauss(rng)) + floor) * v0;
              }));
 
   write_file(dir / "packing.chunk", ave_chunk_text({"Coord1", "Ncount", "v_phi_of_grain"}, profile_steps, bins,

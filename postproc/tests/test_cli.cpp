@@ -84,6 +84,87 @@ TEST(Cli, HelpAndUsageErrors)
   EXPECT_EQ(zero_rate.err, "cdpost: cdpost run: --sample-rate must be positive (see cdpost --help)\n");
 }
 
+// Every command that measures the creep refuses a bad --creep-floor or --creep-depth in one line.
+TEST(Cli, CreepOptionsRefuseBadValues)
+{
+  for (const std::string command : {"run .", "series manifest.csv", "creep profile.csv"}) {
+    const std::string name = "cdpost " + command.substr(0, command.find(' '));
+    for (const std::string option : {"creep-floor", "creep-depth"}) {
+      auto text = cdpost(command + " --" + option + " abc");
+      EXPECT_EQ(text.status, 2);
+      EXPECT_EQ(text.err, "cdpost: " + name + ": --" + option + ": 'abc' is not a number (see cdpost --help)\n");
+      for (const std::string bad : {"0", "-1e-4"}) {
+        auto refused = cdpost(command + " --" + option + " " + bad);
+        EXPECT_EQ(refused.status, 2);
+        EXPECT_EQ(refused.err, "cdpost: " + name + ": --" + option + " must be positive (see cdpost --help)\n");
+      }
+    }
+  }
+}
+
+// A published run folder (profile.csv, results.csv, results.json): u = 1.4 exp(z / 1.5 d) below
+// the wall tops over a floor of +-4e-5 sqrt(g d) that changes sign from bin to bin.
+std::filesystem::path published_run(const std::string& name)
+{
+  auto dir = testing::scratch_dir() / name;
+  std::filesystem::create_directories(dir);
+  std::ofstream profile(dir / "profile.csv");
+  profile << "z_d,u_sqrt_gd,count\n";
+  for (int bin = 0; bin < 40; ++bin) {
+    const double z = -29.5 + bin;
+    const double u = z < 0 ? 1.4 * std::exp(z / 1.5) + (bin % 2 ? 4e-5 : -4e-5) * (1 + 0.1 * (bin % 3)) : 2 + z;
+    profile << z << ',' << u << ",40\n";
+  }
+  std::ofstream(dir / "results.csv") << "name,value,error,unit,description\n"
+                                        "U,15.9686061,0.03584441552,sqrt(g d),\"mean x-velocity, z > 0\"\n"
+                                        "creep_lambda,2.48,0.22,d,old\ncreep_u0,0.35,0.22,sqrt(g d),old\n"
+                                        "phi_bulk,0.766,,,bulk\n";
+  std::ofstream(dir / "results.json")
+      << "{\n  \"results\": [],\n  \"warnings\": [\"flow.time: a \\\"quoted\\\" word\", "
+         "\"profile.chunk: creep fit skipped: old\"]\n}\n";
+  return dir;
+}
+
+TEST(Cli, CreepRereadsAPublishedProfile)
+{
+  auto dir = published_run("published");
+  auto printed = cdpost("creep " + (dir / "profile.csv").string());
+  ASSERT_EQ(printed.status, 0) << printed.err;
+  EXPECT_NE(printed.out.find("creep_lambda_band_0_3"), std::string::npos) << printed.out;
+  EXPECT_EQ(slurp(dir / "results.csv").find("creep_floor"), std::string::npos);  // nothing written
+
+  auto refused = cdpost("creep " + (dir / "profile.csv").string() + " --update");
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_EQ(refused.err, "cdpost: cdpost creep: --update needs a published run folder (holding results.csv), not " +
+                             (dir / "profile.csv").string() + " (see cdpost --help)\n");
+
+  auto updated = cdpost("creep " + dir.string() + " --update");
+  ASSERT_EQ(updated.status, 0) << updated.err;
+  const auto values = csv_values(dir / "results.csv");
+  EXPECT_NEAR(values.at("creep_lambda"), 1.5, 0.05);
+  EXPECT_NEAR(values.at("creep_floor"), 4.4e-5, 0.5e-5);  // rms of the +-(4, 4.4, 4.8)e-5 floor
+  EXPECT_EQ(values.at("creep_z_high"), -0.5);
+  // The other rows as they were, the creep rows where the old ones stood.
+  const auto csv = slurp(dir / "results.csv");
+  EXPECT_EQ(csv.rfind("name,value,error,unit,description\nU,15.9686061,0.03584441552,sqrt(g d),\"mean x-velocity, z > "
+                      "0\"\ncreep_floor,",
+                      0),
+            0u)
+      << csv;
+  EXPECT_NE(csv.find("\nphi_bulk,0.766,,,bulk\n"), std::string::npos) << csv;
+  const auto json = slurp(dir / "results.json");
+  EXPECT_NE(json.find("\"name\": \"creep_lambda_band_0_3\""), std::string::npos);
+  EXPECT_NE(json.find("\"warnings\": [\"flow.time: a \\\"quoted\\\" word\"]"), std::string::npos) << json;
+
+  // Given a floor 10 x higher, the range is shorter; too high a floor leaves it unresolved, said.
+  auto given = cdpost("creep " + dir.string() + " --creep-floor 0.05");
+  ASSERT_EQ(given.status, 0) << given.err;
+  EXPECT_EQ(given.out.find("creep_lambda "), std::string::npos) << given.out;
+  EXPECT_EQ(given.err, "cdpost: warning: " + (dir / "profile.csv").string() +
+                           ": creep unresolved: 2 bins below the wall tops before u first falls below 10 x the floor "
+                           "(0.05 sqrt(g d), given (--creep-floor)); 4 needed\n");
+}
+
 // A sample rate whose grid the file's rows cannot lie on fails in one line naming the file.
 TEST(Cli, SampleRateTheFileDoesNotFitIsRefused)
 {

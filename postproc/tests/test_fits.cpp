@@ -36,22 +36,6 @@ TEST(ProfileFits, BagnoldRecoversSlipAndAmplitude)
   EXPECT_GT(fit.r_squared, 0.99);
 }
 
-TEST(ProfileFits, CreepRecoversTheDecayLength)
-{
-  std::mt19937 rng(2);
-  std::normal_distribution<double> noise(0, 0.05);
-  std::vector<double> z, u;
-  for (double zi = -25.5; zi < 10; zi += 1) {
-    z.push_back(zi);
-    u.push_back(zi < 0 ? 0.4 * std::exp(zi / 3.0) * std::exp(noise(rng)) : 5.0);
-  }
-  auto fit = fit_creep(z, u, -30);
-  EXPECT_EQ(fit.points, 26);
-  expect_recovers(fit.lambda, 3.0, "lambda");
-  expect_recovers(fit.u0, 0.4, "u0");
-  EXPECT_THROW(fit_creep(z, std::vector<double>(z.size(), -1.0), -30), AnalysisError);
-}
-
 // Runs of one friction coefficient following a rule, with noise on the measured I.
 std::vector<FlowPoint> series(double mu, const std::vector<double>& angles, const std::function<double(double)>& rule_i,
                               unsigned seed)

@@ -95,30 +95,6 @@ std::vector<LayerSpectrum> read_layers_csv(const std::string& path)
   return layers;
 }
 
-// profile.csv: z_d, u and count per bin, and phi where the run's analysis had packing.chunk.
-struct PublishedProfile {
-  std::vector<double> z_d, count, phi;
-};
-
-PublishedProfile read_profile_csv(const std::string& path)
-{
-  const std::vector<std::string> with_phi{"z_d", "u_sqrt_gd", "count", "phi"};
-  const std::vector<std::string> header(with_phi.begin(), with_phi.end() - 1);
-  std::string first;
-  LineSource peek(path);
-  while (peek.next(first) && is_blank(first)) {
-  }
-  const bool has_phi = csv_fields(first, peek) == with_phi;
-  PublishedProfile profile;
-  read_csv_rows(path, has_phi ? with_phi : header,
-                [&](const std::vector<std::string>& fields, const LineSource& source) {
-                  profile.z_d.push_back(parse_number(fields[0], source, "z_d"));
-                  profile.count.push_back(parse_number(fields[2], source, "count"));
-                  if (has_phi) profile.phi.push_back(parse_number(fields[3], source, "phi"));
-                });
-  return profile;
-}
-
 // The value of "key" in params.json (the campaign's record of a run's deck variables, flat
 // "key": "value" pairs).
 double json_number(const std::string& path, const std::string& key)
@@ -148,7 +124,7 @@ double bin_width(const std::vector<double>& z_d)
 void add_published_geometry(const std::filesystem::path& folder, RunAnalysis& run)
 {
   const auto profile_path = (folder / "profile.csv").string(), params_path = (folder / "params.json").string();
-  const auto profile = read_profile_csv(profile_path);
+  const auto profile = read_published_profile(profile_path);
   PackingProfile packing{profile.z_d, profile.phi};
   std::string source = "profile.csv, phi";
   if (packing.phi.empty()) {
@@ -169,7 +145,82 @@ void add_published_geometry(const std::filesystem::path& folder, RunAnalysis& ru
     run.warnings.push_back(profile_path + ": " + *problem);
 }
 
+// The strings of the "warnings" array of a results.json that ResultTable::write_json wrote.
+std::vector<std::string> read_json_warnings(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "cannot open");
+  std::stringstream content;
+  content << in.rdbuf();
+  const std::string text = content.str();
+  size_t at = text.find("\"warnings\"");
+  at = at == std::string::npos ? at : text.find('[', at);
+  if (at == std::string::npos) throw InputError(path, 0, "no \"warnings\" array");
+  std::vector<std::string> warnings;
+  for (++at; at < text.size() && text[at] != ']'; ++at) {
+    if (text[at] != '"') continue;
+    std::string warning;
+    for (++at; at < text.size() && text[at] != '"'; ++at) {
+      if (text[at] == '\\' && ++at < text.size()) warning += text[at] == 'n' ? '\n' : text[at];
+      else warning += text[at];
+    }
+    if (at >= text.size()) throw InputError(path, 0, "unterminated string in \"warnings\"");
+    warnings.push_back(warning);
+  }
+  if (at >= text.size()) throw InputError(path, 0, "unterminated \"warnings\" array");
+  return warnings;
+}
+
+// `results` with its creep_* rows replaced by `creep`'s, where the first of them stood.
+ResultTable with_creep_rows(const ResultTable& results, const CreepMeasure& creep)
+{
+  ResultTable measured, updated;
+  add_creep_results(measured, creep);
+  bool placed = false;
+  for (const auto& row : results.rows()) {
+    if (!is_creep_result(row.name)) updated.add(row.name, Estimate{row.value, row.error}, row.unit, row.description);
+    else if (!placed) updated.append(measured, "");
+    placed = placed || is_creep_result(row.name);
+  }
+  if (!placed) updated.append(measured, "");
+  return updated;
+}
+
 }  // namespace
+
+PublishedProfile read_published_profile(const std::string& path)
+{
+  const std::vector<std::string> with_phi{"z_d", "u_sqrt_gd", "count", "phi"};
+  const std::vector<std::string> header(with_phi.begin(), with_phi.end() - 1);
+  std::string first;
+  LineSource peek(path);
+  while (peek.next(first) && is_blank(first)) {
+  }
+  const bool has_phi = csv_fields(first, peek) == with_phi;
+  PublishedProfile profile;
+  read_csv_rows(path, has_phi ? with_phi : header,
+                [&](const std::vector<std::string>& fields, const LineSource& source) {
+                  profile.z_d.push_back(parse_number(fields[0], source, "z_d"));
+                  profile.u.push_back(parse_number(fields[1], source, "u_sqrt_gd"));
+                  profile.count.push_back(parse_number(fields[2], source, "count"));
+                  if (has_phi) profile.phi.push_back(parse_number(fields[3], source, "phi"));
+                });
+  return profile;
+}
+
+void update_published_creep(const std::string& directory, const CreepMeasure& creep)
+{
+  const auto folder = std::filesystem::path(directory);
+  const auto csv = (folder / "results.csv").string(), json = (folder / "results.json").string();
+  const auto results = with_creep_rows(read_results_csv(csv), creep);
+  std::vector<std::string> warnings;
+  if (std::filesystem::exists(json))
+    for (const auto& warning : read_json_warnings(json))
+      if (warning.find(": creep ") == std::string::npos) warnings.push_back(warning);
+  for (const auto& problem : creep_problems(creep)) warnings.push_back("profile.csv: creep " + problem);
+  results.write_csv(csv);
+  results.write_json(json, warnings);
+}
 
 bool is_published_run(const std::string& directory)
 {

@@ -6,8 +6,10 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "analysis/run_analysis.h"
+#include "fit/creep.h"
 
 namespace cdpost {
 
@@ -17,5 +19,17 @@ bool is_published_run(const std::string& directory);
 // Results and, when layers.csv is present, the layers' z and amplitude at f. Malformed files
 // fail with one line naming the file, the line and the problem.
 RunAnalysis read_published_run(const std::string& directory);
+
+// profile.csv as `cdpost run` writes it: z_d, u_sqrt_gd, count per bin and phi where the run's
+// analysis had packing.chunk (else empty).
+struct PublishedProfile {
+  std::vector<double> z_d, u, count, phi;
+};
+PublishedProfile read_published_profile(const std::string& path);
+
+// Replaces the creep_* rows of a published run's results.csv and results.json by `creep`'s
+// (where the first of them stood, else at the end), keeping every other row and warning but
+// the earlier creep warnings; the new creep warnings are added.
+void update_published_creep(const std::string& directory, const CreepMeasure& creep);
 
 }  // namespace cdpost

@@ -454,13 +454,9 @@ struct Analyser {
     } catch (const AnalysisError& e) {
       run.warnings.push_back(file + ": Bagnold fit skipped: " + e.what());
     }
-    try {
-      run.creep = fit_creep(p.z_d, p.u_reduced, -settings.creep_depth_d);
-      run.results.add("creep_lambda", run.creep->lambda, "d", "decay length of u(z) = u0 exp(z/lambda) below z = 0");
-      run.results.add("creep_u0", run.creep->u0, "sqrt(g d)", "u0 of the creep fit");
-    } catch (const AnalysisError& e) {
-      run.warnings.push_back(file + ": creep fit skipped: " + e.what());
-    }
+    run.creep = measure_creep(p.z_d, p.u_reduced, settings.creep);
+    add_creep_results(run.results, *run.creep);
+    for (const auto& problem : creep_problems(*run.creep)) run.warnings.push_back(file + ": creep " + problem);
   }
 
   void derived_rates()

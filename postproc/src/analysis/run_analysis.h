@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "analysis/along_cell.h"
+#include "fit/creep.h"
 #include "fit/packing_profile.h"
 #include "fit/profile_fits.h"
 #include "output/results.h"
@@ -75,7 +76,7 @@ struct RunSettings {
   double high_frequency_hz = 100;  // A_mean is the mean amplitude at and above this
   double z0 = 0;                   // wall-top height in input length units (z = y - z0)
   std::string parameters;          // which d, g, z0 and sample rate are used, and where from (one line)
-  double creep_depth_d = 30;       // the creep fit uses -creep_depth_d <= z < 0
+  CreepSettings creep;             // the bins read and the floor of the creep measure
   int averaging_blocks = 10;
   bool progress = false;
   // The cell length L in d (--cell-length): the columns of columns.chunk tile it.
@@ -122,7 +123,7 @@ struct RunAnalysis {
   SpectralPeak peak;
   std::optional<VelocityProfile> profile;
   std::optional<BagnoldFit> bagnold;
-  std::optional<CreepFit> creep;
+  std::optional<CreepMeasure> creep;
   std::optional<PackingProfile> packing;  // phi(z) over the window, every bin (packing.chunk)
   std::vector<LayerSpectrum> layers;
   std::optional<AlongCell> along_cell;  // from columns.chunk

@@ -78,6 +78,54 @@ Figure spectrum_figure(const RunAnalysis& run)
   return {"spectrum", "Spectrum of v(t) over the " + window_name(run), {panel}};
 }
 
+// u(z) > 0 below the wall tops in semi-log: the fit range's bins filled, the others open, the
+// fit over its range and the floor and kFloorMultiple x the floor as dashed lines.
+std::optional<Panel> creep_inset(const VelocityProfile& p, const std::optional<CreepMeasure>& creep)
+{
+  std::vector<double> fitted_u, fitted_z, other_u, other_z;
+  const bool resolved = creep && creep->lambda;
+  for (size_t i = 0; i < p.z_d.size(); ++i) {
+    if (!(p.z_d[i] < 0 && p.u_reduced[i] > 0)) continue;
+    const bool in_range = resolved && p.z_d[i] >= creep->z_low && p.z_d[i] <= creep->z_high;
+    (in_range ? fitted_u : other_u).push_back(p.u_reduced[i]);
+    (in_range ? fitted_z : other_z).push_back(p.z_d[i]);
+  }
+  if (fitted_u.size() + other_u.size() < 2) return std::nullopt;
+  Panel inset;
+  inset.title = "creep (z < 0)";
+  inset.x_label = "u / sqrt(g d)";
+  inset.y_label = "z / d";
+  inset.log_x = true;
+  inset.key = "off";
+  inset.origin_x = 0.52;
+  inset.origin_y = 0.1;
+  inset.width = 0.45;
+  inset.height = 0.45;
+  Curve outside = line_curve("u(z)", CurveStyle::Points, other_u, other_z);
+  outside.line_type = 1;
+  outside.point_type = 6;  // open circles
+  if (!other_u.empty()) inset.curves.push_back(outside);
+  if (resolved) {
+    Curve inside = line_curve("u(z), fit range", CurveStyle::Points, fitted_u, fitted_z);
+    inside.line_type = 1;
+    inset.curves.push_back(inside);
+    std::vector<double> z{creep->z_low, creep->z_high}, u;
+    for (double zi : z) u.push_back(creep->u0->value * std::exp(zi / creep->lambda->value));
+    inset.curves.push_back(line_curve("lambda fit", CurveStyle::Lines, u, z));
+  }
+  if (creep && creep->floor) {
+    const double bottom = std::min(p.z_d.front(), p.z_d.back());
+    for (double multiple : {1.0, kFloorMultiple}) {
+      Curve floor = line_curve(multiple == 1 ? "floor" : "10 x floor", CurveStyle::Lines,
+                               std::vector<double>(2, multiple * creep->floor->value), {bottom, 0.0});
+      floor.dashed = true;
+      floor.line_type = 3;
+      inset.curves.push_back(floor);
+    }
+  }
+  return inset;
+}
+
 Figure profile_figure(const RunAnalysis& run)
 {
   const auto& p = *run.profile;
@@ -95,32 +143,11 @@ Figure profile_figure(const RunAnalysis& run)
     main.curves.push_back(line_curve("Bagnold fit, h = " + format_estimate(run.bagnold->h, std::nullopt) + " d",
                                      CurveStyle::Lines, u, z));
   }
-  Figure figure{"profile", "u(z) with the Bagnold fit; inset: creep below z = 0 (semi-log)", {main}};
-  std::vector<double> creep_u, creep_z;
-  for (size_t i = 0; i < p.z_d.size(); ++i)
-    if (p.z_d[i] < 0 && p.u_reduced[i] > 0) {
-      creep_u.push_back(p.u_reduced[i]);
-      creep_z.push_back(p.z_d[i]);
-    }
-  if (creep_u.size() >= 2) {
-    Panel inset;
-    inset.title = "creep (z < 0)";
-    inset.x_label = "u / sqrt(g d)";
-    inset.y_label = "z / d";
-    inset.log_x = true;
-    inset.key = "off";
-    inset.origin_x = 0.52;
-    inset.origin_y = 0.1;
-    inset.width = 0.45;
-    inset.height = 0.45;
-    inset.curves.push_back(line_curve("u(z)", CurveStyle::Points, creep_u, creep_z));
-    if (run.creep) {
-      std::vector<double> z{creep_z.front(), 0.0}, u;
-      for (double zi : z) u.push_back(run.creep->u0.value * std::exp(zi / run.creep->lambda.value));
-      inset.curves.push_back(line_curve("lambda fit", CurveStyle::Lines, u, z));
-    }
-    figure.panels.push_back(inset);
-  }
+  Figure figure{"profile",
+                "u(z) with the Bagnold fit; inset: creep below z = 0 (semi-log): filled, the bins of the creep fit "
+                "range with its fit; dashed, the floor and 10 x the floor",
+                {main}};
+  if (auto inset = creep_inset(p, run.creep)) figure.panels.push_back(*inset);
   return figure;
 }
 
@@ -223,6 +250,10 @@ void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::
   if (!run.settings.parameters.empty()) report.paragraph("Parameters: " + run.settings.parameters + ".");
   report.heading("Results");
   report.table(run.results);
+  if (run.creep) {
+    report.heading("Creep below the wall tops");
+    report.paragraph(creep_summary(*run.creep) + " (doc/postproc.md, The creep measure.)");
+  }
   if (run.along_cell) {
     report.heading("Along the cell");
     report.paragraph(along_cell_text(*run.along_cell));

@@ -1,6 +1,7 @@
 // Figures, tables and the Markdown report of a series.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 
@@ -293,8 +294,10 @@ std::vector<Figure> series_figures(const SeriesAnalysis& series)
 
 void write_runs_table(const SeriesAnalysis& series, const std::string& path)
 {
-  const std::vector<std::string> names = {"U",          "phi",     "h", "I", "phi_bulk", "h_packing",   "I_packing",
-                                          "shear_rate", "f_scale", "f", "A", "A_mean",   "creep_lambda"};
+  const std::vector<std::string> names = {
+      "U",           "phi",          "h",          "I", "phi_bulk", "h_packing",    "I_packing",
+      "shear_rate",  "f_scale",      "f",          "A", "A_mean",   "creep_lambda", "creep_z_high",
+      "creep_z_low", "creep_points", "creep_floor"};
   auto out = open_output(path);
   out.precision(10);
   out << "run,mu,theta_deg,L_d";
@@ -431,6 +434,37 @@ void depth_table(MarkdownReport& report, const SeriesAnalysis& series)
                       std::to_string(decay->layers), format_estimate(decay->log_rms_residual, std::nullopt)});
   if (rows.empty()) report.paragraph("No run has a decay length (see the warnings).");
   else report.table({"run", "decay length lambda (d)", "layers fitted", "rms of ln a about the fit"}, rows);
+}
+
+// The creep measure's cells of one run from its results (fit/creep.h): lambda, its fit range,
+// the range's bins, the floor and the local decay lengths; or why there is no lambda.
+std::vector<std::string> creep_cells(const SeriesRun& run)
+{
+  const auto lambda = run.estimate("creep_lambda"), floor = run.estimate("creep_floor");
+  const auto points = run.estimate("creep_points"), low = run.estimate("creep_z_low"),
+             high = run.estimate("creep_z_high");
+  auto plain = [](const std::optional<Estimate>& e) { return e ? format_estimate(e->value, std::nullopt) : ""; };
+  std::string measured = lambda ? format_estimate(lambda->value, lambda->error) : "";
+  if (!floor) measured = lambda ? measured + " (whole-bed fit: results without the range)" : "unresolved: no floor";
+  else if (!lambda)
+    measured = "unresolved: " + plain(points) + " bins above " + plain(Estimate{kFloorMultiple, {}}) + " x the floor";
+  std::string bands;
+  for (const auto& row : run.analysis.results.rows())
+    if (auto band = creep_band_of(row.name))
+      bands += (bands.empty() ? "" : "; ") + *band + ": " + format_estimate(row.value, row.error);
+  char floor_text[32] = "";  // two digits: a noise level
+  if (floor) std::snprintf(floor_text, sizeof floor_text, "%.2g", floor->value);
+  return {run_label(run.entry), measured,   low && high ? plain(low) + " to " + plain(high) : "",
+          plain(points),        floor_text, bands};
+}
+
+void creep_table(MarkdownReport& report, const SeriesAnalysis& series)
+{
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& run : series.runs) rows.push_back(creep_cells(run));
+  report.table({"run", "creep length lambda (d)", "fit range z (d)", "bins", "floor (sqrt(g d))",
+                "local decay length by depth below the wall tops (d)"},
+               rows);
 }
 
 }  // namespace
@@ -575,6 +609,14 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
       "noise "
       "floor flattens the profile; the rms of ln a shows how far the profile is from one exponential.");
   depth_table(report, series);
+  report.heading("Creep below the wall tops");
+  report.paragraph(
+      "Each run's u(z) below the wall tops fitted as u0 exp(z/lambda) over the bins from the wall tops down to where u "
+      "first falls below 10 x the noise floor of the bed (estimated from the deep bed where u stops decaying, or given "
+      "by --creep-floor), with the local decay length over 3 d bands of that range (doc/postproc.md, The creep "
+      "measure); fewer than 4 bins give no lambda. Per run: creep_lambda, creep_z_high, creep_z_low, creep_points and "
+      "creep_floor in runs.csv.");
+  creep_table(report, series);
   along_cell_section(series, report, out_dir);
   report.heading("Figures");
   for (const auto& figure : series_figures(series)) {

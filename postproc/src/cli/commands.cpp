@@ -4,6 +4,7 @@
 #include <functional>
 #include <iostream>
 
+#include "analysis/published_run.h"
 #include "analysis/run_analysis.h"
 #include "analysis/series_analysis.h"
 #include "analysis/series_comparison.h"
@@ -27,6 +28,7 @@ const char* const overview =
     "  series MANIFEST  analyse the runs listed in a CSV (run,mu,theta[,L,stopped,h_stop]) and fit the flow rules\n"
     "  spectrum FILE    spectrum of one column of a fix ave/time file\n"
     "  snapshot DUMP    picture of one frame of a dump (grains coloured by x-velocity, walls)\n"
+    "  creep PATH       the creep measure of a published profile.csv (or a published run folder holding one)\n"
     "\n"
     "Results go to CSV and JSON beside the report; see doc/postproc.md.\n";
 
@@ -69,6 +71,30 @@ std::vector<OptionSpec> unit_options()
           {"help", "", "show this help"}};
 }
 
+std::vector<OptionSpec> creep_options()
+{
+  return {{"creep-depth", "D", "the creep measure reads the bins with -D <= z < 0, in d (default 30)"},
+          {"creep-floor", "U",
+           "noise floor of u in the bed, in sqrt(g d): the creep fit range ends where u first falls below 10 U "
+           "(default: estimated from the profile, doc/postproc.md)"}};
+}
+
+// A number option that must be positive when given.
+std::optional<double> positive_option(const ParsedOptions& options, const std::string& name, const std::string& command)
+{
+  auto value = options.number(name);
+  if (value && !(*value > 0)) throw UsageError(command + ": --" + name + " must be positive");
+  return value;
+}
+
+CreepSettings creep_settings_from(const ParsedOptions& options, const std::string& command)
+{
+  CreepSettings creep;
+  creep.depth_d = positive_option(options, "creep-depth", command).value_or(creep.depth_d);
+  creep.floor_reduced = positive_option(options, "creep-floor", command);
+  return creep;
+}
+
 std::vector<OptionSpec> analysis_options()
 {
   std::vector<OptionSpec> specs = unit_options();
@@ -88,11 +114,12 @@ std::vector<OptionSpec> analysis_options()
       {"z0", "LENGTH",
        "height of the wall tops in input length units, z = y - z0 (default: the run's chute.params; "
        "needed without one)"},
-      {"creep-depth", "D", "the creep fit uses -D <= z < 0, in d (default 30)"},
       {"cell-length", "D", "cell length L in d, the deck's L: needed for the columns of columns.chunk"},
       {"blocks", "N", "blocks for the standard error of means (default 10)"},
       {"out", "DIR", "output directory"}};
   specs.insert(specs.end(), more.begin(), more.end());
+  const auto creep = creep_options();
+  specs.insert(specs.end(), creep.begin(), creep.end());
   for (const auto& c : column_options)
     specs.push_back({c.name, "NAME", std::string(c.help) + " (default " + RunColumns().*c.member + ")"});
   return specs;
@@ -112,12 +139,10 @@ RunSettings settings_from(const ParsedOptions& options, const std::string& comma
   s.peak_fmin_hz = options.number("fmin").value_or(s.peak_fmin_hz);
   s.peak_fmax_hz = options.number("fmax").value_or(s.peak_fmax_hz);
   s.high_frequency_hz = options.number("high-frequency").value_or(s.high_frequency_hz);
-  s.sample_rate_hz = options.number("sample-rate");
-  if (s.sample_rate_hz && !(*s.sample_rate_hz > 0)) throw UsageError(command + ": --sample-rate must be positive");
+  s.sample_rate_hz = positive_option(options, "sample-rate", command);
   s.z0 = options.number("z0").value_or(s.z0);  // else a run folder's record (run_parameters.h)
-  s.creep_depth_d = options.number("creep-depth").value_or(s.creep_depth_d);
-  s.cell_length_d = options.number("cell-length");
-  if (s.cell_length_d && !(*s.cell_length_d > 0)) throw UsageError(command + ": --cell-length must be positive");
+  s.creep = creep_settings_from(options, command);
+  s.cell_length_d = positive_option(options, "cell-length", command);
   s.averaging_blocks = static_cast<int>(options.integer("blocks").value_or(s.averaging_blocks));
   s.progress = options.flag("progress");
   for (const auto& c : column_options)
@@ -288,12 +313,45 @@ int command_snapshot(const std::vector<std::string>& arguments)
   return 0;
 }
 
+int command_creep(const std::vector<std::string>& arguments)
+{
+  auto specs = creep_options();
+  specs.push_back(
+      {"update", "", "PATH is a published run folder: replace the creep_* rows of its results.csv and results.json"});
+  specs.push_back({"help", "", "show this help"});
+  auto options = parse_or_help("cdpost creep", "cdpost creep PROFILE.csv|RUN_FOLDER [options]", arguments, specs, 1);
+  if (!options) return 0;
+  const auto settings = creep_settings_from(*options, "cdpost creep");
+  const std::filesystem::path path = options->positional[0];
+  const bool folder = std::filesystem::is_directory(path);
+  if (options->flag("update") && !is_published_run(path.string()))
+    throw UsageError("cdpost creep: --update needs a published run folder (holding results.csv), not " + path.string());
+  const auto profile_path = folder ? (path / "profile.csv").string() : path.string();
+  const auto profile = read_published_profile(profile_path);
+  const auto creep = measure_creep(profile.z_d, profile.u, settings);
+  ResultTable results;
+  add_creep_results(results, creep);
+  std::cout << results.text();
+  std::vector<std::string> warnings;
+  for (const auto& problem : creep_problems(creep)) warnings.push_back(profile_path + ": creep " + problem);
+  if (options->flag("update")) {
+    update_published_creep(path.string(), creep);
+    std::cout << "updated: " << (path / "results.csv").string() << ", " << (path / "results.json").string() << '\n';
+  }
+  print_warnings(warnings);
+  return 0;
+}
+
 }  // namespace
 
 int run_command_line(const std::vector<std::string>& arguments)
 {
   const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
-      {"run", command_run}, {"series", command_series}, {"spectrum", command_spectrum}, {"snapshot", command_snapshot}};
+      {"run", command_run},
+      {"series", command_series},
+      {"spectrum", command_spectrum},
+      {"snapshot", command_snapshot},
+      {"creep", command_creep}};
   if (arguments.empty() || arguments[0] == "--help" || arguments[0] == "-h" || arguments[0] == "help") {
     std::cout << overview;
     return arguments.empty() ? 2 : 0;

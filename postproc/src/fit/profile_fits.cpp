@@ -70,21 +70,6 @@ Estimate decay_length(const Estimate& inverse_length)
   return lambda;
 }
 
-CreepFit fit_creep(const std::vector<double>& z, const std::vector<double>& u, double z_min)
-{
-  std::vector<double> rows_z, rows_u;
-  for (size_t i = 0; i < z.size(); ++i)
-    if (z[i] < 0 && z[i] >= z_min && u[i] > 0) {
-      rows_z.push_back(z[i]);
-      rows_u.push_back(u[i]);
-    }
-  if (rows_z.size() < 3) throw AnalysisError("the creep fit needs at least 3 points with z < 0 and u > 0");
-  auto fit = fit_exponential(rows_z, rows_u);
-  if (!(fit.inverse_length.value > 0))
-    throw AnalysisError("the bed velocity does not decay with depth: no creep length");
-  return {decay_length(fit.inverse_length), fit.y0, fit.raw.points};
-}
-
 DepthDecay fit_depth_decay(const std::vector<double>& z, const std::vector<double>& amplitude, double h)
 {
   double spacing = INFINITY;  // between neighbouring layers; empty layers may be missing

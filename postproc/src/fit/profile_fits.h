@@ -20,15 +20,6 @@ struct BagnoldFit {
 BagnoldFit fit_bagnold(const std::vector<double>& z, const std::vector<double>& u, double h);
 double bagnold_velocity(const BagnoldFit& fit, double z);
 
-// Creep in the bed: u(z) = u0 exp(z / lambda) for z < 0, fitted as a line to ln u over the
-// points with u > 0 and z_min <= z < 0.
-struct CreepFit {
-  Estimate lambda;  // d
-  Estimate u0;      // sqrt(g d)
-  int points = 0;
-};
-CreepFit fit_creep(const std::vector<double>& z, const std::vector<double>& u, double z_min);
-
 // y = y0 exp(z / lambda) fitted as a line to ln y (every y > 0, at least 3 points). The slope
 // 1/lambda is fitted, not lambda: it may be zero or negative.
 struct ExponentialFit {
