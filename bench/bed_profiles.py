@@ -2,7 +2,8 @@
 """The bed against the solver's tolerance: tables and figure from bench/bed_study.py's runs.
 
     floor      u_floor(z; tolerance): the packing at rest (mu 0.5, 12 deg). Over the 0.1 s
-               windows from --floor-from on, every replica's band mean of u is an error (the
+               windows from --floor-from on (a continuation: from its second window), every
+               replica's band mean of u is an error (the
                packing should not move): the floor is their rms, with the mean and its standard
                error beside it.
     flows      u(z) of each friction's continuations per tolerance: each replica's time mean over
@@ -135,10 +136,12 @@ def floor_table(args):
     for tolerance, folders in replicas(os.path.join(args.study, "floor", "tol*")).items():
         values, per_window = {}, {}
         for folder in folders:
-            for end, bins in windows(folder):
+            run_windows = windows(folder)
+            first = max(args.floor_from, run_windows[0][0] + 0.1)    # a continuation: its first window is a change
+            for end, bins in run_windows:
                 for b, u in band_means(bins, args.band).items():
                     per_window.setdefault((round(end, 3), b), []).append(u)
-                    if end > args.floor_from + 1e-9:
+                    if end > first + 1e-9:
                         values.setdefault(b, []).append(u)
         table[tolerance] = {b: (math.sqrt(statistics.mean(x * x for x in v)), *mean_se(v), len(v))
                             for b, v in sorted(values.items())}

@@ -4,7 +4,8 @@
 One layer-reading deposition (L 45 d, seed 20261122, the published series' own) serves every run:
 
     floor/tol<T>_<order>        the packing at rest: mu 0.5, gravity tilted to 12 deg (below
-                                the flow threshold), tolerance T, 0.6 s from the tilt
+                                the flow threshold), tolerance T, 0.6 s from the tilt (T 1e-3,
+                                1e-4); at 1e-5 continued from 1e-4's end to 0.9 s
     start/mu<mu>_theta<theta>   a stationary flow: 6 s at tolerance 1e-2 from the tilt
     flow/mu<mu>_theta<theta>/tol<T>_<order>
                                 continued from the start's chute.restart for 1.2 s at
@@ -45,6 +46,7 @@ from cdtools.run import BUILT_CDPOST, BUILT_LMP_CD, DECK, lmp_command
 
 CELL = dict(reading="layer", L="45", seed="20261122")
 FLOOR = dict(mu="0.5", theta="12", duration="0.6", max_iterations="100000")
+FLOOR_TIGHT_END = "0.9"
 FLOWS = (("0.5", "24"), ("0.05", "20"), ("2", "28"))
 START = dict(tolerance="1e-2", duration="6")
 CONTINUATION_SECONDS = 1.2
@@ -77,10 +79,14 @@ class Job:
 def plan():
     """Every job of the study, in the order they are run."""
     jobs = []
-    for tolerance in TOLERANCES + ("1e-5",):
+    for tolerance in TOLERANCES:
         for order in ORDERS:
             jobs.append(Job(f"floor/tol{tolerance}_{order}",
                             dict(CELL, **FLOOR, tolerance=tolerance, **order_variables(order)), "deposition"))
+    for order in ORDERS:    # the tilt's transient costs ~1e4 sweeps a step at 1e-5: from 1e-4's rest
+        floor = dict(FLOOR, duration=FLOOR_TIGHT_END)
+        jobs.append(Job(f"floor/tol1e-5_{order}", dict(CELL, **floor, tolerance="1e-5", **order_variables(order)),
+                        f"floor/tol1e-4_{order}"))
     for mu, theta in FLOWS:
         start = f"start/mu{mu}_theta{theta}"
         jobs.append(Job(start, dict(CELL, mu=mu, theta=theta, **START), "deposition"))
