@@ -5,7 +5,8 @@ One layer-reading deposition (L 45 d, seed 20261122, the published series' own) 
 
     floor/tol<T>_<order>        the packing at rest: mu 0.5, gravity tilted to 12 deg (below
                                 the flow threshold), tolerance T, 0.6 s from the tilt (T 1e-3,
-                                1e-4); at 1e-5 continued from 1e-4's end to 0.9 s
+                                1e-4); at 1e-5 continued from 1e-4's end to 0.9 s, at 1e-6
+                                from 1e-5's to 1.2 s
     start/mu<mu>_theta<theta>   a stationary flow: 6 s at tolerance 1e-2 from the tilt
     flow/mu<mu>_theta<theta>/tol<T>_<order>
                                 continued from the start's chute.restart for 1.2 s at
@@ -46,7 +47,7 @@ from cdtools.run import BUILT_CDPOST, BUILT_LMP_CD, DECK, lmp_command
 
 CELL = dict(reading="layer", L="45", seed="20261122")
 FLOOR = dict(mu="0.5", theta="12", duration="0.6", max_iterations="100000")
-FLOOR_TIGHT_END = "0.9"
+FLOOR_CHAIN = (("1e-4", "1e-5", "0.9"), ("1e-5", "1e-6", "1.2"))   # (from, tolerance, to chute time)
 FLOWS = (("0.5", "24"), ("0.05", "20"), ("2", "28"))
 START = dict(tolerance="1e-2", duration="6")
 CONTINUATION_SECONDS = 1.2
@@ -83,10 +84,14 @@ def plan():
         for order in ORDERS:
             jobs.append(Job(f"floor/tol{tolerance}_{order}",
                             dict(CELL, **FLOOR, tolerance=tolerance, **order_variables(order)), "deposition"))
-    for order in ORDERS:    # the tilt's transient costs ~1e4 sweeps a step at 1e-5: from 1e-4's rest
-        floor = dict(FLOOR, duration=FLOOR_TIGHT_END)
-        jobs.append(Job(f"floor/tol1e-5_{order}", dict(CELL, **floor, tolerance="1e-5", **order_variables(order)),
-                        f"floor/tol1e-4_{order}"))
+    # The tilt's transient costs ~1e4 sweeps a step at 1e-5; at rest a few: each tighter
+    # tolerance continues the looser one's rest for 0.3 s.
+    for looser, tolerance, end in FLOOR_CHAIN:
+        for order in ORDERS:
+            floor = dict(FLOOR, duration=end)
+            jobs.append(Job(f"floor/tol{tolerance}_{order}",
+                            dict(CELL, **floor, tolerance=tolerance, **order_variables(order)),
+                            f"floor/tol{looser}_{order}"))
     for mu, theta in FLOWS:
         start = f"start/mu{mu}_theta{theta}"
         jobs.append(Job(start, dict(CELL, mu=mu, theta=theta, **START), "deposition"))
@@ -149,10 +154,32 @@ def run_deposition(out, args):
     subprocess.run(command, cwd=folder, check=True)
 
 
+def claim(folder):
+    """True if this runner may run the job in folder: no other live runner holds its lock
+    (two runners, one a core, share a study)."""
+    os.makedirs(folder, exist_ok=True)
+    lock = os.path.join(folder, "runner.pid")
+    try:
+        with open(lock) as src:
+            holder = int(src.read())
+        if holder != os.getpid() and os.path.exists(f"/proc/{holder}"):
+            return False
+    except (OSError, ValueError):
+        pass
+    with open(lock + ".tmp", "w") as out:
+        out.write(f"{os.getpid()}\n")
+    os.replace(lock + ".tmp", lock)
+    return True
+
+
 def run_job(job, args):
-    """Legs until the job reaches its duration, then the splice; a failed leg stops the study."""
+    """Legs until the job reaches its duration, then the splice; a failed leg stops the study.
+    A job another live runner holds is skipped."""
     folder = job.folder(args.out)
     if os.path.exists(os.path.join(folder, "DONE")):
+        return
+    if not claim(folder):
+        print(f"{job.name}: run by another runner", flush=True)
         return
     duration = float(job.vars["duration"])
     origin_done = os.path.join(args.out, job.origin, "DONE" if job.origin != "deposition" else "deposition.restart")

@@ -10,6 +10,7 @@ fixture). Standard library only.
 """
 
 import argparse
+import csv
 import math
 import os
 import shutil
@@ -476,6 +477,39 @@ def case_frozen_bed(args):
     print(f"frozen bed: {len(frozen)} grains held exactly; the layer flows at {u_layer:.2f} sqrt(g d)")
 
 
+def case_solve_error_by_depth(args):
+    """bench/solve_error_by_depth.py on the packing at rest, tilted by 12 degrees (the frozen
+    bed): one step from the deposition at tolerances 1e-2, 1e-4 and at the reference's own
+    1e-8. The solve at the reference's tolerance is the reference (error exactly 0 in every
+    band); the error falls from 1e-2 to 1e-4 in the bed as a whole (rms over its bands); every
+    band below the surface holds grains, and the bands tile the packing."""
+    work = os.path.join(args.work, "solve_error_by_depth")
+    shutil.rmtree(work, ignore_errors=True)
+    script = os.path.join(TOP, "bench", "solve_error_by_depth.py")
+    cell = " ".join(f"{k}={v}" for k, v in CELL.items() if k not in ("dt", "tolerance")) + f" theta={STATIC_TILT}"
+    done = subprocess.run([sys.executable, script, "--out", work, "--lmp", args.lmp, "--cell", cell, "--dt", "2e-5",
+                           "--snapshots", os.path.join(args.work, "deposition", "deposition.restart"),
+                           "--tolerances", "1e-2", "1e-4", "1e-8", "--reference-tolerance", "1e-8",
+                           "--max-iterations", "200000", "--band", "2"], capture_output=True, text=True)
+    check(done.returncode == 0, f"solve_error_by_depth.py failed: {done.stderr.strip()[-300:]}")
+    with open(os.path.join(work, "error_by_depth.csv")) as src:
+        rows = list(csv.DictReader(src))
+    by_tolerance = {}
+    for r in rows:
+        by_tolerance.setdefault(float(r["tolerance"]), []).append(r)
+    check(all(float(r["rms_error"]) == 0.0 for r in by_tolerance[1e-8]),
+          "the solve at the reference's own tolerance is not the reference")
+    grains = sum(int(r["grains"]) for r in by_tolerance[1e-2])
+    check(grains == 200, f"the bands hold {grains} grains, not the cell's 200")
+
+    def bed_error(tolerance):
+        bed = [float(r["rms_error"]) for r in by_tolerance[tolerance] if float(r["z_low"]) < 0]
+        return math.sqrt(sum(e * e for e in bed) / len(bed))
+    loose, tight = bed_error(1e-2), bed_error(1e-4)
+    check(tight < loose, f"the bed's error at 1e-4 ({tight:.3g}) is not below 1e-2's ({loose:.3g})")
+    print(f"solve error by depth: bed rms error {loose:.2e} at 1e-2, {tight:.2e} at 1e-4 (sqrt(g d))")
+
+
 STATIC_TILT, STATIC_DURATION, SETTLE_TIME = 12, 0.4, 0.1
 
 
@@ -711,6 +745,7 @@ CASES = {
     "runaway": case_runaway,
     "bad_var": case_bad_var,
     "frozen_bed": case_frozen_bed,
+    "solve_error_by_depth": case_solve_error_by_depth,
     "columns": case_columns,
     "reading": case_reading,
     "start_mismatch": case_start_mismatch,
