@@ -406,9 +406,10 @@ def section_comparisons(destination, page_folder):
             continue
         headings, rows = comparison_summary(os.path.join(target, "table.csv"))
         relative = os.path.relpath(target, page_folder)
+        commands = (f"its commands in [{relative}/commands.txt]({relative}/commands.txt), "
+                    if os.path.exists(os.path.join(target, "commands.txt")) else "")
         text += (f"## Rigid against soft: {name}\n\nThe same packing run by each model (reference/run_comparison.sh, "
-                 f"its commands in [{relative}/commands.txt]({relative}/commands.txt), every column in "
-                 f"[{relative}/table.csv]({relative}/table.csv) and the full report in "
+                 f"{commands}every column in [{relative}/table.csv]({relative}/table.csv) and the full report in "
                  f"[{relative}/report.md]({relative}/report.md)).\n\n" + markdown_table(headings, rows))
         spectra = sorted(os.path.relpath(f, target) for f in glob.glob(os.path.join(target, "figures", "spectra*.png")))
         text += "\n" + "".join(f"![{os.path.basename(f)}]({relative}/{f}) " for f in spectra[:2]) + "\n\n"
