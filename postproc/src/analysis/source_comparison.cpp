@@ -521,7 +521,7 @@ std::vector<FrictionCurve> source_velocity_points(const SeriesAnalysis& series, 
   if (!series.source) return curves;
   for (double mu : series.source->frictions) {
     Curve curve;
-    curve.title = "source's Pouliquen rule at each run's h, mu = " + number(mu);
+    curve.title = "source's Pouliquen, mu = " + number(mu);  // at each run's theta and h
     curve.style = CurveStyle::Points;
     curve.point_type = 6;  // open circles
     for (const auto& run : series.runs)
@@ -540,7 +540,7 @@ std::vector<FrictionCurve> source_phi_lines(const SourceNumbers& source, double 
   std::vector<FrictionCurve> curves;
   for (double mu : source.frictions) {
     Curve line;
-    line.title = "source: phi_c - k U, mu = " + number(mu);
+    line.title = "source's law, mu = " + number(mu);
     line.style = CurveStyle::LinesPoints;
     line.point_type = 3;  // asterisks: the source's, not a fit
     line.dashed = true;
