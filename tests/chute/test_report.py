@@ -31,6 +31,8 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.dirname(os.path.dirname(HERE))
 RUNNER = os.path.join(TOP, "scripts", "chute_campaign.py")
+# The pages --report writes: the README, then the pages holding the runs', series' and soft tables.
+PAGES = ("README.md", "runs/README.md", "series/README.md", "soft/README.md")
 
 D, G = 5.0e-4, 9.81
 SQRT_GD = math.sqrt(G * D)
@@ -181,7 +183,13 @@ def report(cdpost, campaign, results, *more):
     cmd = [sys.executable, RUNNER, "--out", campaign, "--cdpost", cdpost, "--report", results, *more] + SERIES_ARGS
     done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     check(done.returncode == 0, "--report failed:\n" + done.stdout + done.stderr)
-    return open(os.path.join(results, "README.md")).read()
+    return "\n".join(open(os.path.join(results, page)).read() for page in PAGES)
+
+
+def run_folders(results):
+    """The published runs' folders of results/runs (beside its README.md)."""
+    folder = os.path.join(results, "runs")
+    return sorted(name for name in os.listdir(folder) if os.path.isdir(os.path.join(folder, name)))
 
 
 def check_within(fits, name, truth, sigmas=3.0):
@@ -214,13 +222,13 @@ def check_readings(results, readme):
     section = readme[readme.find("## Two readings of the 45 d cell"):]
     line = next((r for r in section.splitlines() if r.startswith("| phi_k |")), "")
     check(f"| {difference:+.1f} |" in line, "the readings' table has no phi_k with its difference:\n" + section[:1500])
-    check("![U_vs_theta](series/readings/figures/U_vs_theta.png)" in section
-          and "![phi_vs_I](series/readings/figures/phi_vs_I.png)" in section,
+    check("![U_vs_theta](readings/figures/U_vs_theta.png)" in section
+          and "![phi_vs_I](readings/figures/phi_vs_I.png)" in section,
           "the readings' figures are not shown:\n" + section[:1500])
     # Per friction, the layer's thickness in each reading and their difference at the same angles:
     # H_LAYER - H at each of LAYER_ANGLES, with the standard error of those differences.
     h_of = {name: float(read_csv(os.path.join(results, "runs", name, "results.csv"))["h"]["value"])
-            for name in os.listdir(os.path.join(results, "runs"))}
+            for name in run_folders(results)}
     differences = [h_of[f"mu0.5_theta{t}_L45_layer"] - h_of[f"mu0.5_theta{t}_L45"] for t in LAYER_ANGLES]
     mean = sum(differences) / len(differences)
     error = math.sqrt(sum((d - mean) ** 2 for d in differences) / (len(differences) - 1) / len(differences))
@@ -244,9 +252,11 @@ def main():
     campaign, results = os.path.join(work, "campaign"), os.path.join(work, "results")
     try:
         write_campaign(campaign)
+        os.makedirs(results)
+        shutil.copy(os.path.join(TOP, "results", "source.csv"), results)
         readme = report(os.path.abspath(args.cdpost), campaign, results)
 
-        analysed = sorted(os.listdir(os.path.join(results, "runs")))
+        analysed = run_folders(results)
         check(len(analysed) == 10, f"results/runs holds {analysed}, expected the 10 finished runs")
         for name in analysed:
             check(os.path.exists(os.path.join(results, "runs", name, "results.csv")), f"{name}: no results.csv")
@@ -274,7 +284,14 @@ def main():
         check_within(fits, "muI_theta2_mu0.5", THETA2)
         check_within(fits, "phi_k", K)
         check_within(fits, "phi_c_mu0.5", PHI_C)
-        check("![U_vs_theta](series/flow_rules/figures/U_vs_theta.png)" in readme, "the flow-rule figure is not shown")
+        check("![U_vs_theta](flow_rules/figures/U_vs_theta.png)" in readme, "the flow-rule figure is not shown")
+        # The source's numbers (results/source.csv) compared by cdpost series --source, in the README.
+        source = readme[readme.find("## Against the source"):]
+        check("## Against the source" in readme and "(source.csv)" in source
+              and "\n| phi_c of phi = phi_c - k U, mu 0.5 | 0.826 | " in source
+              and "\n| Pouliquen's rule (beta = 0.136) as a curve, mu 0.5 | 0 deg | theta - theta_source(I): " in source
+              and os.path.exists(os.path.join(results, "series", "readings", "source_comparison.csv")),
+              "the comparison with the source is not in the README:\n" + source[:1500])
 
         check_readings(results, readme)
 
@@ -335,7 +352,7 @@ def main():
         check(params["vars"]["duration"] == "12", f"duration after the extension: {params['vars']['duration']}")
 
         path = os.path.join(results, "README.md")
-        text = readme.replace("(no discussion yet)", "The flows follow the rule they were made with.")
+        text = open(path).read().replace("(no discussion yet)", "The flows follow the rule they were made with.")
         open(path, "w").write(text)
         comparison = os.path.join(work, "mu0.5-theta24")
         write_comparison(comparison)

@@ -1,11 +1,16 @@
 """The rules that keep README.md and doc/ reference pages (test_docs.py, cases `pages` and `costs`).
 
 Lengths (`length_problems`):
-  README.md at most 100 lines; every page under doc/ (.md, .rst, in any folder but doc/notes/) at
-  most 300; the five pages a newcomer reads (NEWCOMER_PAGES) at most 1200 together. doc/notes/
+  README.md at most 100 lines; results/README.md (the campaign's results, read in ten minutes; its
+  tables live on the pages it links) at most 250; every page under doc/ (.md, .rst, in any folder
+  but doc/notes/) at most 300; the five pages a newcomer reads (NEWCOMER_PAGES) at most 1200 together. doc/notes/
   holds dated notebooks, doc/notes/YYYY-MM-DD-topic.md, of any length: studies, superseded
   settings and corrected figures live there or in the git history, and no reference page needs
   them to be read.
+
+Links (`link_problems`): every relative link and image of a Markdown page, [text](target) or
+![text](target), names a file or folder that exists (relative to the page; an anchor after # and
+links with a scheme such as https: are not checked).
 
 History (`history_problems`): a reference page (README.md, doc/ but doc/notes/) has no section
 named Open, Earlier or History and none of the phrases of a study log that HISTORY matches
@@ -34,6 +39,8 @@ import os
 import re
 
 README_LIMIT = 100
+RESULTS_README = "results/README.md"
+RESULTS_LIMIT = 250
 PAGE_LIMIT = 300
 NEWCOMER_PAGES = ("README.md", "doc/scene.md", "doc/fix_contact_dynamics.rst", "doc/chute.md", "doc/postproc.md")
 NEWCOMER_LIMIT = 1200
@@ -72,7 +79,8 @@ def length_problems(pages):
             if not NOTE_NAME.match(path[len(NOTES):]):
                 problems.append(f"{path}: a note is named doc/notes/YYYY-MM-DD-topic.md")
             continue
-        limit = README_LIMIT if path == "README.md" else PAGE_LIMIT if is_reference_page(path) else None
+        limit = (README_LIMIT if path == "README.md" else RESULTS_LIMIT if path == RESULTS_README
+                 else PAGE_LIMIT if is_reference_page(path) else None)
         if limit is not None and line_count(text) > limit:
             problems.append(f"{path}: {line_count(text)} lines, more than {limit}: move studies and history "
                             f"to the git log or to {NOTES}YYYY-MM-DD-topic.md")
@@ -83,6 +91,27 @@ def length_problems(pages):
     if total > NEWCOMER_LIMIT:
         counts = ", ".join(f"{path} {line_count(pages[path])}" for path in NEWCOMER_PAGES if path in pages)
         problems.append(f"the newcomer pages hold {total} lines together, more than {NEWCOMER_LIMIT} ({counts})")
+    return problems
+
+
+LINK = re.compile(r"\]\(([^)\s]+)\)")
+
+
+def link_problems(pages, exists):
+    """pages: {path relative to the top: text}; exists(path relative to the top) says whether a file
+    or folder is there. One line per relative link of a Markdown page that names nothing."""
+    problems = []
+    for path, text in sorted(pages.items()):
+        if not path.endswith(".md"):
+            continue
+        for k, line in enumerate(text.split("\n")):
+            for match in LINK.finditer(line):
+                target = match.group(1).split("#")[0]
+                if not target or re.match(r"^[a-z][a-z0-9+.-]*:", target, re.I):
+                    continue
+                resolved = os.path.normpath(os.path.join(os.path.dirname(path), target))
+                if not exists(resolved):
+                    problems.append(f"{path}:{k + 1}: the link {match.group(1)} names nothing ({resolved})")
     return problems
 
 

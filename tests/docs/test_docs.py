@@ -391,6 +391,8 @@ def tree_files(pattern_lists):
 
 
 REFERENCE_PAGES = ("README.md", "doc/**/*.md", "doc/**/*.rst")
+# The campaign's results pages: their length and links are checked as the reference pages' are.
+RESULTS_PAGES = ("results/**/README.md",)
 
 
 def report(problems, passed):
@@ -400,10 +402,12 @@ def report(problems, passed):
 
 
 def case_pages(args):
-    pages = tree_files(REFERENCE_PAGES)
+    pages = tree_files(REFERENCE_PAGES + RESULTS_PAGES)
     total = sum(page_rules.line_count(pages[path]) for path in page_rules.NEWCOMER_PAGES if path in pages)
-    report(page_rules.length_problems(pages) + page_rules.history_problems(pages),
-           f"{len(pages)} pages within their lengths; the newcomer pages {total} lines together")
+    links = page_rules.link_problems(pages, lambda path: os.path.exists(os.path.join(TOP, path)))
+    report(page_rules.length_problems(pages) + page_rules.history_problems(pages) + links,
+           f"{len(pages)} pages within their lengths, their links resolved; the newcomer pages {total} lines "
+           "together")
 
 
 def case_costs(args):

@@ -51,6 +51,16 @@ class Lengths(unittest.TestCase):
         self.assertEqual(len(found), 1)
         self.assertIn("README.md: 101 lines, more than 100", found[0])
 
+    def test_the_results_page_has_its_own_limit_and_other_results_pages_none(self):
+        pages = newcomer_pages()
+        pages["results/README.md"] = lines(250)
+        pages["results/runs/README.md"] = lines(900)
+        self.assertEqual(page_rules.length_problems(pages), [])
+        pages["results/README.md"] = lines(251)
+        found = page_rules.length_problems(pages)
+        self.assertEqual(len(found), 1)
+        self.assertIn("results/README.md: 251 lines, more than 250", found[0])
+
     def test_dated_notes_have_no_limit_and_other_names_are_refused(self):
         pages = newcomer_pages()
         pages["doc/notes/2026-11-25-accuracy.md"] = lines(900)
@@ -189,3 +199,28 @@ class Costs(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class Links(unittest.TestCase):
+    TREE = {"results/README.md", "results/runs", "results/runs/README.md", "results/series/a/figures/f.png",
+            "doc/chute.md"}
+
+    def problems(self, pages):
+        return page_rules.link_problems(pages, lambda path: path in self.TREE)
+
+    def test_links_resolved_from_the_page_folder_pass(self):
+        page = ("See [the runs](runs/README.md), [folder](runs), ![f](series/a/figures/f.png), "
+                "[a section](runs/README.md#flow), [the web](https://example.org/x), [here](#top), "
+                "[the chute](../doc/chute.md).\n")
+        self.assertEqual(self.problems({"results/README.md": page}), [])
+        self.assertEqual(self.problems({"results/runs/README.md": "[up](../README.md)\n"}), [])
+
+    def test_a_link_naming_nothing_is_found_with_its_line(self):
+        page = "title\n\n![f](series/a/figures/g.png) and [runs](../runs/README.md)\n"
+        found = self.problems({"results/README.md": page})
+        self.assertEqual(len(found), 2)
+        self.assertIn("results/README.md:3: the link series/a/figures/g.png names nothing", found[0])
+        self.assertIn("(runs/README.md)", found[1])
+
+    def test_only_markdown_pages_are_read(self):
+        self.assertEqual(self.problems({"doc/fix.rst": "`x <missing.md>`_ [y](missing.md)\n"}), [])

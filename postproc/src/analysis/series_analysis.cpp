@@ -491,6 +491,7 @@ SeriesAnalysis analyse_series(const SeriesSettings& settings)
   SeriesAnalysis series;
   series.settings = settings;
   const auto entries = read_manifest(settings.manifest);
+  if (!settings.source_file.empty()) series.source = read_source(settings.source_file);
   Progress progress("analysing runs", true, settings.run.progress);
   for (size_t i = 0; i < entries.size(); ++i) {
     if (entries[i].stopped) {

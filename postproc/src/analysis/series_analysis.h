@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "analysis/run_analysis.h"
+#include "analysis/source_numbers.h"
 #include "fit/flow_rules.h"
 #include "fit/profile_fits.h"
 
@@ -31,6 +32,8 @@ struct SeriesSettings {
   // held (at beta): the rms residual against the held value shows what the runs determine.
   std::vector<double> held_i0{0.1, 0.15, 0.2, 0.3, 0.4, 0.5};
   std::vector<double> held_ell{0.5, 0.75, 1, 1.25, 1.5, 1.75, 2, 2.5, 3};
+  // The numbers of the source study to compare with (analysis/source_numbers.h); empty: none.
+  std::string source_file;
 };
 
 struct ManifestEntry {
@@ -107,6 +110,7 @@ struct SeriesAnalysis {
   std::vector<SeriesResidual> residuals;
   ResultTable fits;
   std::vector<std::string> warnings;
+  std::optional<SourceNumbers> source;  // read from settings.source_file
 };
 
 SeriesAnalysis analyse_series(const SeriesSettings& settings);

@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "analysis/series_figures.h"
+#include "analysis/source_comparison.h"
 #include "output/gnuplot.h"
 #include "output/report.h"
 
@@ -85,7 +86,8 @@ struct Styles {
       const bool in_key = c.curve.style != CurveStyle::LinesBand || std::isnan(c.mu);
       c.curve.title = in_key ? labels[series] + ": " + c.curve.title : "";
       c.curve.line_type = line_type(c.mu);
-      c.curve.point_type = series == 0 ? 7 : 5;  // filled circles, filled squares
+      const bool open = c.curve.point_type == 6;                           // the source's numbers at the series' runs
+      c.curve.point_type = series == 0 ? (open ? 6 : 7) : (open ? 4 : 5);  // circles, squares
       c.curve.dashed = series == 1;
       panel.curves.push_back(std::move(c.curve));
     }
@@ -177,7 +179,11 @@ Figure flow_rule_figure(const SeriesComparison& comparison, const Styles& styles
     for (const auto& [rule_name, rule] : rules) {
       auto panel = overlaid(comparison, styles, "theta", "U", [&](size_t s, double, double) {
         const auto* fits = fits_under(comparison.series[s], definition);
-        return fits ? rule(comparison.series[s], *fits, top) : std::vector<FrictionCurve>{};
+        auto curves = fits ? rule(comparison.series[s], *fits, top) : std::vector<FrictionCurve>{};
+        if (rule == pouliquen_curves)
+          for (auto& source : source_velocity_points(comparison.series[s], definition.thickness))
+            curves.push_back(std::move(source));
+        return curves;
       });
       panel = titled(panel,
                      "U against tilt, " + rule_name + ", " + definition.name + " (curves at each series' mean " +
@@ -188,9 +194,12 @@ Figure flow_rule_figure(const SeriesComparison& comparison, const Styles& styles
       panel.key = "bottom right";  // U rises with theta
       panels.push_back(panel);
     }
-  return grid("U_vs_theta",
-              "U against theta with Pouliquen's (beta fixed) and the mu(I) rule of each series; " + styles.legend(),
-              panels, 2);
+  return grid(
+      "U_vs_theta",
+      "U against theta with Pouliquen's (beta fixed) and the mu(I) rule of each series; " + styles.legend() +
+          (comparison.series[0].source ? "; open symbols: the source's Pouliquen rule at each run's own theta and h"
+                                       : ""),
+      panels, 2);
 }
 
 // phi against U or I: a panel per definition, each series with its linear phi law.
@@ -205,6 +214,14 @@ Figure phi_figure(const SeriesComparison& comparison, const Styles& styles, bool
       const auto& law = against_velocity ? fits->phi_of_u : fits->phi_of_i;
       return law ? phi_law_curves(*law, x0, x1) : std::vector<FrictionCurve>{};
     });
+    const auto& source = comparison.series[0].source;
+    if (source && against_velocity && !panel.curves.empty()) {
+      auto [u0, u1] = x_extent(panel.curves);
+      for (auto& line : source_phi_lines(*source, u0, u1)) {
+        line.curve.line_type = styles.line_type(line.mu);
+        panel.curves.push_back(std::move(line.curve));
+      }
+    }
     panel = titled(panel, definition.phi + " against " + x + ", " + definition.name,
                    against_velocity ? "U / sqrt(g d)" : x, definition.phi);
     panel.key = "bottom left";  // phi falls as U and I rise
@@ -212,7 +229,8 @@ Figure phi_figure(const SeriesComparison& comparison, const Styles& styles, bool
   }
   return grid(against_velocity ? "phi_vs_U" : "phi_vs_I",
               std::string("phi against ") + (against_velocity ? "U" : "I") +
-                  " with each series' linear law, a panel per definition of h and phi; " + styles.legend(),
+                  " with each series' linear law, a panel per definition of h and phi; " + styles.legend() +
+                  (comparison.series[0].source && against_velocity ? "; asterisks: the source's phi(U) law" : ""),
               panels, panels.size());
 }
 
@@ -225,7 +243,13 @@ Figure power_law_figure(const SeriesComparison& comparison, const Styles& styles
     if (!fitted) return std::vector<FrictionCurve>{};
     return std::vector<FrictionCurve>{{kEveryFriction, power_law_curve(*fitted, x0, x1)}};
   });
-  return grid(name, "Oscillation frequency f against " + x_label + " with each series' power law; " + styles.legend(),
+  if (const auto& source = comparison.series[0].source; source && !panel.curves.empty()) {
+    auto [x0, x1] = x_extent(panel.curves);
+    for (auto& line : source_frequency_range(*source, x0, x1)) panel.curves.push_back(std::move(line));
+  }
+  return grid(name,
+              "Oscillation frequency f against " + x_label + " with each series' power law; " + styles.legend() +
+                  (comparison.series[0].source ? "; dashed: the source's range of f" : ""),
               {titled(panel, "f against " + x_label, x_label, "f (Hz)")}, 1);
 }
 
@@ -313,6 +337,8 @@ void write_comparison_outputs(SeriesComparison& comparison, const std::string& o
                    ") in units of the combined error sqrt(sigma1^2 + sigma2^2), given where both fits have an "
                    "error; every row is in compared_fits.csv.");
   const auto fits = compared_fits(comparison);
+  const std::vector<LabelledSeries> both{{labels[0], &comparison.series[0]}, {labels[1], &comparison.series[1]}};
+  source_section(report, both);
   report.heading("Fits of both series");
   fits_table(report, comparison, fits);
   auto warnings = comparison_warnings(comparison);
@@ -324,6 +350,7 @@ void write_comparison_outputs(SeriesComparison& comparison, const std::string& o
   }
   report.warnings(warnings);
   write_compared_fits(comparison, fits, out_dir + "/compared_fits.csv");
+  write_source_comparison(both, out_dir + "/source_comparison.csv");
   report.write(out_dir + "/report.md");
 }
 

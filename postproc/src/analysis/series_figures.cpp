@@ -8,6 +8,7 @@
 #include "analysis/along_cell_series.h"
 #include "analysis/series_analysis.h"
 #include "analysis/series_figures.h"
+#include "analysis/source_comparison.h"
 #include "io/ave_time.h"
 #include "output/gnuplot.h"
 #include "output/report.h"
@@ -68,12 +69,15 @@ Figure power_law_figure(const SeriesAnalysis& series, const std::string& name, c
                         const std::string& x_label, const std::optional<PowerLaw>& law)
 {
   auto curves = by_friction(series, x, "f");
-  if (law && !curves.empty()) {
+  if (!curves.empty()) {
     auto [x0, x1] = x_extent(curves);
-    curves.push_back(power_law_curve(*law, x0, x1));
+    if (law) curves.push_back(power_law_curve(*law, x0, x1));
+    if (series.source)
+      for (auto& line : source_frequency_range(*series.source, x0, x1)) curves.push_back(std::move(line));
   }
   return {name,
-          "Oscillation frequency f against " + x_label + "; band: one standard error of the fitted law (delta method)",
+          "Oscillation frequency f against " + x_label + "; band: one standard error of the fitted law (delta method)" +
+              (series.source ? "; dashed: the source's range of f" : ""),
           {panel("f against " + x_label, x_label, "f (Hz)", curves)}};
 }
 
@@ -82,9 +86,12 @@ Panel phi_panel(const SeriesAnalysis& series, const DefinitionFits& fits, const 
                 const std::optional<PhiFit>& law, const std::string& x_label)
 {
   auto curves = by_friction(series, x, fits.definition.phi);
-  if (law && !curves.empty()) {
+  if (!curves.empty()) {
     auto [x0, x1] = x_extent(curves);
-    for (auto& line : phi_law_curves(*law, x0, x1)) curves.push_back(std::move(line.curve));
+    if (law)
+      for (auto& line : phi_law_curves(*law, x0, x1)) curves.push_back(std::move(line.curve));
+    if (series.source && x == "U")
+      for (auto& line : source_phi_lines(*series.source, x0, x1)) curves.push_back(std::move(line.curve));
   }
   auto p = panel(fits.definition.phi + " against " + x_label + ", " + fits.definition.name, x_label,
                  fits.definition.phi, curves);
@@ -110,8 +117,9 @@ std::vector<Figure> phi_figures(const SeriesAnalysis& series)
     against_i.push_back(phi_panel(series, fits, fits.definition.inertial, fits.phi_of_i, fits.definition.inertial));
   }
   const std::string band = "; bands: one standard error of the fitted line (delta method, fit covariance)";
-  return {definitions_figure("phi_vs_U", "phi against U with the linear law, per definition of h and phi" + band,
-                             against_u),
+  const std::string source = series.source ? "; dashed: the source's phi(U) law" : "";
+  return {definitions_figure(
+              "phi_vs_U", "phi against U with the linear law, per definition of h and phi" + band + source, against_u),
           definitions_figure("phi_vs_I", "phi against I with the linear law, per definition of h and phi" + band,
                              against_i)};
 }
@@ -147,6 +155,8 @@ Panel flow_rule_panel(const SeriesAnalysis& series, const DefinitionFits& fits)
   const double top = 1.3 * u_max;  // the rules diverge at theta2
   for (auto* rule : {pouliquen_curves, mu_of_i_curves})
     for (auto& fitted : rule(series, fits, top)) curves.push_back(std::move(fitted.curve));
+  for (auto& source : source_velocity_points(series, fits.definition.thickness))
+    curves.push_back(std::move(source.curve));
   auto p = panel(
       "U against tilt, " + fits.definition.name + " (curves at the mean " + fits.definition.thickness + " of each mu)",
       "theta (deg)", "U / sqrt(g d)", curves);
@@ -162,7 +172,8 @@ Figure flow_rule_figure(const SeriesAnalysis& series)
   return definitions_figure(
       "U_vs_theta",
       "U against theta with Pouliquen's and the mu(I) rule, per definition of h and phi; bands: one "
-      "standard error of the fitted curve (delta method, fit covariance)",
+      "standard error of the fitted curve (delta method, fit covariance)" +
+          std::string(series.source ? "; open circles: the source's Pouliquen rule at each run's own theta and h" : ""),
       panels);
 }
 
@@ -618,6 +629,7 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
       "creep_floor in runs.csv.");
   creep_table(report, series);
   along_cell_section(series, report, out_dir);
+  source_section(report, {{"ours", &series}});
   report.heading("Figures");
   for (const auto& figure : series_figures(series)) {
     if (auto problem = render_figure(figure, figures_dir)) series.warnings.push_back(*problem);
@@ -629,6 +641,7 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
   write_held_fits(series, out_dir + "/held_fits.csv");
   write_layer_amplitudes(series, out_dir + "/layer_amplitudes.csv");
   write_depth_decay(series, out_dir + "/depth_decay.csv");
+  write_source_comparison({{"ours", &series}}, out_dir + "/source_comparison.csv");
   series.fits.write_csv(out_dir + "/fits.csv");
   series.fits.write_json(out_dir + "/fits.json", series.warnings);
   report.write(out_dir + "/report.md");

@@ -242,13 +242,15 @@ int command_series(const std::vector<std::string>& arguments)
   auto specs = analysis_options();
   specs.insert(specs.end(),
                {{"compare", "MANIFEST", "analyse this series too, as alone, and compare both"},
-                {"labels", "A,B", "names of the series with --compare (default: the manifests' folders)"}});
+                {"labels", "A,B", "names of the series with --compare (default: the manifests' folders)"},
+                {"source", "FILE", "the numbers of a source study to compare with (e.g. results/source.csv)"}});
   auto options =
       parse_or_help("cdpost series", "cdpost series MANIFEST.csv [--compare OTHER.csv] [options]", arguments, specs, 1);
   if (!options) return 0;
   SeriesSettings series;
   series.run = settings_from(*options, "cdpost series");
   series.manifest = options->positional[0];
+  series.source_file = options->text("source").value_or("");
   series.complete_run = [&](RunSettings& run) { apply_run_parameters(run, *options, "cdpost series"); };
   if (auto other = options->text("compare")) return command_compare(*options, series, *other);
   if (options->text("labels")) throw UsageError("cdpost series: --labels names the series of --compare");

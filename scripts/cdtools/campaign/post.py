@@ -92,6 +92,13 @@ def write_manifest(folder, analysis, runs):
     return manifest
 
 
+def source_options(args):
+    """--source for cdpost series: the source study's numbers, DIR/source.csv of --report when it
+    holds one (as a path relative to the working directory, which the reports name)."""
+    source = os.path.join(args.report, "source.csv") if getattr(args, "report", None) else None
+    return ["--source", os.path.relpath(source)] if source and os.path.exists(source) else []
+
+
 def run_series(analysis, manifest_folder, runs, cdpost, args, out=None):
     """cdpost series on `runs` (as write_manifest takes them), its manifest in manifest_folder and
     its outputs and log in `out` (default series-post beside the manifest). Returns whether it
@@ -101,7 +108,7 @@ def run_series(analysis, manifest_folder, runs, cdpost, args, out=None):
         os.makedirs(folder, exist_ok=True)
     manifest = write_manifest(manifest_folder, analysis, runs)
     cmd = [cdpost, "series", manifest] + recorded_options([folder for folder, _, _ in runs], runs[0][2]) + \
-        ["--out", out] + args.cdpost_option
+        ["--out", out] + source_options(args) + args.cdpost_option
     ok, message = run_logged(cmd, os.path.join(out, "cdpost.log"))
     print(f"series {analysis}: {len(runs)} runs, cdpost series {'done' if ok else 'failed: ' + message}", flush=True)
     return ok
@@ -113,7 +120,7 @@ def run_comparison(manifests, labels, cdpost, args, out):
     succeeded."""
     os.makedirs(out, exist_ok=True)
     cmd = [cdpost, "series", manifests[0], "--compare", manifests[1], "--labels", ",".join(labels),
-           "--out", out] + args.cdpost_option
+           "--out", out] + source_options(args) + args.cdpost_option
     ok, message = run_logged(cmd, os.path.join(out, "cdpost.log"))
     print(f"comparison {' / '.join(labels)}: cdpost series --compare {'done' if ok else 'failed: ' + message}",
           flush=True)

@@ -36,7 +36,7 @@ RUN_FILES = ("results.csv", "results.json", "spectrum.csv", "profile.csv", "laye
              "figures/along_cell.png")   # space_time.csv (0.5 MB a run) stays with the raw outputs
 SERIES_FILES = ("*.csv", "*.json", "report.md", "figures/*.png", "figures/*.svg")
 COMPARISON_FILES = ("table.csv", "fits.csv", "report.md", "commands.txt", "figures/*.png", "figures/*.svg")
-READINGS_FILES = ("compared_fits.csv", "report.md", "figures/*.png", "figures/*.svg")
+READINGS_FILES = ("compared_fits.csv", "source_comparison.csv", "report.md", "figures/*.png", "figures/*.svg")
 
 # The per-run columns of the tables: (result name, heading).
 FLOW_COLUMNS = (("U", "U (√(gd))"), ("phi", "φ"), ("h", "h (d)"), ("I", "I"))
@@ -395,8 +395,9 @@ def publish_comparisons(comparisons, destination):
                       os.path.join(destination, "soft", name))
 
 
-def section_comparisons(destination):
-    """Every comparison published in results/soft/, given now or by an earlier report."""
+def section_comparisons(destination, page_folder):
+    """Every comparison published in results/soft/, given now or by an earlier report, linked from a
+    page in page_folder."""
     text = ""
     for target in sorted(glob.glob(os.path.join(destination, "soft", "*", ""))):
         name = os.path.basename(os.path.normpath(target))
@@ -404,10 +405,11 @@ def section_comparisons(destination):
             text += f"## Rigid against soft: {name}\n\nno comparison table in results/soft/{name}\n\n"
             continue
         headings, rows = comparison_summary(os.path.join(target, "table.csv"))
-        relative = os.path.relpath(target, destination)
+        relative = os.path.relpath(target, page_folder)
+        commands = (f"its commands in [{relative}/commands.txt]({relative}/commands.txt), "
+                    if os.path.exists(os.path.join(target, "commands.txt")) else "")
         text += (f"## Rigid against soft: {name}\n\nThe same packing run by each model (reference/run_comparison.sh, "
-                 f"its commands in [{relative}/commands.txt]({relative}/commands.txt), every column in "
-                 f"[{relative}/table.csv]({relative}/table.csv) and the full report in "
+                 f"{commands}every column in [{relative}/table.csv]({relative}/table.csv) and the full report in "
                  f"[{relative}/report.md]({relative}/report.md)).\n\n" + markdown_table(headings, rows))
         spectra = sorted(os.path.relpath(f, target) for f in glob.glob(os.path.join(target, "figures", "spectra*.png")))
         text += "\n" + "".join(f"![{os.path.basename(f)}]({relative}/{f}) " for f in spectra[:2]) + "\n\n"
@@ -482,41 +484,128 @@ def section_changes(changes):
             "history of results/.\n\n" + markdown_table(["file", "name", "was", "now"], rows))
 
 
+# The keys of the L series' comparison with the source that the README's table adds (the
+# readings have one cell length).
+LENGTH_KEYS = ("sign_f_vs_L", "sign_A_mean_vs_L")
+
+
+def read_source_rows(folder, columns):
+    """source_comparison.csv of a series folder -> [(key, quantity, source, {reading: (reading, verdict)},
+    tolerance)], `columns` mapping the file's labels to the readings' names; [] without the file."""
+    path = os.path.join(folder, "source_comparison.csv")
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as src:
+        return [(row["key"], row["quantity"], row["source"],
+                 {name: (row[label], row["verdict_" + label]) for label, name in columns.items() if row[label]},
+                 row["tolerance"]) for row in csv.DictReader(src)]
+
+
+def section_source(destination):
+    """The comparison with the source (results/source.csv) as `cdpost series --source` made it:
+    both readings' rows, and the L series' rows of the cell length."""
+    series = os.path.join(destination, "series")
+    rows = read_source_rows(os.path.join(series, "readings"), {name: name for name, _ in READINGS})
+    rows += [row for row in read_source_rows(os.path.join(series, "L_series"), {"ours": "count"})
+             if row[0] in LENGTH_KEYS]
+    if not rows:
+        return ""
+    names = [name for name, _ in READINGS]
+    table, agree = [], {name: [0, 0] for name in names}
+    for _, quantity, source, readings, tolerance in rows:
+        verdicts = []
+        for name in names:
+            if name in readings and readings[name][1] in ("agrees", "outside"):
+                agree[name][0] += readings[name][1] == "agrees"
+                agree[name][1] += 1
+            if name in readings:
+                verdicts.append(f"{name} {readings[name][1]}")
+        table.append([quantity, source] + [readings[n][0] if n in readings else "–" for n in names]
+                     + [tolerance, "; ".join(verdicts)])
+    tally = ", ".join(f"the {name} reading {a} of {n}" for name, (a, n) in agree.items())
+    return ("## Against the source\n\nThe source's numbers ([source.csv](source.csv)) beside both readings, "
+            "made by `cdpost series --source` ([series/readings/report.md](series/readings/report.md), section "
+            "*Against the source*, with the fit parameters shown apart as degenerate and the source's two flow "
+            "rules checked against each other; the cell length from "
+            "[series/L_series/report.md](series/L_series/report.md)). Comparisons that agree: " + tally + ".\n\n"
+            + markdown_table(["quantity", "source"] + [f"{n} reading" for n in names] + ["tolerance", "verdict"],
+                             table) + "\n")
+
+
+def section_key_figures(destination):
+    shown = [("series/readings", f) for f in ("U_vs_theta", "phi_vs_U", "f_vs_scale")] + [("series/L_series",
+                                                                                          "L_series")]
+    links = "".join(f"![{f}]({folder}/figures/{f}.png) " for folder, f in shown
+                    if os.path.exists(os.path.join(destination, folder, "figures", f + ".png")))
+    return ("## Key figures\n\nBoth readings on the same axes with the source drawn over them (open symbols: its "
+            "Pouliquen rule at each run's own θ and h; asterisks: its φ(U) law; dashed: its range of f), and the "
+            "cell length series.\n\n" + links + "\n") if links else ""
+
+
+def section_where():
+    return ("## Where the tables are\n\n"
+            "- [runs/README.md](runs/README.md): every run (parameters, window, cost, state), its U, φ, h, I, f, A, "
+            "profile fits, and the scatter between replicas; each run's own files in `runs/<name>/`.\n"
+            "- [series/README.md](series/README.md): the fits of each series (flow rules, packing, frequency laws, "
+            "cell length) and both readings side by side with their per-friction means.\n"
+            "- `series/<analysis>/report.md`: every fit, residual, held fit and figure of one series "
+            "([flow_rules](series/flow_rules/report.md), [layer_flow_rules](series/layer_flow_rules/report.md), "
+            "[L_series](series/L_series/report.md), [readings](series/readings/report.md)).\n"
+            "- [soft/README.md](soft/README.md): rigid against soft-sphere runs of the same packing.\n")
+
+
+def page_header(title, command):
+    return (f"# {title}\n\nGenerated from the campaign's runs by\n\n    {command}\n\n(every number below comes "
+            "from the files beside this page; errors are one standard error unless said otherwise).\n")
+
+
+def write_page(path, header, parts):
+    """A generated page: its header, the hand-written discussion kept from the page as it was, then
+    `parts`."""
+    discussion = kept_discussion(path) or f"{DISCUSSION_BEGIN}\n(no discussion yet)\n{DISCUSSION_END}"
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path + ".tmp", "w") as out:
+        out.write("\n".join(p for p in [header, discussion + "\n"] + parts if p))
+    os.replace(path + ".tmp", path)
+
+
 def write_report(records, copied_series, readings, destination, command, changes):
-    """Writes results/README.md (see the module's docstring); returns its path."""
+    """Writes results/README.md (the source comparison, key figures, where each table lives) and the
+    pages it links, runs/README.md, series/README.md and soft/README.md; returns the README's path."""
     pairs = replica_pairs(records)
-    readme = os.path.join(destination, "README.md")
-    discussion = kept_discussion(readme) or f"{DISCUSSION_BEGIN}\n(no discussion yet)\n{DISCUSSION_END}"
-    flow_rules = copied_series.get("flow_rules", os.path.join(destination, "series", "flow_rules"))
-    length = copied_series.get("L_series", os.path.join(destination, "series", "L_series"))
-    parts = [
-        "# Results: the erodible-bed chute\n\nGenerated from the campaign's runs by\n\n    " + command
-        + "\n\n(every number below comes from the files beside this page; errors are one standard error"
-        " unless said otherwise).\n",
-        discussion + "\n",
-        section_changes(changes),
+    series = os.path.join(destination, "series")
+    flow_rules = copied_series.get("flow_rules", os.path.join(series, "flow_rules"))
+    length = copied_series.get("L_series", os.path.join(series, "L_series"))
+    write_page(os.path.join(destination, "runs", "README.md"), page_header("The runs", command), [
         section_runs(records),
         section_quantities("Flow", "Means over each run's stationary window (block standard errors).",
                            records, FLOW_COLUMNS),
-        section_fits("Flow rules and packing", flow_rules, ("pouliquen", "muI", "phi_"),
-                     ("U_vs_theta", "pouliquen_beta_free", "phi_vs_U"), destination),
         section_quantities("Oscillation of the flowing layer", "f: spectral peak of v(t) (error: half width at "
                            "half power); A its amplitude; A_mean the mean amplitude at f ≥ 100 Hz.",
                            records, OSCILLATION_COLUMNS),
-        section_fits("Frequency laws and correlations", flow_rules, ("f_vs", "correlation", "depth"),
-                     ("f_vs_scale", "f_vs_shear_rate", "A_vs_U", "A_vs_phi", "amplitude_vs_depth"), destination),
         section_quantities("Velocity profiles", "Bagnold fit u = slip + a (h^1.5 − (h − z)^1.5) over the layer; "
                            "creep length λ of u ∝ exp(z/λ) below the wall tops.", records, PROFILE_COLUMNS),
-        section_fits("Cell length", length, ("correlation", "f_vs_L", "A_vs_L", "A_mean_vs_L"), ("L_series",),
-                     destination),
-        section_readings(records, readings, destination),
         section_replicas(pairs, replica_scatter(pairs)),
-        section_comparisons(destination),
+    ])
+    write_page(os.path.join(series, "README.md"), page_header("The series fits", command), [
+        section_fits("Flow rules and packing", flow_rules, ("pouliquen", "muI", "phi_"),
+                     ("U_vs_theta", "pouliquen_beta_free", "phi_vs_U"), series),
+        section_fits("Frequency laws and correlations", flow_rules, ("f_vs", "correlation", "depth"),
+                     ("f_vs_scale", "f_vs_shear_rate", "A_vs_U", "A_vs_phi", "amplitude_vs_depth"), series),
+        section_fits("Cell length", length, ("correlation", "f_vs_L", "A_vs_L", "A_mean_vs_L"), ("L_series",),
+                     series),
+        section_readings(records, readings, series),
+    ])
+    write_page(os.path.join(destination, "soft", "README.md"), page_header("Rigid against soft", command),
+               [section_comparisons(destination, os.path.join(destination, "soft"))])
+    readme = os.path.join(destination, "README.md")
+    write_page(readme, page_header("Results: the erodible-bed chute", command), [
+        section_source(destination),
+        section_key_figures(destination),
         section_snapshots(records, destination),
-    ]
-    with open(readme + ".tmp", "w") as out:
-        out.write("\n".join(p for p in parts if p))
-    os.replace(readme + ".tmp", readme)
+        section_where(),
+        section_changes(changes),
+    ])
     return readme
 
 

@@ -1,0 +1,157 @@
+// The comparison with a source study (analysis/source_comparison.h) on synthetic series of
+// published runs built from the source's own laws (results/source.csv): every verdict agrees;
+// with phi_c offset at one friction, or f following the opposite trend, exactly the rows that
+// read those fail.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "analysis/series_analysis.h"
+#include "analysis/source_comparison.h"
+#include "output/results.h"
+#include "temp_files.h"
+
+namespace cdpost {
+namespace {
+
+const std::string kSource = std::string(CDPOST_SOURCE_DIR) + "/../results/source.csv";
+const double kRateHz = std::sqrt(9.81 / 5e-4);  // sqrt(g/d): f_scale = kRateHz / sqrt(U)
+
+struct Departure {  // what the synthetic series changes of the source's laws
+  double phi_c_offset_mu05 = 0;
+  bool f_rises_with_u = false;
+};
+
+// A published run (results.csv and layers.csv, as `cdpost run` writes them) at (mu, theta):
+// U from the source's Pouliquen rule at h, phi from its phi(U) law, f ~ f_scale, A growing
+// with U and mu, the amplitude at f decaying with depth over 10 d, creep length 2.5 d.
+void write_run(const std::filesystem::path& dir, const SourceNumbers& source, double mu, double theta, int index,
+               const Departure& departure)
+{
+  std::filesystem::create_directories(dir);
+  const double h = 42 + 0.5 * (theta - source.at("angles" + friction_suffix(mu)).low);
+  const double inertial = *pouliquen_inertial(source, mu, theta), u = inertial * std::pow(h, 1.5);
+  const double phi_c = source.value("phi_c" + friction_suffix(mu)) + (mu == 0.5 ? departure.phi_c_offset_mu05 : 0);
+  const double f_scale = kRateHz / std::sqrt(u), jitter = 1 + 0.03 * std::sin(2.3 * index + 0.4);
+  const double a = 0.002 * u * (1 + mu);
+  ResultTable r;
+  r.add("U", Estimate{u, 0.01 * u}, "sqrt(g d)", "");
+  r.add("phi", phi_c - source.value("phi_k") * u, "", "");
+  r.add("h", h, "d", "");
+  r.add("I", Estimate{inertial, 0.01 * inertial}, "", "");
+  r.add("f_scale", f_scale, "Hz", "");
+  r.add("shear_rate", u / h * kRateHz, "1/s", "");
+  r.add("f", (departure.f_rises_with_u ? 6 * std::sqrt(u) : 0.75 * f_scale) * jitter, "Hz", "");
+  r.add("A", a * jitter, "sqrt(g d)", "");
+  r.add("A_mean", 0.002, "sqrt(g d)", "");
+  r.add("creep_lambda", 2.5 + 0.2 * std::sin(index), "d", "");
+  r.write_csv((dir / "results.csv").string());
+  std::ofstream layers(dir / "layers.csv");
+  layers << "z_d,f_peak_Hz,f_error_Hz,A_peak_sqrt_gd,A_at_f_sqrt_gd\n";
+  for (double z = 2; z < h - 2; z += 4) layers << z << ",20,1," << a << ',' << a * std::exp((z - h) / 10) << '\n';
+}
+
+SeriesAnalysis synthetic_series(const std::string& name, const Departure& departure)
+{
+  const auto dir = testing::scratch_dir() / name;
+  const auto source = read_source(kSource);
+  std::filesystem::create_directories(dir);
+  std::ofstream manifest(dir / "series.csv");
+  manifest << "run,mu,theta\n";
+  int index = 0;
+  for (double mu : source.frictions) {
+    const auto& angles = source.at("angles" + friction_suffix(mu));
+    for (double theta = angles.low; theta <= angles.high; theta += 1, ++index) {
+      const std::string run = "run" + std::to_string(index);
+      write_run(dir / run, source, mu, theta, index, departure);
+      manifest << run << ',' << mu << ',' << theta << '\n';
+    }
+  }
+  manifest.close();
+  SeriesSettings settings;
+  settings.manifest = (dir / "series.csv").string();
+  settings.source_file = kSource;
+  return analyse_series(settings);
+}
+
+std::set<std::string> keys_with(const std::vector<SourceRow>& rows, Verdict verdict)
+{
+  std::set<std::string> keys;
+  for (const auto& r : rows)
+    if (r.verdict == verdict) keys.insert(r.key);
+  return keys;
+}
+
+TEST(SourceComparison, TheSourcesOwnLawsPassEveryVerdict)
+{
+  const auto rows = compare_with_source(synthetic_series("source_laws", {}));
+  for (const auto& r : rows) EXPECT_NE(r.verdict, Verdict::Outside) << r.key << ": " << r.ours;
+  const auto agree = keys_with(rows, Verdict::Agrees);
+  for (const char* key : {"pouliquen_curve_angle_mu0.05", "pouliquen_curve_angle_mu0.5", "pouliquen_curve_angle_mu2",
+                          "phi_c_mu0.05", "phi_c_mu0.5", "phi_c_mu2", "phi_k", "phi_law_mu0.5", "sign_phi_c_vs_mu", "f",
+                          "sign_f_vs_scale", "sign_f_vs_shear_rate", "sign_f_vs_mu", "sign_A_vs_U", "sign_A_vs_mu",
+                          "sign_A_vs_phi", "sign_A_vs_depth", "creep_length", "h"})
+    EXPECT_TRUE(agree.count(key)) << key;
+  // The source's mu(I) fit gives 3x the I of its Pouliquen fit: its curve is not a target.
+  EXPECT_EQ(keys_with(rows, Verdict::NotATarget),
+            (std::set<std::string>{"muI_curve_angle_mu0.05", "muI_curve_angle_mu0.5", "muI_curve_angle_mu2"}));
+}
+
+TEST(SourceComparison, AnOffsetPhiCFailsItsFrictionsPackingRowsOnly)
+{
+  const auto rows = compare_with_source(synthetic_series("phi_offset", {0.03, false}));
+  EXPECT_EQ(keys_with(rows, Verdict::Outside), (std::set<std::string>{"phi_c_mu0.5", "phi_law_mu0.5"}));
+}
+
+TEST(SourceComparison, AFrequencyRisingWithUFailsBothFrequencySigns)
+{
+  const auto rows = compare_with_source(synthetic_series("f_flipped", {0, true}));
+  EXPECT_EQ(keys_with(rows, Verdict::Outside), (std::set<std::string>{"sign_f_vs_scale", "sign_f_vs_shear_rate"}));
+}
+
+TEST(SourceComparison, TheSourcesRulesGiveInertialNumbersThreeTimesApart)
+{
+  const auto source = read_source(kSource);
+  const auto checks = source_inertial_numbers(source);
+  ASSERT_EQ(checks.size(), 7u + 7u + 5u);  // 16-22, 22-28, 26-30 deg
+  for (const auto& c : checks) {
+    if (c.mu == 0.5 && c.theta_deg == 22) {  // the arithmetic
+      EXPECT_NEAR(c.pouliquen, 0.036, 0.001);
+      EXPECT_NEAR(c.mu_of_i, 0.106, 0.001);
+    }
+    if (c.mu == 0.5 && c.theta_deg == 28) {
+      EXPECT_NEAR(c.pouliquen, 0.102, 0.001);
+      EXPECT_NEAR(c.mu_of_i, 0.310, 0.001);
+    }
+    EXPECT_GT(c.mu_of_i / c.pouliquen, 2.0) << c.mu << " " << c.theta_deg;
+  }
+  EXPECT_FALSE(rules_consistent(checks));
+  // With the reconciling I0 the mu(I) rule's I follows Pouliquen's in the geometric mean.
+  const double i0 = reconciling_i0(source, checks);
+  EXPECT_NEAR(i0, 0.11, 0.01);
+  double log_sum = 0;
+  for (const auto& c : checks) log_sum += std::log(c.pouliquen / (c.mu_of_i * i0 / source.value("muI_I0")));
+  EXPECT_NEAR(log_sum, 0, 1e-9);
+}
+
+TEST(SourceComparison, AMalformedSourceFileIsNamedWithItsLine)
+{
+  const auto dir = testing::scratch_dir();
+  std::ofstream(dir / "bad.csv") << "# provenance\nname,source_low,source_high,accepted_low,accepted_high,unit,"
+                                    "description\nphi_k,0.003,0.003,0.004,,,k\n";
+  try {
+    read_source((dir / "bad.csv").string());
+    FAIL() << "accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.csv:3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("give both accepted bounds or neither"), std::string::npos) << e.what();
+  }
+  std::ofstream(dir / "short.csv") << "name,source_low,source_high,accepted_low,accepted_high,unit,description\n";
+  EXPECT_THROW(read_source((dir / "short.csv").string()), std::exception);  // no rows: pouliquen_beta missing
+}
+
+}  // namespace
+}  // namespace cdpost
