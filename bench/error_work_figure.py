@@ -73,9 +73,10 @@ def main(argv=None):
     with open(args.out + ".md", "w") as out:
         out.write("\n".join(lines) + "\n")
     panels = sorted({low for _, low in blocks})
-    script = [f"set terminal pngcairo size {min(4, len(panels)) * 380},{((len(panels) + 3) // 4) * 340} font ',9'",
+    rows, columns = (len(panels) + 3) // 4, min(4, len(panels))
+    script = [f"set terminal pngcairo size {columns * 380},{rows * 340} font ',9' noenhanced",
               f"set output '{args.out}.png'",
-              f"set multiplot layout {(len(panels) + 3) // 4},{min(4, len(panels))}",
+              f"set multiplot layout {rows},{columns}",
               "set logscale xy", "set format y '10^{%L}'", "set xlabel 'local solves per contact'",
               "set ylabel 'rms velocity error / sqrt(g d)'", "set key top right font ',8'"]
     names = [name for name, _ in series]
