@@ -336,7 +336,7 @@ def plot(args, floor, flows):
     names = list(flows)
     script = [f"set terminal pngcairo size {420 * max(1, len(names))},520 font ',10' noenhanced",
               f"set output '{os.path.join(args.out, 'bed_profiles.png')}'",
-              f"set multiplot layout 1,{max(1, len(names))}", "set logscale x", "set format x '10^{%L}'",
+              f"set multiplot layout 1,{max(1, len(names))}", "set logscale x", "set format x '1e%T'", "set xtics 100",
               "set xrange [1e-8:30]", "set yrange [-30:12]", "set xlabel '|u| / sqrt(g d)'", "set ylabel 'z / d'",
               "set key bottom right"]
     for panel, name in enumerate(names):
