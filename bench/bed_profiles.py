@@ -3,14 +3,11 @@
 
     floor      u_floor(z; tolerance): the packing at rest (mu 0.5, 12 deg). Over the 0.1 s
                windows from --floor-from on (a continuation: from its second window), every
-               replica's band mean of u is an error (the
-               packing should not move): the floor is their rms, with the mean and its standard
-               error beside it.
+               replica's band mean of u is an error (the packing should not move): the floor is
+               their rms, with the mean and its standard error beside it.
     flows      u(z) of each friction's continuations per tolerance: each replica's time mean over
                the windows from --flow-from on (s after the change of settings), then the mean
-               and standard error over the replicas; the verdict per depth band: resolved at a
-               tolerance where u is >= 10x that tolerance's floor and agrees with the next
-               tighter tolerance within two combined standard errors.
+               and standard error over the replicas; the verdict per depth band (verdict()).
     relaxation the bed's band means per 0.1 s window after the change of settings (replica
                means), to choose --flow-from by measurement.
     layer      U, phi, h of the flowing layer (flow.time) over the same windows, and the cost.
@@ -206,12 +203,15 @@ def layer_quantities(folder, used):
 
 
 def verdict(z_low, u, se, floor, tighter):
-    """Below the wall tops: 'resolved', 'floor' (within 10x the floor) or 'moves' (differs from
-    the next tighter tolerance by more than two combined standard errors); 'layer' above."""
+    """Below the wall tops: 'floor' (within 10x the tolerance's floor), 'noise' (within two
+    standard errors of zero: the replicas do not resolve it), 'moves' (differs from the next
+    tighter tolerance by more than two combined standard errors) or 'resolved'; 'layer' above."""
     if z_low >= 0:
         return "layer"
     if floor is None or abs(u) < RESOLVED_OVER_FLOOR * floor:
         return "floor"
+    if not abs(u) > 2 * se:
+        return "noise"
     if tighter is not None:
         u2, se2 = tighter
         if abs(u - u2) > 2 * math.hypot(se, se2):
@@ -273,8 +273,8 @@ def write_outputs(args, floor, floor_relax, flows):
 def flow_section(args, name, per_tolerance, floor, writer):
     tolerances = list(per_tolerance)
     lines = ["", f"## {name}", "", f"Replica means over the windows from {args.flow_from:g} s after the change of "
-             "settings; ± the standard error over replicas; verdict: resolved (≥ 10× the floor and within "
-             "2 combined errors of the next tighter tolerance), floor, or moves.", "",
+             "settings; ± the standard error over replicas; verdict: resolved (≥ 10× the floor, beyond 2 "
+             "errors from zero and within 2 combined errors of the next tighter tolerance), floor, noise or moves.", "",
              "| z (d) | " + " | ".join(f"{t} ({per_tolerance[t]['replicas']} replicas) | verdict" for t in tolerances)
              + " |", "|---|" + "---|---|" * len(tolerances)]
     bands = sorted({b for t in tolerances for b in per_tolerance[t]["bands"]})
