@@ -26,6 +26,7 @@ import csv
 import math
 import os
 import shutil
+import subprocess
 import sys
 
 # cdtools, found from this file (scripts/cdtools/__init__.py)
@@ -107,6 +108,21 @@ def study_deck(args):
     return deck
 
 
+def restart_time(args, restart, folder):
+    """The chute time (s) stored in a restart file: a run with adapt_dt counts its steps at the
+    step it took, so the time, not the step, places the one step solved. The fix (ID cd, as in
+    in.chute) restores the time when it takes up its restart state."""
+    deck = os.path.join(folder, "in.restart_time")
+    with open(deck, "w") as out:
+        out.write(f"read_restart {os.path.abspath(restart)}\nfix cd all contact/dynamics 0.5 0.5\n"
+                  "print \"RESTART_TIME $(time:%.17g)\"\n")
+    done = subprocess.run([args.lmp, "-in", deck, "-log", "none"], cwd=folder, capture_output=True, text=True)
+    times = [line.split()[1] for line in done.stdout.splitlines() if line.startswith("RESTART_TIME ")]
+    if done.returncode != 0 or not times:
+        raise RuntimeError(f"{restart}: its chute time could not be read")
+    return float(times[0])
+
+
 def solve_one_step(args, snapshot, start_step, folder, tolerance, solver_vars):
     """One step of dt from snapshot at `tolerance` (fixed step) with the in.chute -vars
     solver_vars: the state after it and its work."""
@@ -152,7 +168,8 @@ def band_rows(args, start, after, reference):
 def study_snapshot(args, index, snapshot):
     base = os.path.join(args.out, f"snapshot{index}")
     os.makedirs(base, exist_ok=True)
-    start, step = state_dump(args, snapshot, os.path.join(base, "start.dump"))
+    start, _ = state_dump(args, snapshot, os.path.join(base, "start.dump"))
+    step = round(restart_time(args, snapshot, base) / args.dt)    # the deck counts steps of dt from there
     reference_name = "_".join(["reference"] + [f"{k}{v}" for k, v in args.reference_vars.items()])
     reference, reference_work = solve_one_step(args, snapshot, step, os.path.join(base, reference_name),
                                                args.reference_tolerance, args.reference_vars)
