@@ -77,7 +77,7 @@ def main(argv=None):
     script = [f"set terminal pngcairo size {columns * 380},{rows * 340} font ',9' noenhanced",
               f"set output '{args.out}.png'",
               f"set multiplot layout {rows},{columns}",
-              "set logscale xy", "set format y '1e%T'", "set xlabel 'local solves per contact'",
+              "set logscale xy", "set format y '1e%T'", "set format x '1e%T'", "set xlabel 'local solves per contact'",
               "set ylabel 'rms velocity error / sqrt(g d)'", "set key top right font ',8'"]
     names = [name for name, _ in series]
     for low in panels:
