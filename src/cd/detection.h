@@ -1,4 +1,4 @@
-// Which pairs a step solves, which it only watches, and the solve that lets watched pairs join.
+// Which pairs a step solves and which it only watches, and how far it looks for them.
 //
 // A pair (a, b) with gap g can close within the step only if theta dt (|v_a| + |v_b|) > g for
 // the velocities it ends the step with. Before the solve only the free velocities are known, so
@@ -15,7 +15,7 @@
 #include <cmath>
 #include <vector>
 
-#include "cd/gauss_seidel.h"
+#include "cd/contact.h"
 
 namespace cd {
 
@@ -59,6 +59,8 @@ class PairReach {
   // over its free speed (0 if none got faster).
   double needed_margin(const std::vector<BodyVelocity>& velocity, const StepParameters& step) const;
 
+  // The margin of a wider look for a solve that needs `needed`, with room to spare.
+  double wider_margin(double needed) const { return margin_growth * needed; }
   // The caller has looked at pairs out to `margin`.
   void widen_to(double margin) { margin_ = margin; }
 
@@ -66,6 +68,10 @@ class PairReach {
   void end_step(double needed);
 
  private:
+  // A margin is this many times what a step needed: a flow changes little from one step to the
+  // next, and a margin a little too wide costs a few more pairs looked at.
+  static constexpr double margin_growth = 1.5;
+
   double margin_floor_;
   double margin_;
   std::vector<double> reach_;  // per body (m)
@@ -126,29 +132,6 @@ class StepContacts {
 // Moves the watched pairs that would overlap at the end of the step with the solved velocities
 // (closes_after_solve) to the solved contacts, prepared, keys with them. True if any moved.
 bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const StepParameters& step);
-
-// What the solve asks of its caller: to offer the contacts (watched: StepContacts::watch_only)
-// the pairs whose gap lies between their reach plus `from_margin` and their reach plus
-// `to_margin`, none of them looked at yet.
-class PairCollector {
- public:
-  virtual ~PairCollector() = default;
-  virtual void collect_between(double from_margin, double to_margin) = 0;
-};
-
-// When watched pairs that the velocities drive into overlap join the solved contacts:
-//   after_solve   once the solve has converged, and the solve starts again from where it stopped;
-//   during_solve  also at every full sweep of the solve (cd::JoiningContacts), which goes on
-//                 with them: the same problem and tolerance, usually in one solve.
-enum class Joining { after_solve, during_solve };
-
-// Solves the step's contacts, then lets watched pairs that the solution would drive into
-// overlap join and solves again from where it stopped, looking wider first if bodies gained
-// more speed than the margin covers; at most `max_rounds` solves. The impulses must already be
-// applied to bodies.velocity. The report sums the sweeps of every solve.
-SolveReport solve_step(StepContacts& contacts, BodySet& bodies, const StepParameters& step,
-                       const SolverSettings& settings, PairReach& reach, PairCollector& collector,
-                       SweepExchange* exchange = nullptr, int max_rounds = 10, Joining joining = Joining::after_solve);
 
 // Interpenetration at the end of the step, linearised (gap + theta dt u_n^+): deepest and sum
 // over the solved contacts, deepest over the watched pairs too.

@@ -1,30 +1,71 @@
 #include "cd/step.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
-#include <utility>
 
 namespace cd {
 
 namespace {
 
-// The wider look cd::solve_step may ask for, through the host.
-class HostPairs : public PairCollector {
+// Watched pairs joining a running solve (Joining::during_solve).
+class ClosingPairs : public JoiningContacts {
  public:
-  HostPairs(StepHost& host, const PairReach& reach, StepContacts& contacts)
-      : host_(host), reach_(reach), contacts_(contacts)
+  ClosingPairs(StepContacts& contacts, const BodySet& bodies, const StepParameters& step, SweepExchange* exchange)
+      : contacts_(contacts), bodies_(bodies), step_(step), exchange_(exchange)
   {
   }
-  void collect_between(double from_margin, double to_margin) override
+  bool join(bool converged) override
   {
-    host_.collect_pairs(reach_, from_margin, to_margin, contacts_);
+    const bool joined = promote_closing_pairs(contacts_, bodies_, step_);
+    return converged && exchange_ ? exchange_->on_any_rank(joined) : joined;
   }
 
  private:
-  StepHost& host_;
-  const PairReach& reach_;
   StepContacts& contacts_;
+  const BodySet& bodies_;
+  StepParameters step_;
+  SweepExchange* exchange_;
 };
+
+// The solve loop: solves the step's contacts, then lets watched pairs that the solution would
+// drive into overlap join and solves again from where it stopped, looking wider first (through
+// the host) if bodies gained more speed than the margin covers; at most settings.max_solves
+// solves. The impulses must already be applied to bodies.velocity. The report sums the sweeps
+// of every solve.
+SolveReport solve_step(StepContacts& contacts, BodySet& bodies, const StepParameters& step,
+                       const StepSettings& settings, PairReach& reach, StepHost& host, SweepExchange* exchange)
+{
+  contacts.watch_only();
+  ClosingPairs closing(contacts, bodies, step, exchange);
+  JoiningContacts* during = settings.joining == Joining::during_solve ? &closing : nullptr;
+  SolveReport report = solve_gauss_seidel(contacts.solved, bodies.velocity, settings.solver, exchange, during);
+  double needed = 0.0;
+  for (int round = 1;; round++) {
+    needed = std::max(needed, reach.needed_margin(bodies.velocity, step));
+    const bool widened = needed > reach.margin();
+    if (widened) {
+      const double wider = reach.wider_margin(needed);
+      host.collect_pairs(reach, reach.margin(), wider, contacts);
+      reach.widen_to(wider);
+    }
+    if (round == settings.max_solves) break;
+    // A solve that converged joining during its sweeps has just checked every watched pair at
+    // these velocities: only pairs the wider look added are new (the vote is every rank's).
+    const bool checked = during && report.converged && !widened;
+    bool promoted = !checked && promote_closing_pairs(contacts, bodies, step);
+    if (exchange) promoted = exchange->on_any_rank(promoted);
+    if (!promoted) break;
+    const SolveReport more = solve_gauss_seidel(contacts.solved, bodies.velocity, settings.solver, exchange, during);
+    report.iterations += more.iterations;
+    report.solves += 1;
+    report.contact_updates += more.contact_updates;
+    report.residual = more.residual;
+    report.converged = more.converged;
+  }
+  reach.end_step(needed);
+  return report;
+}
 
 }  // namespace
 
@@ -51,10 +92,8 @@ StepReport MoreauJeanStep::solve(BodySet& bodies, double dt, StepHost& host, Swe
   apply_impulses(contacts_.solved, bodies.velocity);
   if (exchange) exchange->share_velocities();
 
-  HostPairs wider(host, reach_, contacts_);
   StepReport report;
-  report.solve = solve_step(contacts_, bodies, step, settings_.solver, reach_, wider, exchange, settings_.max_solves,
-                            settings_.joining);
+  report.solve = solve_step(contacts_, bodies, step, settings_, reach_, host, exchange);
   report.overlaps = measure_overlaps(contacts_, bodies.velocity, step);
   report.loaded_contacts = store_impulses(host);
   return report;
@@ -67,12 +106,7 @@ void MoreauJeanStep::reorder(int body_count)
     contacts_.reorder(interleaved_order(contacts_.solved, body_count));
     return;
   }
-  permutation_.resize(contacts_.solved.size());
-  for (std::size_t k = 0; k < permutation_.size(); k++) permutation_[k] = static_cast<int>(k);
-  for (std::size_t k = permutation_.size(); k > 1; k--) {
-    std::uniform_int_distribution<std::size_t> pick(0, k - 1);
-    std::swap(permutation_[k - 1], permutation_[pick(shuffle_rng_)]);
-  }
+  shuffled_order(contacts_.solved.size(), shuffle_rng_, permutation_);
   contacts_.reorder(permutation_);
 }
 

@@ -8,7 +8,7 @@
 //   order       interleaved (cd::interleaved_order) or shuffled; keys travel with the contacts
 //   warm start  impulses carried from the last step, looked up by key (StepHost::carried_impulse)
 //   solve       Gauss–Seidel; watched pairs the solution would drive into overlap join and the
-//               solve goes on (cd::solve_step)
+//               solve goes on (the solve loop, step.cpp)
 //   store       every loaded contact's impulse, by key (StepHost::remember_impulse)
 //   corrector   x_{n+1} = x_m + theta dt v_{n+1}                       (host applies corrected_motion)
 #pragma once
@@ -17,8 +17,10 @@
 #include <random>
 #include <vector>
 
+#include "cd/contact.h"
 #include "cd/detection.h"
 #include "cd/gauss_seidel.h"
+#include "cd/order.h"
 
 namespace cd {
 
@@ -73,9 +75,11 @@ class StepHost {
   virtual void remember_impulse(const PairKey& key, Local2 impulse) = 0;
 };
 
-// The sweep order: interleaved (cd::interleaved_order), shuffled (seeded), or as the host
-// offered the pairs (a benchmark's baseline).
-enum class ContactOrder { interleaved, shuffled, as_offered };
+// When watched pairs that the velocities drive into overlap join the solved contacts:
+//   after_solve   once the solve has converged, and the solve starts again from where it stopped;
+//   during_solve  also at every full sweep of the solve (cd::JoiningContacts), which goes on
+//                 with them: the same problem and tolerance, usually in one solve.
+enum class Joining { after_solve, during_solve };
 
 struct StepSettings {
   double theta = 0.5;
@@ -83,7 +87,7 @@ struct StepSettings {
   double alert = 0.0;  // m: candidate selection (cd::is_candidate)
   bool warm_start = true;
   ContactOrder order = ContactOrder::interleaved;
-  int max_solves = 10;                     // solves of one step, at most (cd::solve_step)
+  int max_solves = 10;                     // solves of one step, at most (the solve loop)
   Joining joining = Joining::after_solve;  // when watched pairs driven shut join (cd::Joining)
 };
 

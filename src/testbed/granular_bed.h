@@ -14,6 +14,7 @@
 
 #include "cd/gauss_seidel.h"
 #include "cd/step.h"
+#include "cd/walls.h"
 
 namespace testbed {
 
