@@ -31,7 +31,7 @@ void PairReach::end_step(double needed)
   margin_ = std::max(margin_floor_, wider_margin(needed));
 }
 
-void StepContacts::begin(const BodySet& bodies, const StepParameters& step, double alert)
+void StepContacts::begin(const BodySet& bodies, const StepParameters& step, double alert, bool warm_start)
 {
   solved.clear();
   keys.clear();
@@ -39,10 +39,11 @@ void StepContacts::begin(const BodySet& bodies, const StepParameters& step, doub
   bodies_ = &bodies;
   step_ = step;
   alert_ = alert;
+  warm_start_ = warm_start;
   watch_only_ = false;
 }
 
-void StepContacts::offer(const ContactGeometry& geometry, const ContactLaw& law, const PairKey& key)
+void StepContacts::offer(const ContactGeometry& geometry, const ContactLaw& law, const PairKey& key, Local2 carried)
 {
   const Contact frame = contact_frame(geometry);
   if (watch_only_ || !is_candidate(frame, *bodies_, step_, alert_)) {
@@ -52,6 +53,7 @@ void StepContacts::offer(const ContactGeometry& geometry, const ContactLaw& law,
   solved.push_back(frame);
   keys.push_back(key);
   prepare_mechanics(solved.back(), law, *bodies_, step_);
+  if (warm_start_) warm_start(solved.back(), carried);
 }
 
 void StepContacts::reorder(const std::vector<int>& permutation)

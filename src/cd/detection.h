@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "cd/contact.h"
@@ -78,10 +79,12 @@ class PairReach {
 };
 
 // Identifies a pair from one step to the next: the host's storage row of the pair's keeper
-// (e.g. the atom with the smaller ID) and the partner's key within that row.
+// (e.g. the atom with the smaller ID) and the partner's id within that row (e.g. the other
+// atom's ID, or a wall's slot). An id, not a number: a host that stores it among doubles
+// (LAMMPS's per-atom arrays, cd::impulse_row) converts it there.
 struct PairKey {
   int row = -1;
-  double partner = 0.0;
+  std::int64_t partner = 0;
 };
 
 // A looked-at pair left out of the solve: its geometry, its law and its key. Kept apart from
@@ -101,14 +104,28 @@ class StepContacts {
   std::vector<WatchedPair> watched;
 
   // Starts a step: offered pairs are solved if candidates (is_candidate at `alert`, m), watched
-  // otherwise; `bodies` must hold the free velocities and outlive the collection.
-  void begin(const BodySet& bodies, const StepParameters& step, double alert);
+  // otherwise; solved ones start from their carried impulse if `warm_start` (cd::warm_start).
+  // `bodies` must hold the free velocities and outlive the collection.
+  void begin(const BodySet& bodies, const StepParameters& step, double alert, bool warm_start);
   // From now on offered pairs are watched whatever their velocity: found during the solve, they
   // join only by promotion (promote_closing_pairs).
   void watch_only() { watch_only_ = true; }
 
-  // A pair the host found near enough to look at.
-  void offer(const ContactGeometry& geometry, const ContactLaw& law, const PairKey& key);
+  // A pair the host found near enough to look at, with the impulse it carried at the end of the
+  // previous step ({0, 0} if none).
+  void offer(const ContactGeometry& geometry, const ContactLaw& law, const PairKey& key, Local2 carried);
+
+  // Calls visit(key, contact) for every solved contact whose impulse the next step starts
+  // from: loaded (p_n > 0), or not finite (the host reports it: it knows the bodies' names).
+  template <class Visit>
+  void for_each_loaded(Visit&& visit) const
+  {
+    for (std::size_t k = 0; k < solved.size(); k++) {
+      const Local2 p = solved[k].impulse;
+      if (std::isfinite(p.n) && std::isfinite(p.t) && p.n <= 0.0) continue;
+      visit(keys[k], solved[k]);
+    }
+  }
 
   // Puts the solved contacts (and their keys) in the order of `permutation`, whose k-th entry
   // is the old index of the new k-th contact.
@@ -124,6 +141,7 @@ class StepContacts {
   const BodySet* bodies_ = nullptr;
   StepParameters step_;
   double alert_ = 0.0;
+  bool warm_start_ = true;
   bool watch_only_ = false;
   std::vector<Contact> reordered_;  // scratch of reorder
   std::vector<PairKey> reordered_keys_;

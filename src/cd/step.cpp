@@ -1,8 +1,9 @@
 #include "cd/step.h"
 
 #include <algorithm>
-#include <cmath>
+#include <charconv>
 #include <limits>
+#include <stdexcept>
 
 namespace cd {
 
@@ -69,9 +70,58 @@ SolveReport solve_step(StepContacts& contacts, BodySet& bodies, const StepParame
 
 }  // namespace
 
+namespace {
+
+// A number as the fix's error lines write it: the shortest text that reads back the same.
+std::string text_of(double value)
+{
+  char text[32];
+  const auto written = std::to_chars(text, text + sizeof(text), value);
+  return std::string(text, written.ptr);
+}
+
+std::string refusal(const char* keyword, const char* range, double value)
+{
+  return std::string(keyword) + " must be " + range + ", got " + text_of(value);
+}
+
+void require_sound(const StepSettings& settings)
+{
+  const std::string problem = check(settings);
+  if (!problem.empty()) throw std::invalid_argument(problem);
+}
+
+}  // namespace
+
+// Written so that NaN fails every test. A tolerance of 1 or more is met by any first sweep (the
+// norm compares the sweep's change with the impulses' scale); relaxation above 1 is not offered
+// (over-relaxation gained nothing in time: doc/benchmarks.md).
+std::string check(const StepSettings& settings)
+{
+  const SolverSettings& solver = settings.solver;
+  if (!(settings.theta >= 0.5 && settings.theta <= 1.0)) return refusal("theta", "in [0.5,1]", settings.theta);
+  if (!(solver.tolerance > 0.0 && solver.tolerance < 1.0)) return refusal("tolerance", "in (0,1)", solver.tolerance);
+  if (solver.max_iterations < 1) return refusal("max_iterations", ">= 1", solver.max_iterations);
+  if (!(solver.relaxation > 0.0 && solver.relaxation <= 1.0))
+    return refusal("relaxation", "in (0,1]", solver.relaxation);
+  if (solver.full_sweep_every < 1) return refusal("full_sweep_every", ">= 1", solver.full_sweep_every);
+  if (!(settings.alert >= 0.0)) return refusal("alert", ">= 0", settings.alert);
+  if (settings.max_solves < 1) return refusal("max_solves", ">= 1", settings.max_solves);
+  return {};
+}
+
 MoreauJeanStep::MoreauJeanStep(const StepSettings& settings, std::uint64_t shuffle_seed)
     : settings_(settings), reach_(settings.alert), shuffle_rng_(shuffle_seed)
 {
+  require_sound(settings_);
+}
+
+void MoreauJeanStep::set_alert(double alert)
+{
+  StepSettings changed = settings_;
+  changed.alert = alert;
+  require_sound(changed);
+  settings_.alert = alert;
 }
 
 void MoreauJeanStep::prepare(const BodySet& bodies, double dt, StepHost& host)
@@ -79,10 +129,9 @@ void MoreauJeanStep::prepare(const BodySet& bodies, double dt, StepHost& host)
   const StepParameters step{dt, settings_.theta};
   reach_.set_margin_floor(settings_.alert);
   reach_.begin_step(bodies, step);
-  contacts_.begin(bodies, step, settings_.alert);
+  contacts_.begin(bodies, step, settings_.alert, settings_.warm_start);
   host.collect_pairs(reach_, -std::numeric_limits<double>::infinity(), reach_.margin(), contacts_);
   reorder(static_cast<int>(bodies.velocity.size()));
-  if (settings_.warm_start) warm_start(host);
 }
 
 StepReport MoreauJeanStep::solve(BodySet& bodies, double dt, StepHost& host, SweepExchange* exchange)
@@ -95,7 +144,7 @@ StepReport MoreauJeanStep::solve(BodySet& bodies, double dt, StepHost& host, Swe
   StepReport report;
   report.solve = solve_step(contacts_, bodies, step, settings_, reach_, host, exchange);
   report.overlaps = measure_overlaps(contacts_, bodies.velocity, step);
-  report.loaded_contacts = store_impulses(host);
+  contacts_.for_each_loaded([&](const PairKey&, const Contact&) { ++report.loaded_contacts; });
   return report;
 }
 
@@ -108,27 +157,6 @@ void MoreauJeanStep::reorder(int body_count)
   }
   shuffled_order(contacts_.solved.size(), shuffle_rng_, permutation_);
   contacts_.reorder(permutation_);
-}
-
-void MoreauJeanStep::warm_start(const StepHost& host)
-{
-  for (std::size_t k = 0; k < contacts_.solved.size(); k++)
-    cd::warm_start(contacts_.solved[k], host.carried_impulse(contacts_.keys[k]));
-}
-
-// Keeps only loaded contacts' impulses; a non-finite one is the host's to report (it knows the
-// bodies' names): stored as it is.
-int MoreauJeanStep::store_impulses(StepHost& host) const
-{
-  host.forget_impulses();
-  int loaded = 0;
-  for (std::size_t k = 0; k < contacts_.solved.size(); k++) {
-    const Local2 p = contacts_.solved[k].impulse;
-    if (std::isfinite(p.n) && std::isfinite(p.t) && p.n <= 0.0) continue;
-    host.remember_impulse(contacts_.keys[k], p);
-    ++loaded;
-  }
-  return loaded;
 }
 
 }  // namespace cd
