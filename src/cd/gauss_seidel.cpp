@@ -1,3 +1,4 @@
+// The Gauss–Seidel sweeps over prepared contacts and the solves made of them (cd/gauss_seidel.h).
 #include "cd/gauss_seidel.h"
 
 #include <algorithm>

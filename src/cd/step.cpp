@@ -1,3 +1,5 @@
+// The step of the core (cd/step.h): its settings checked, the solve loop that lets watched pairs
+// join, and the stages that MoreauJeanStep runs in order.
 #include "cd/step.h"
 
 #include <algorithm>
