@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
@@ -13,7 +14,6 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
-#include "math_const.h"
 #include "group.h"
 #include "memory.h"
 #include "modify.h"
@@ -29,18 +29,12 @@
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
-using MathConst::MY_PI;
 
 namespace {
 
 constexpr int output_columns = 7;
-constexpr double disk_inertia_factor = 0.5;  // I = m r^2 / 2 for a uniform disk
 // Relative spread below which a mass/radius^k ratio counts as uniform over the group.
 constexpr double uniform_ratio_tolerance = 1.0e-6;
-// Default alert distance, in mean diameters: pairs this close are solved even when their free
-// motion does not close them (see cd::is_candidate). 0.03 solves the 45 d chute once a step
-// at 0.90-1.02x the cost but slows the bed of the mu 0.05 flow (doc/accuracy.md, One solve a step).
-constexpr double default_alert_fraction = 0.01;
 // Overlaps deeper than this, in mean diameters, at the start of a run are reported.
 constexpr double initial_overlap_warning = 0.01;
 // Subdomains narrower than this many contact cutoffs are reported: there every grain is a
@@ -48,22 +42,22 @@ constexpr double initial_overlap_warning = 0.01;
 // (doc/benchmarks.md).
 constexpr double narrow_subdomain_cutoffs = 2.0;
 
-// Keys of wall contacts in the per-atom store are negative, atom IDs positive.
-double wall_key(int wall_index, cd::WallPart part)
+// Partners of wall contacts in the per-atom store are negative, atom IDs positive.
+std::int64_t wall_partner(int wall_index, cd::WallPart part)
 {
-  return -(3.0 * wall_index + static_cast<int>(part) + 1.0);
+  return -(3 * std::int64_t{wall_index} + static_cast<int>(part) + 1);
 }
 
-// The 1-based wall number of a wall key.
-int wall_number(double key)
+// The 1-based wall number of a wall partner.
+int wall_number(std::int64_t partner)
 {
-  return static_cast<int>((-key - 1.0) / 3.0) + 1;
+  return static_cast<int>((-partner - 1) / 3) + 1;
 }
 
 // A key's partner for messages: "atom ID" or "wall N".
-std::string partner_name(double partner)
+std::string partner_name(std::int64_t partner)
 {
-  if (partner > 0.0) return fmt::format("atom {}", static_cast<tagint>(partner));
+  if (partner > 0) return fmt::format("atom {}", partner);
   return fmt::format("wall {}", wall_number(partner));
 }
 
@@ -76,8 +70,10 @@ FixContactDynamics::FixContactDynamics(LAMMPS* lmp, int narg, char** arg) : Fix(
   if (domain->dimension != 2) error->all(FLERR, "Fix contact/dynamics requires dimension 2");
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
     error->all(FLERR, "Fix contact/dynamics requires atom_style sphere (per-atom radius, rmass, omega)");
-  settings = fix_keywords::parse_settings(narg, arg, atom->ntypes, domain->boxlo, domain->boxhi, error);
-  contact_step = cd::MoreauJeanStep(settings.step, settings.shuffle_seed);
+  fix_keywords::FixCommand command =
+      fix_keywords::parse_settings(narg, arg, atom->ntypes, domain->boxlo, domain->boxhi, error);
+  settings = std::move(command.fix);
+  contact_step = cd::MoreauJeanStep(command.step, settings.shuffle_seed);
 
   time_integrate = 1;
   vector_flag = 1;
@@ -144,6 +140,7 @@ void FixContactDynamics::init()
     error->all(FLERR, "Fix contact/dynamics: the number of atom types changed since the fix was defined");
   check_integrators();
   check_pair_style();
+  check_alert();
 
   // Largest radius now or announced by an insertion fix (fix pour, fix deposit).
   double rmax_local = 0.0;
@@ -186,6 +183,17 @@ void FixContactDynamics::request_neighbor_list()
 void FixContactDynamics::init_list(int, NeighList* ptr)
 {
   list = ptr;
+}
+
+// Pairs are looked at only among the neighbour list's, listed out to a gap of the skin at most:
+// a larger alert would ask for pairs the list does not hold.
+void FixContactDynamics::check_alert()
+{
+  if (settings.alert && *settings.alert > neighbor->skin)
+    error->all(FLERR,
+               "Fix contact/dynamics: alert {} is larger than the neighbour skin {}: pairs that far apart are "
+               "not listed; lower alert or raise the skin (neighbor command)",
+               *settings.alert, neighbor->skin);
 }
 
 // fix pour in this LAMMPS (29 Sep 2021) resizes the atom map after an insertion step only when
@@ -250,7 +258,7 @@ void FixContactDynamics::survey_group()
 {
   check_disk_masses();
   mean_diameter = group_mean_diameter();
-  contact_step.settings().alert = settings.alert.value_or(default_alert_fraction * mean_diameter);
+  contact_step.set_alert(settings.alert.value_or(cd::default_alert_diameters * mean_diameter));
   natoms_surveyed = atom->natoms;
 }
 
@@ -303,7 +311,7 @@ double FixContactDynamics::group_mean_diameter()
 void FixContactDynamics::assign_disc_masses()
 {
   for (int i = 0; i < atom->nlocal; i++)
-    if (atom->mask[i] & groupbit) atom->rmass[i] = MY_PI * atom->radius[i] * atom->radius[i] * settings.disc_density;
+    if (atom->mask[i] & groupbit) atom->rmass[i] = cd::disk_mass(atom->radius[i], settings.disc_density);
 }
 
 void FixContactDynamics::setup(int)
@@ -508,6 +516,7 @@ void FixContactDynamics::final_integrate()
   const cd::StepReport report = contact_step.solve(bodies, update->dt, host, distributed ? &exchange : nullptr);
   last_report = report.solve;
   loaded_contacts = report.loaded_contacts;
+  store_impulses();
   fill_local_output();
   write_back_motion();
   reduce_step_outputs(report.overlaps);
@@ -575,10 +584,8 @@ void FixContactDynamics::gather_bodies()
     bodies.velocity[1 + i] = start;
     if (!(mask[i] & groupbit)) continue;  // obstacle: infinite mass, keeps its velocity
     // Ghost masses are refreshed only at reneighbouring: take them from the density if set.
-    const double mass = settings.disc_density > 0.0 ? MY_PI * radius[i] * radius[i] * settings.disc_density : rmass[i];
-    cd::BodyInertia& inertia = bodies.inertia[1 + i];
-    inertia.inv_mass = 1.0 / mass;
-    inertia.inv_inertia = 1.0 / (disk_inertia_factor * mass * radius[i] * radius[i]);
+    const double mass = settings.disc_density > 0.0 ? cd::disk_mass(radius[i], settings.disc_density) : rmass[i];
+    const cd::BodyInertia& inertia = bodies.inertia[1 + i] = cd::disk_inertia(mass, radius[i]);
     if (i >= nlocal) continue;  // ghosts receive their owner's free velocity below
     bodies.velocity[1 + i] = cd::free_velocity(start, inertia, f[i][0], f[i][1], torque ? torque[i][2] : 0.0, dt);
   }
@@ -612,8 +619,9 @@ void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double 
     if (body_j == 1 + i)
       error->one(FLERR, "Fix contact/dynamics: atom {} touches its own periodic image; the cell is too short",
                  atom->tag[i]);
-    contacts.offer(cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j), settings.law(type[i], type[j]),
-                   pair_key(i, j));
+    const cd::PairKey key = pair_key(i, j);
+    contacts.offer(cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j), settings.law(type[i], type[j]), key,
+                   carried_impulse(key));
   });
 }
 
@@ -622,8 +630,8 @@ void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double 
 cd::PairKey FixContactDynamics::pair_key(int i, int j) const
 {
   const tagint* tag = atom->tag;
-  if (tag[i] < tag[j]) return {i, static_cast<double>(tag[j])};
-  return {j, static_cast<double>(tag[i])};
+  if (tag[i] < tag[j]) return {i, tag[j]};
+  return {j, tag[i]};
 }
 
 cd::PeriodicBox FixContactDynamics::periodic_box() const
@@ -644,7 +652,8 @@ void FixContactDynamics::collect_wall_pairs(const cd::PairReach& reach, double f
     for (int w = 0; w < static_cast<int>(settings.walls.size()); w++) {
       const auto touch = cd::wall_contact(settings.walls[w], 1 + i, disk, reach_i + to_margin, box);
       if (!touch || !reach.wall_in_look(1 + i, touch->geometry.gap, from_margin)) continue;
-      contacts.offer(touch->geometry, settings.walls[w].law, {i, wall_key(w, touch->part)});
+      const cd::PairKey key{i, wall_partner(w, touch->part)};
+      contacts.offer(touch->geometry, settings.walls[w].law, key, carried_impulse(key));
     }
   }
 }
@@ -655,24 +664,24 @@ void FixContactDynamics::collect_wall_pairs(const cd::PairReach& reach, double f
    body the pair has the same (p_n, p_t): swapping a and b flips both normal and tangent.
 ------------------------------------------------------------------------- */
 
-cd::Local2 FixContactDynamics::LammpsHost::carried_impulse(const cd::PairKey& key) const
+cd::Local2 FixContactDynamics::carried_impulse(const cd::PairKey& key) const
 {
-  return cd::impulse_row::find(fix.history[key.row], key.partner);
+  return cd::impulse_row::find(history[key.row], key.partner);
 }
 
-void FixContactDynamics::LammpsHost::forget_impulses()
+// The step's loaded contacts replace what the owned atoms carried.
+void FixContactDynamics::store_impulses()
 {
-  for (int i = 0; i < fix.atom->nlocal; i++) cd::impulse_row::clear(fix.history[i]);
-}
-
-void FixContactDynamics::LammpsHost::remember_impulse(const cd::PairKey& key, cd::Local2 impulse)
-{
-  if (!std::isfinite(impulse.n) || !std::isfinite(impulse.t))
-    fix.error->one(FLERR, "Fix contact/dynamics: non-finite impulse between atom {} and {} at step {}",
-                   fix.atom->tag[key.row], partner_name(key.partner), fix.update->ntimestep);
-  if (!cd::impulse_row::append(fix.history[key.row], fix.settings.max_contacts, key.partner, impulse))
-    fix.error->one(FLERR, "Fix contact/dynamics: atom {} has more than {} loaded contacts; raise max_contacts",
-                   fix.atom->tag[key.row], fix.settings.max_contacts);
+  for (int i = 0; i < atom->nlocal; i++) cd::impulse_row::clear(history[i]);
+  contact_step.contacts().for_each_loaded([&](const cd::PairKey& key, const cd::Contact& contact) {
+    const cd::Local2 p = contact.impulse;
+    if (!std::isfinite(p.n) || !std::isfinite(p.t))
+      error->one(FLERR, "Fix contact/dynamics: non-finite impulse between atom {} and {} at step {}",
+                 atom->tag[key.row], partner_name(key.partner), update->ntimestep);
+    if (!cd::impulse_row::append(history[key.row], settings.max_contacts, key.partner, p))
+      error->one(FLERR, "Fix contact/dynamics: atom {} has more than {} loaded contacts; raise max_contacts",
+                 atom->tag[key.row], settings.max_contacts);
+  });
 }
 
 void FixContactDynamics::write_back_motion()
@@ -739,7 +748,7 @@ void FixContactDynamics::RankExchange::after_sweep(cd::SweepChange& change)
   double sums[4] = {change.sum_change_sq, change.sum_scale_sq, change.sum_scale, change.contacts};
   MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, fix.world);
   // The largest change matters to the maximum norm only: spare the quadratic one a reduction.
-  if (fix.settings.step.solver.norm == cd::ConvergenceNorm::maximum)
+  if (fix.contact_step.settings().solver.norm == cd::ConvergenceNorm::maximum)
     MPI_Allreduce(MPI_IN_PLACE, &change.max_change, 1, MPI_DOUBLE, MPI_MAX, fix.world);
   change.sum_change_sq = sums[0];
   change.sum_scale_sq = sums[1];
@@ -818,24 +827,21 @@ void FixContactDynamics::fill_local_output()
     memory->destroy(array_local);
     memory->create(array_local, local_rows_allocated, output_columns, "contact/dynamics:array_local");
   }
-  const cd::StepContacts& contacts = contact_step.contacts();
   double** x = atom->x;
   int row = 0;
-  for (std::size_t k = 0; k < contacts.solved.size(); k++) {
-    const cd::Contact& c = contacts.solved[k];
-    if (c.impulse.n <= 0.0) continue;
+  contact_step.contacts().for_each_loaded([&](const cd::PairKey& key, const cd::Contact& c) {
     const int a = c.body_a - 1;  // an owned atom
     const bool wall = c.body_b == cd::world_body;
     const double to_point = c.lever_a + 0.5 * c.gap;
     double* out = array_local[row++];
     out[0] = atom->tag[a];
     out[1] = wall ? 0 : atom->tag[c.body_b - 1];
-    out[2] = wall ? wall_number(contacts.keys[k].partner) : 0;
+    out[2] = wall ? wall_number(key.partner) : 0;
     out[3] = c.impulse.n;
     out[4] = c.impulse.t;
     out[5] = x[a][0] - to_point * c.normal_x;
     out[6] = x[a][1] - to_point * c.normal_y;
-  }
+  });
   size_local_rows = row;
 }
 

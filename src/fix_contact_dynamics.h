@@ -70,16 +70,13 @@ class FixContactDynamics : public Fix {
   };
   friend class RankExchange;
 
-  // The step's host (cd::StepHost): pairs from LAMMPS's neighbour list and the walls, carried
-  // impulses in the per-atom store (which travels with the atoms and into restarts).
+  // The step's host (cd::StepHost): pairs from LAMMPS's neighbour list and the walls, each with
+  // the impulse it carried in the per-atom store (which travels with the atoms and into restarts).
   class LammpsHost : public cd::StepHost {
    public:
     explicit LammpsHost(FixContactDynamics& fix) : fix(fix) {}
     void collect_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
                        cd::StepContacts& contacts) override;
-    cd::Local2 carried_impulse(const cd::PairKey& key) const override;
-    void forget_impulses() override;
-    void remember_impulse(const cd::PairKey& key, cd::Local2 impulse) override;
 
    private:
     FixContactDynamics& fix;
@@ -121,6 +118,7 @@ class FixContactDynamics : public Fix {
   void check_insertion_map();
   void check_integrators();
   void check_pair_style();
+  void check_alert();
   void survey_group();
   void check_disk_masses();
   double group_mean_diameter();
@@ -142,6 +140,8 @@ class FixContactDynamics : public Fix {
                            cd::StepContacts& contacts);
   void collect_wall_pairs(const cd::PairReach& reach, double from_margin, double to_margin, cd::StepContacts& contacts);
   cd::PairKey pair_key(int i, int j) const;
+  cd::Local2 carried_impulse(const cd::PairKey& key) const;
+  void store_impulses();
   void write_back_motion();
   void reduce_step_outputs(const cd::OverlapSums& overlaps);
   void init_step_grid();

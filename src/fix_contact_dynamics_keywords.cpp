@@ -59,9 +59,12 @@ std::pair<int, int> type_range_for(const char* keyword, const std::string& text,
   return {low, high};
 }
 
-void require_values(const char* keyword, int iarg, int count, int narg, Error* error)
+void require_values(const char* keyword, int iarg, int count, int narg, Error* error, const char* names)
 {
-  if (iarg + count >= narg) error->all(FLERR, "Fix contact/dynamics: {} needs {} value(s)", keyword, count);
+  if (iarg + count < narg) return;
+  const char* plural = count == 1 ? "" : "s";
+  if (names) error->all(FLERR, "Fix contact/dynamics: {} needs {} value{}: {}", keyword, count, plural, names);
+  error->all(FLERR, "Fix contact/dynamics: {} needs {} value{}", keyword, count, plural);
 }
 
 bool yes_or_no(const char* keyword, const std::string& value, Error* error)

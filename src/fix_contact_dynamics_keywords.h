@@ -16,8 +16,9 @@ double number_for(const char* keyword, const char* text, Error* error);
 int integer_for(const char* keyword, const char* text, Error* error);
 // An atom type or a range of them, as LAMMPS writes it (N, *, *N, N*, M*N), within 1..ntypes.
 std::pair<int, int> type_range_for(const char* keyword, const std::string& text, int ntypes, Error* error);
-// Stops unless `count` values follow the keyword at iarg.
-void require_values(const char* keyword, int iarg, int count, int narg, Error* error);
+// Stops unless `count` values follow the keyword at iarg, naming them if `names` says what they
+// are ("wall yplane needs 3 values: position mu e").
+void require_values(const char* keyword, int iarg, int count, int narg, Error* error, const char* names = nullptr);
 bool yes_or_no(const char* keyword, const std::string& value, Error* error);
 void check_friction(const char* keyword, double mu, Error* error);    // mu >= 0
 void check_restitution(const char* keyword, double e, Error* error);  // 0 <= e <= 1

@@ -3,6 +3,7 @@
 #include "fix_contact_dynamics_settings.h"
 
 #include <cmath>
+#include <set>
 #include <string>
 
 #include "error.h"
@@ -26,10 +27,13 @@ class SettingsParser {
   void parse_laws(int ntypes);
   void parse_keywords();
   void finish_step_grid();
+  void check_step();
 
   FixSettings settings;
+  cd::StepSettings step;
 
  private:
+  void refuse_repeat(const std::string& keyword);
   int parse_order(int iarg);
   int parse_wall(int iarg);
   void parse_type_law(const char* keyword, int iarg, bool friction);
@@ -40,6 +44,7 @@ class SettingsParser {
   const double* const lo;  // the box
   const double* const hi;
   Error* const error;
+  std::set<std::string> given;  // the keywords read so far
 };
 
 // mu and e for every type pair.
@@ -60,6 +65,7 @@ void SettingsParser::parse_keywords()
   int iarg = 5;
   while (iarg < narg) {
     const std::string keyword = arg[iarg];
+    refuse_repeat(keyword);
     if (keyword == "wall") {
       iarg = parse_wall(iarg);
     } else if (keyword == "mu/types" || keyword == "e/types") {
@@ -75,44 +81,44 @@ void SettingsParser::parse_keywords()
   }
 }
 
+// A keyword of one setting given twice would silently keep its last value; walls and type laws
+// add up.
+void SettingsParser::refuse_repeat(const std::string& keyword)
+{
+  if (keyword == "wall" || keyword == "mu/types" || keyword == "e/types") return;
+  if (!given.insert(keyword).second)
+    error->all(FLERR, "Fix contact/dynamics: {} given twice; give each keyword once", keyword);
+}
+
 // order fixed | order shuffle seed
 int SettingsParser::parse_order(int iarg)
 {
-  require_values("order", iarg, 1, narg, error);
+  require_values("order", iarg, 1, narg, error, "fixed or shuffle seed");
   const std::string value = arg[iarg + 1];
   if (value == "fixed") {
-    settings.step.order = cd::ContactOrder::interleaved;
+    step.order = cd::ContactOrder::interleaved;
     return iarg + 2;
   }
   if (value != "shuffle") error->all(FLERR, "Fix contact/dynamics: order must be fixed or shuffle, got '{}'", value);
-  require_values("order shuffle", iarg + 1, 1, narg, error);
+  require_values("order shuffle", iarg + 1, 1, narg, error, "seed");
   const int seed = integer_for("order shuffle seed", arg[iarg + 2], error);
   if (seed <= 0) error->all(FLERR, "Fix contact/dynamics: order shuffle seed must be > 0, got {}", seed);
-  settings.step.order = cd::ContactOrder::shuffled;
+  step.order = cd::ContactOrder::shuffled;
   settings.shuffle_seed = static_cast<std::uint64_t>(seed);
   return iarg + 3;
 }
 
-// The keywords of one value.
+// The keywords of one value. The step's settings are range-checked by the core (check_step).
 void SettingsParser::parse_value(const std::string& keyword, const char* value)
 {
-  cd::StepSettings& step = settings.step;
   if (keyword == "theta") {
     step.theta = number_for("theta", value, error);
-    if (step.theta < 0.5 || step.theta > 1.0)
-      error->all(FLERR, "Fix contact/dynamics: theta must be in [0.5,1], got {}", step.theta);
   } else if (keyword == "tolerance") {
     step.solver.tolerance = number_for("tolerance", value, error);
-    if (step.solver.tolerance <= 0.0)
-      error->all(FLERR, "Fix contact/dynamics: tolerance must be > 0, got {}", step.solver.tolerance);
   } else if (keyword == "max_iterations") {
     step.solver.max_iterations = integer_for("max_iterations", value, error);
-    if (step.solver.max_iterations < 1)
-      error->all(FLERR, "Fix contact/dynamics: max_iterations must be >= 1, got {}", step.solver.max_iterations);
   } else if (keyword == "relaxation") {
     step.solver.relaxation = number_for("relaxation", value, error);
-    if (step.solver.relaxation <= 0.0 || step.solver.relaxation > 1.0)
-      error->all(FLERR, "Fix contact/dynamics: relaxation must be in (0,1], got {}", step.solver.relaxation);
   } else if (keyword == "norm") {
     const std::string norm = value;
     if (norm == "quadratic") step.solver.norm = cd::ConvergenceNorm::quadratic;
@@ -125,8 +131,6 @@ void SettingsParser::parse_value(const std::string& keyword, const char* value)
     else error->all(FLERR, "Fix contact/dynamics: acceleration must be none or conjugate, got '{}'", acceleration);
   } else if (keyword == "full_sweep_every") {
     step.solver.full_sweep_every = integer_for("full_sweep_every", value, error);
-    if (step.solver.full_sweep_every < 1)
-      error->all(FLERR, "Fix contact/dynamics: full_sweep_every must be >= 1, got {}", step.solver.full_sweep_every);
   } else if (keyword == "join") {
     const std::string joining = value;
     if (joining == "during") step.joining = cd::Joining::during_solve;
@@ -142,9 +146,7 @@ void SettingsParser::parse_value(const std::string& keyword, const char* value)
       error->all(FLERR, "Fix contact/dynamics: max_contacts must be in [1,{}], got {}", max_contacts_limit,
                  settings.max_contacts);
   } else if (keyword == "alert") {
-    const double alert = number_for("alert", value, error);
-    if (alert < 0.0) error->all(FLERR, "Fix contact/dynamics: alert must be >= 0, got {}", alert);
-    settings.alert = alert;
+    settings.alert = step.alert = number_for("alert", value, error);
   } else if (keyword == "dt_max") {
     settings.step_grid.dt_max = number_for("dt_max", value, error);
     if (settings.step_grid.dt_max <= 0.0)
@@ -171,7 +173,7 @@ void SettingsParser::parse_value(const std::string& keyword, const char* value)
 void SettingsParser::parse_type_law(const char* keyword, int iarg, bool friction)
 {
   const int ntypes = settings.law_types;
-  require_values(keyword, iarg, 3, narg, error);
+  require_values(keyword, iarg, 3, narg, error, friction ? "I J mu" : "I J e");
   const auto [ilo, ihi] = type_range_for(keyword, arg[iarg + 1], ntypes, error);
   const auto [jlo, jhi] = type_range_for(keyword, arg[iarg + 2], ntypes, error);
   const double value = number_for(keyword, arg[iarg + 3], error);
@@ -189,12 +191,15 @@ void SettingsParser::parse_type_law(const char* keyword, int iarg, bool friction
 // wall xplane X mu e | wall yplane Y mu e | wall segment x1 y1 x2 y2 mu e
 int SettingsParser::parse_wall(int iarg)
 {
-  require_values("wall", iarg, 1, narg, error);
+  if (iarg + 1 >= narg)
+    error->all(FLERR,
+               "Fix contact/dynamics: wall needs a shape and its values: xplane position mu e, yplane position mu "
+               "e or segment x1 y1 x2 y2 mu e");
   const std::string shape = arg[iarg + 1];
   cd::Wall wall;
   int next;
   if (shape == "xplane" || shape == "yplane") {
-    require_values(("wall " + shape).c_str(), iarg + 1, 3, narg, error);
+    require_values(("wall " + shape).c_str(), iarg + 1, 3, narg, error, "position mu e");
     const int axis = shape == "xplane" ? 0 : 1;
     const double position = number_for(("wall " + shape).c_str(), arg[iarg + 2], error);
     if (position < lo[axis] || position > hi[axis])
@@ -205,7 +210,7 @@ int SettingsParser::parse_wall(int iarg)
     else wall.ay = wall.by = position, wall.ax = lo[0], wall.bx = hi[0];
     next = iarg + 3;
   } else if (shape == "segment") {
-    require_values("wall segment", iarg + 1, 6, narg, error);
+    require_values("wall segment", iarg + 1, 6, narg, error, "x1 y1 x2 y2 mu e");
     wall.shape = cd::Wall::Shape::segment;
     wall.ax = number_for("wall segment", arg[iarg + 2], error);
     wall.ay = number_for("wall segment", arg[iarg + 3], error);
@@ -229,13 +234,15 @@ int SettingsParser::parse_wall(int iarg)
   return next + 2;
 }
 
-// dt_align needs dt_max and must be a whole multiple of it: the alignment period in steps.
+// dt_align and travel need dt_max; dt_align must be a whole multiple of it: the alignment period
+// in steps.
 void SettingsParser::finish_step_grid()
 {
   const double dt_align = settings.dt_align;
   cd::StepGrid& grid = settings.step_grid;
-  if (dt_align > 0.0 && !settings.adaptive_step())
-    error->all(FLERR, "Fix contact/dynamics: dt_align needs dt_max (the adaptive step)");
+  for (const char* keyword : {"dt_align", "travel"})
+    if (given.count(keyword) && !settings.adaptive_step())
+      error->all(FLERR, "Fix contact/dynamics: {} needs dt_max (the adaptive step)", keyword);
   if (!settings.adaptive_step()) return;
   const double periods = (dt_align > 0.0 ? dt_align : grid.dt_max) / grid.dt_max;
   if (periods < 0.5 || std::fabs(periods - std::round(periods)) > 1e-6 * periods)
@@ -243,15 +250,23 @@ void SettingsParser::finish_step_grid()
   grid.steps_per_align = static_cast<int>(std::lround(periods));
 }
 
+// The core's ranges (cd::check), in the fix's error line.
+void SettingsParser::check_step()
+{
+  const std::string problem = cd::check(step);
+  if (!problem.empty()) error->all(FLERR, "Fix contact/dynamics: {}", problem);
+}
+
 }  // namespace
 
-FixSettings parse_settings(int narg, char** arg, int ntypes, const double* boxlo, const double* boxhi, Error* error)
+FixCommand parse_settings(int narg, char** arg, int ntypes, const double* boxlo, const double* boxhi, Error* error)
 {
   SettingsParser parser(narg, arg, boxlo, boxhi, error);
   parser.parse_laws(ntypes);
   parser.parse_keywords();
   parser.finish_step_grid();
-  return parser.settings;
+  parser.check_step();
+  return {parser.settings, parser.step};
 }
 
 }  // namespace LAMMPS_NS::fix_keywords

@@ -16,10 +16,9 @@ class Error;
 
 namespace fix_keywords {
 
+// The fix's own settings; the step's (theta, the solver's, warm_start, order, join) belong to
+// its cd::MoreauJeanStep (FixCommand).
 struct FixSettings {
-  // theta, the solver's settings (tolerance, max_iterations, relaxation, norm, acceleration,
-  // full_sweep_every), warm_start and order; its alert is set by the fix (see alert below).
-  cd::StepSettings step;
   std::uint64_t shuffle_seed = 0;  // order shuffle's seed (> 0); 0 with the fixed order
   // m: candidate pairs are those whose gap closes to within it at free velocity; not given:
   // the fix takes a fraction of the group's mean diameter.
@@ -41,9 +40,16 @@ struct FixSettings {
   const cd::ContactLaw& law(int itype, int jtype) const { return type_laws[itype * (law_types + 1) + jtype]; }
 };
 
+// A command line read: the fix's settings, and the step's, checked by the core (cd::check), which
+// the fix hands to its step.
+struct FixCommand {
+  FixSettings fix;
+  cd::StepSettings step;  // its alert: the alert keyword's, 0 if not given
+};
+
 // Reads arg[3..narg) (mu, e, then keywords). ntypes: the atom types (mu/types, e/types ranges);
 // boxlo, boxhi: the box the walls must lie in.
-FixSettings parse_settings(int narg, char** arg, int ntypes, const double* boxlo, const double* boxhi, Error* error);
+FixCommand parse_settings(int narg, char** arg, int ntypes, const double* boxlo, const double* boxhi, Error* error);
 
 }  // namespace fix_keywords
 }  // namespace LAMMPS_NS

@@ -8,6 +8,9 @@
     text              numbers, values with errors, durations, Markdown tables
     campaign/         the chute campaign of scripts/chute_campaign.py
     stability_matrix  the stability matrix of scripts/stability_matrix.py
+    rank_replicas     replica runs on several rank counts (bench/rank_replicas.py)
+    rank_solutions    one step solved on several rank counts (bench/rank_solutions.py)
+    step_profile      a step's perf samples grouped by its parts (bench/step_profile.py)
 
 How a tool imports it, one way everywhere (scripts/, bench/, tests/), from any folder, with no
 PYTHONPATH and nothing installed: the script puts the folder that holds this package (scripts/)

@@ -19,6 +19,19 @@ struct BodyInertia {
   double inv_inertia = 0.0;  // 1/(kg m^2)
 };
 
+// The model's disks are uniform: m = pi r^2 rho for an areal density rho (kg/m^2), and
+// I = m r^2 / 2. Every host takes masses and inertias from here.
+inline constexpr double pi = 3.14159265358979323846;
+inline constexpr double disk_inertia_factor = 0.5;
+inline double disk_mass(double radius, double areal_density)
+{
+  return pi * radius * radius * areal_density;
+}
+inline BodyInertia disk_inertia(double mass, double radius)
+{
+  return {1.0 / mass, 1.0 / (disk_inertia_factor * mass * radius * radius)};
+}
+
 // A disk at the predicted configuration of the step.
 struct Disk {
   double x = 0.0;

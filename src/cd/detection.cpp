@@ -5,14 +5,6 @@
 
 namespace cd {
 
-namespace {
-
-// Next step's margin is this many times what this step needed: a flow changes little from one
-// step to the next, and a margin a little too wide costs a few more pairs looked at.
-constexpr double margin_growth = 1.5;
-
-}  // namespace
-
 void PairReach::begin_step(const BodySet& bodies, const StepParameters& step)
 {
   const double advance = step.theta * step.dt;
@@ -36,10 +28,10 @@ double PairReach::needed_margin(const std::vector<BodyVelocity>& velocity, const
 
 void PairReach::end_step(double needed)
 {
-  margin_ = std::max(margin_floor_, margin_growth * needed);
+  margin_ = std::max(margin_floor_, wider_margin(needed));
 }
 
-void StepContacts::begin(const BodySet& bodies, const StepParameters& step, double alert)
+void StepContacts::begin(const BodySet& bodies, const StepParameters& step, double alert, bool warm_start)
 {
   solved.clear();
   keys.clear();
@@ -47,10 +39,11 @@ void StepContacts::begin(const BodySet& bodies, const StepParameters& step, doub
   bodies_ = &bodies;
   step_ = step;
   alert_ = alert;
+  warm_start_ = warm_start;
   watch_only_ = false;
 }
 
-void StepContacts::offer(const ContactGeometry& geometry, const ContactLaw& law, const PairKey& key)
+void StepContacts::offer(const ContactGeometry& geometry, const ContactLaw& law, const PairKey& key, Local2 carried)
 {
   const Contact frame = contact_frame(geometry);
   if (watch_only_ || !is_candidate(frame, *bodies_, step_, alert_)) {
@@ -60,6 +53,7 @@ void StepContacts::offer(const ContactGeometry& geometry, const ContactLaw& law,
   solved.push_back(frame);
   keys.push_back(key);
   prepare_mechanics(solved.back(), law, *bodies_, step_);
+  if (warm_start_) warm_start(solved.back(), carried);
 }
 
 void StepContacts::reorder(const std::vector<int>& permutation)
@@ -89,65 +83,6 @@ bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const 
   }
   contacts.watched.resize(kept);
   return contacts.solved.size() > before;
-}
-
-namespace {
-
-// Watched pairs joining a running solve (Joining::during_solve).
-class ClosingPairs : public JoiningContacts {
- public:
-  ClosingPairs(StepContacts& contacts, const BodySet& bodies, const StepParameters& step, SweepExchange* exchange)
-      : contacts_(contacts), bodies_(bodies), step_(step), exchange_(exchange)
-  {
-  }
-  bool join(bool converged) override
-  {
-    const bool joined = promote_closing_pairs(contacts_, bodies_, step_);
-    return converged && exchange_ ? exchange_->on_any_rank(joined) : joined;
-  }
-
- private:
-  StepContacts& contacts_;
-  const BodySet& bodies_;
-  StepParameters step_;
-  SweepExchange* exchange_;
-};
-
-}  // namespace
-
-SolveReport solve_step(StepContacts& contacts, BodySet& bodies, const StepParameters& step,
-                       const SolverSettings& settings, PairReach& reach, PairCollector& collector,
-                       SweepExchange* exchange, int max_rounds, Joining joining)
-{
-  contacts.watch_only();
-  ClosingPairs closing(contacts, bodies, step, exchange);
-  JoiningContacts* during = joining == Joining::during_solve ? &closing : nullptr;
-  SolveReport report = solve_gauss_seidel(contacts.solved, bodies.velocity, settings, exchange, during);
-  double needed = 0.0;
-  for (int round = 1;; round++) {
-    needed = std::max(needed, reach.needed_margin(bodies.velocity, step));
-    const bool widened = needed > reach.margin();
-    if (widened) {
-      const double wider = margin_growth * needed;
-      collector.collect_between(reach.margin(), wider);
-      reach.widen_to(wider);
-    }
-    if (round == max_rounds) break;
-    // A solve that converged joining during its sweeps has just checked every watched pair at
-    // these velocities: only pairs the wider look added are new (the vote is every rank's).
-    const bool checked = during && report.converged && !widened;
-    bool promoted = !checked && promote_closing_pairs(contacts, bodies, step);
-    if (exchange) promoted = exchange->on_any_rank(promoted);
-    if (!promoted) break;
-    const SolveReport more = solve_gauss_seidel(contacts.solved, bodies.velocity, settings, exchange, during);
-    report.iterations += more.iterations;
-    report.solves += 1;
-    report.contact_updates += more.contact_updates;
-    report.residual = more.residual;
-    report.converged = more.converged;
-  }
-  reach.end_step(needed);
-  return report;
 }
 
 OverlapSums measure_overlaps(const StepContacts& contacts, const std::vector<BodyVelocity>& velocity,

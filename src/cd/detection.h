@@ -1,4 +1,4 @@
-// Which pairs a step solves, which it only watches, and the solve that lets watched pairs join.
+// Which pairs a step solves and which it only watches, and how far it looks for them.
 //
 // A pair (a, b) with gap g can close within the step only if theta dt (|v_a| + |v_b|) > g for
 // the velocities it ends the step with. Before the solve only the free velocities are known, so
@@ -13,9 +13,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
-#include "cd/gauss_seidel.h"
+#include "cd/contact.h"
 
 namespace cd {
 
@@ -59,6 +60,8 @@ class PairReach {
   // over its free speed (0 if none got faster).
   double needed_margin(const std::vector<BodyVelocity>& velocity, const StepParameters& step) const;
 
+  // The margin of a wider look for a solve that needs `needed`, with room to spare.
+  double wider_margin(double needed) const { return margin_growth * needed; }
   // The caller has looked at pairs out to `margin`.
   void widen_to(double margin) { margin_ = margin; }
 
@@ -66,16 +69,22 @@ class PairReach {
   void end_step(double needed);
 
  private:
+  // A margin is this many times what a step needed: a flow changes little from one step to the
+  // next, and a margin a little too wide costs a few more pairs looked at.
+  static constexpr double margin_growth = 1.5;
+
   double margin_floor_;
   double margin_;
   std::vector<double> reach_;  // per body (m)
 };
 
 // Identifies a pair from one step to the next: the host's storage row of the pair's keeper
-// (e.g. the atom with the smaller ID) and the partner's key within that row.
+// (e.g. the atom with the smaller ID) and the partner's id within that row (e.g. the other
+// atom's ID, or a wall's slot). An id, not a number: a host that stores it among doubles
+// (LAMMPS's per-atom arrays, cd::impulse_row) converts it there.
 struct PairKey {
   int row = -1;
-  double partner = 0.0;
+  std::int64_t partner = 0;
 };
 
 // A looked-at pair left out of the solve: its geometry, its law and its key. Kept apart from
@@ -95,14 +104,28 @@ class StepContacts {
   std::vector<WatchedPair> watched;
 
   // Starts a step: offered pairs are solved if candidates (is_candidate at `alert`, m), watched
-  // otherwise; `bodies` must hold the free velocities and outlive the collection.
-  void begin(const BodySet& bodies, const StepParameters& step, double alert);
+  // otherwise; solved ones start from their carried impulse if `warm_start` (cd::warm_start).
+  // `bodies` must hold the free velocities and outlive the collection.
+  void begin(const BodySet& bodies, const StepParameters& step, double alert, bool warm_start);
   // From now on offered pairs are watched whatever their velocity: found during the solve, they
   // join only by promotion (promote_closing_pairs).
   void watch_only() { watch_only_ = true; }
 
-  // A pair the host found near enough to look at.
-  void offer(const ContactGeometry& geometry, const ContactLaw& law, const PairKey& key);
+  // A pair the host found near enough to look at, with the impulse it carried at the end of the
+  // previous step ({0, 0} if none).
+  void offer(const ContactGeometry& geometry, const ContactLaw& law, const PairKey& key, Local2 carried);
+
+  // Calls visit(key, contact) for every solved contact whose impulse the next step starts
+  // from: loaded (p_n > 0), or not finite (the host reports it: it knows the bodies' names).
+  template <class Visit>
+  void for_each_loaded(Visit&& visit) const
+  {
+    for (std::size_t k = 0; k < solved.size(); k++) {
+      const Local2 p = solved[k].impulse;
+      if (std::isfinite(p.n) && std::isfinite(p.t) && p.n <= 0.0) continue;
+      visit(keys[k], solved[k]);
+    }
+  }
 
   // Puts the solved contacts (and their keys) in the order of `permutation`, whose k-th entry
   // is the old index of the new k-th contact.
@@ -118,6 +141,7 @@ class StepContacts {
   const BodySet* bodies_ = nullptr;
   StepParameters step_;
   double alert_ = 0.0;
+  bool warm_start_ = true;
   bool watch_only_ = false;
   std::vector<Contact> reordered_;  // scratch of reorder
   std::vector<PairKey> reordered_keys_;
@@ -126,29 +150,6 @@ class StepContacts {
 // Moves the watched pairs that would overlap at the end of the step with the solved velocities
 // (closes_after_solve) to the solved contacts, prepared, keys with them. True if any moved.
 bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const StepParameters& step);
-
-// What the solve asks of its caller: to offer the contacts (watched: StepContacts::watch_only)
-// the pairs whose gap lies between their reach plus `from_margin` and their reach plus
-// `to_margin`, none of them looked at yet.
-class PairCollector {
- public:
-  virtual ~PairCollector() = default;
-  virtual void collect_between(double from_margin, double to_margin) = 0;
-};
-
-// When watched pairs that the velocities drive into overlap join the solved contacts:
-//   after_solve   once the solve has converged, and the solve starts again from where it stopped;
-//   during_solve  also at every full sweep of the solve (cd::JoiningContacts), which goes on
-//                 with them: the same problem and tolerance, usually in one solve.
-enum class Joining { after_solve, during_solve };
-
-// Solves the step's contacts, then lets watched pairs that the solution would drive into
-// overlap join and solves again from where it stopped, looking wider first if bodies gained
-// more speed than the margin covers; at most `max_rounds` solves. The impulses must already be
-// applied to bodies.velocity. The report sums the sweeps of every solve.
-SolveReport solve_step(StepContacts& contacts, BodySet& bodies, const StepParameters& step,
-                       const SolverSettings& settings, PairReach& reach, PairCollector& collector,
-                       SweepExchange* exchange = nullptr, int max_rounds = 10, Joining joining = Joining::after_solve);
 
 // Interpenetration at the end of the step, linearised (gap + theta dt u_n^+): deepest and sum
 // over the solved contacts, deepest over the watched pairs too.

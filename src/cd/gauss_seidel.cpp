@@ -1,16 +1,10 @@
+// The Gauss–Seidel sweeps over prepared contacts and the solves made of them (cd/gauss_seidel.h).
 #include "cd/gauss_seidel.h"
 
 #include <algorithm>
 #include <limits>
 
 namespace cd {
-
-void BodySet::reset(int body_count)
-{
-  inertia.assign(body_count, BodyInertia{});
-  start_velocity.assign(body_count, BodyVelocity{});
-  velocity.assign(body_count, BodyVelocity{});
-}
 
 namespace {
 
@@ -108,88 +102,6 @@ inline double update_frictionless(Contact& c, BodyVelocity* velocity, double rel
 }
 
 }  // namespace
-
-Contact contact_frame(const ContactGeometry& g)
-{
-  Contact c;
-  c.body_a = g.body_a;
-  c.body_b = g.body_b;
-  c.normal_x = g.normal_x;
-  c.normal_y = g.normal_y;
-  c.lever_a = g.lever_a;
-  c.lever_b = g.lever_b;
-  c.gap = g.gap;
-  return c;
-}
-
-bool is_candidate(const Contact& frame, const BodySet& bodies, const StepParameters& step, double alert)
-{
-  const Local2 u_free = relative_velocity(frame, bodies.velocity[frame.body_a], bodies.velocity[frame.body_b]);
-  return frame.gap + step.theta * step.dt * std::min(u_free.n, 0.0) <= alert;
-}
-
-void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies, const StepParameters& step)
-{
-  const BodyInertia& a = bodies.inertia[c.body_a];
-  const BodyInertia& b = bodies.inertia[c.body_b];
-  c.inv_mass_a = a.inv_mass;
-  c.inv_mass_b = b.inv_mass;
-  c.spin_gain_a = c.lever_a * a.inv_inertia;
-  c.spin_gain_b = c.lever_b * b.inv_inertia;
-  const double translation = a.inv_mass + b.inv_mass;
-  // For disks the normal passes through both centres: no normal-tangential coupling.
-  c.delassus = DiskDelassus::of(translation, translation + c.lever_a * c.spin_gain_a + c.lever_b * c.spin_gain_b);
-  c.mu = law.mu;
-  c.impulse = {};
-
-  // A touching pair is an impact whatever its pre-step velocity, and at e = 0 its bias is 0:
-  // nothing to read, so a scene without restitution does not pay for it.
-  if (c.gap <= 0.0 && law.restitution == 0.0) {
-    c.velocity_bias = 0.0;
-    return;
-  }
-  const double u_start = relative_velocity(c, bodies.start_velocity[c.body_a], bodies.start_velocity[c.body_b]).n;
-  const double advance = step.theta * step.dt;
-  const bool impact = c.gap <= 0.0 || c.gap + advance * u_start <= 0.0;
-  c.velocity_bias = impact ? law.restitution * std::min(u_start, 0.0) : c.gap / advance;
-}
-
-std::vector<int> interleaved_order(const std::vector<Contact>& contacts, int body_count, int spacing)
-{
-  // Greedy: each slot takes the first waiting contact whose bodies were last used at least
-  // `spacing` slots ago, looking a bounded distance ahead; otherwise the oldest waiting one.
-  // The waiting contacts form a list in their order (after_[k]: the next one waiting after k),
-  // so that taking one from the middle costs nothing.
-  constexpr int lookahead = 16;
-  const int count = static_cast<int>(contacts.size());
-  const int end = count;  // after_[end] is the first waiting contact
-  std::vector<int> after(count + 1);
-  for (int k = 0; k < count; k++) after[k] = k + 1;
-  after[end] = 0;
-  std::vector<int> last_slot(body_count, -spacing);
-  std::vector<int> order;
-  order.reserve(contacts.size());
-  for (int slot = 0; slot < count; slot++) {
-    int before_chosen = end;  // the waiting contact before the chosen one (end: none)
-    for (int before = end, seen = 0; after[before] != end && seen < lookahead; before = after[before], seen++) {
-      const Contact& c = contacts[after[before]];
-      if (slot - last_slot[c.body_a] >= spacing && slot - last_slot[c.body_b] >= spacing) {
-        before_chosen = before;
-        break;
-      }
-    }
-    const int chosen = after[before_chosen];
-    after[before_chosen] = after[chosen];
-    last_slot[contacts[chosen].body_a] = last_slot[contacts[chosen].body_b] = slot;
-    order.push_back(chosen);
-  }
-  return order;
-}
-
-void warm_start(Contact& c, Local2 carried)
-{
-  c.impulse = {carried.n, c.mu == 0.0 ? 0.0 : carried.t};
-}
 
 void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity)
 {

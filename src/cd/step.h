@@ -4,21 +4,24 @@
 //   predictor   x_m = x_n + (1 - theta) dt v_n                       (host applies predicted_motion)
 //   free        v_free = v_n + dt F / m, spin likewise                 (free_velocity)
 //   pairs       the host offers the pairs near each other (StepHost::collect_pairs): solved if
-//               candidates, watched otherwise, each with the key of its carried impulse
+//               candidates, watched otherwise, each with its key and the impulse it carried,
+//               which starts a solved one (the warm start)
 //   order       interleaved (cd::interleaved_order) or shuffled; keys travel with the contacts
-//   warm start  impulses carried from the last step, looked up by key (StepHost::carried_impulse)
 //   solve       Gauss–Seidel; watched pairs the solution would drive into overlap join and the
-//               solve goes on (cd::solve_step)
-//   store       every loaded contact's impulse, by key (StepHost::remember_impulse)
+//               solve goes on (the solve loop, step.cpp)
+//   store       the host keeps every loaded contact's impulse, by key (StepContacts::for_each_loaded)
 //   corrector   x_{n+1} = x_m + theta dt v_{n+1}                       (host applies corrected_motion)
 #pragma once
 
 #include <cstdint>
 #include <random>
+#include <string>
 #include <vector>
 
+#include "cd/contact.h"
 #include "cd/detection.h"
 #include "cd/gauss_seidel.h"
+#include "cd/order.h"
 
 namespace cd {
 
@@ -58,24 +61,28 @@ inline BodyVelocity free_velocity(const BodyVelocity& start, const BodyInertia& 
           start.spin + dt * torque * inertia.inv_inertia};
 }
 
-// What a step asks of its host.
+// What a step asks of its host: the pairs near each other. The host keeps the carried impulses
+// (per body, e.g. cd::impulse_row): it hands each pair's with the pair, and after the step
+// stores those of the loaded contacts (StepContacts::for_each_loaded).
 class StepHost {
  public:
   virtual ~StepHost() = default;
   // Offers `contacts` (StepContacts::offer) every pair whose disks lie within their reach plus
   // to_margin (PairReach::within) and not within their reach plus from_margin (-infinity: no
-  // lower bound), each pair once, with the key of its carried impulse.
+  // lower bound), each pair once, with its key and the impulse it carried.
   virtual void collect_pairs(const PairReach& reach, double from_margin, double to_margin, StepContacts& contacts) = 0;
-  // The impulse the pair carried at the end of the previous step; {0, 0} if none.
-  virtual Local2 carried_impulse(const PairKey& key) const = 0;
-  // Forgets every carried impulse; remember_impulse then stores the step's loaded contacts'.
-  virtual void forget_impulses() = 0;
-  virtual void remember_impulse(const PairKey& key, Local2 impulse) = 0;
 };
 
-// The sweep order: interleaved (cd::interleaved_order), shuffled (seeded), or as the host
-// offered the pairs (a benchmark's baseline).
-enum class ContactOrder { interleaved, shuffled, as_offered };
+// When watched pairs that the velocities drive into overlap join the solved contacts:
+//   after_solve   once the solve has converged, and the solve starts again from where it stopped;
+//   during_solve  also at every full sweep of the solve (cd::JoiningContacts), which goes on
+//                 with them: the same problem and tolerance, usually in one solve.
+enum class Joining { after_solve, during_solve };
+
+// The default alert distance, in mean diameters: pairs this close are solved even when their
+// free motion does not close them (cd::is_candidate). 0.03 solves the 45 d chute once a step at
+// 0.90-1.02x the cost but slows the bed of the mu 0.05 flow (doc/accuracy.md, One solve a step).
+inline constexpr double default_alert_diameters = 0.01;
 
 struct StepSettings {
   double theta = 0.5;
@@ -83,9 +90,13 @@ struct StepSettings {
   double alert = 0.0;  // m: candidate selection (cd::is_candidate)
   bool warm_start = true;
   ContactOrder order = ContactOrder::interleaved;
-  int max_solves = 10;                     // solves of one step, at most (cd::solve_step)
+  int max_solves = 10;                     // solves of one step, at most (the solve loop)
   Joining joining = Joining::after_solve;  // when watched pairs driven shut join (cd::Joining)
 };
+
+// Empty if the settings can run, else one line naming the setting as the fix's keyword and its
+// range, e.g. "theta must be in [0.5,1], got 0.3". Every cd::MoreauJeanStep is checked.
+std::string check(const StepSettings& settings);
 
 struct StepReport {
   SolveReport solve;
@@ -95,14 +106,18 @@ struct StepReport {
 
 class MoreauJeanStep {
  public:
+  // Throws std::invalid_argument with check's line if the settings cannot run.
   explicit MoreauJeanStep(const StepSettings& settings = {}, std::uint64_t shuffle_seed = 0);
 
+  // The step's settings: it owns them, from its construction on.
   const StepSettings& settings() const { return settings_; }
-  StepSettings& settings() { return settings_; }
+  // The alert distance (m), the one setting a host learns only as it runs (it follows the grain
+  // size); checked as the constructor checks.
+  void set_alert(double alert);
   PairReach& reach() { return reach_; }
 
-  // Everything before the solve: the pairs, their order, the warm start (not yet applied to the
-  // velocities). contacts() then holds the step's problem. bodies.velocity: the free velocities.
+  // Everything before the solve: the pairs, their order, their warm start (not yet applied to
+  // the velocities). contacts() then holds the step's problem. bodies.velocity: the free velocities.
   void prepare(const BodySet& bodies, double dt, StepHost& host);
 
   // Solves the step at the predicted configuration (prepare, then the solve): bodies.velocity must hold the free
@@ -110,13 +125,12 @@ class MoreauJeanStep {
   // after every sweep.
   StepReport solve(BodySet& bodies, double dt, StepHost& host, SweepExchange* exchange = nullptr);
 
-  // The step's contacts after solve: solved (in sweep order, with their keys) and watched.
+  // The step's contacts after solve: solved (in sweep order, with their keys) and watched. The
+  // host stores the loaded ones' impulses from here (StepContacts::for_each_loaded).
   const StepContacts& contacts() const { return contacts_; }
 
  private:
   void reorder(int body_count);
-  void warm_start(const StepHost& host);
-  int store_impulses(StepHost& host) const;
 
   StepSettings settings_;
   PairReach reach_;

@@ -3,15 +3,10 @@
 
 #include <optional>
 
+#include "cd/contact.h"
 #include "cd/contact_geometry.h"
 
 namespace cd {
-
-// Friction and restitution of one kind of contact.
-struct ContactLaw {
-  double mu = 0.0;           // Coulomb coefficient (one value, no static/dynamic split)
-  double restitution = 0.0;  // Newton normal restitution e in [0, 1]
-};
 
 // Minimum-image convention for the periodic directions of an orthogonal box.
 struct PeriodicBox {

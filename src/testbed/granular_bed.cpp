@@ -11,8 +11,6 @@ namespace testbed {
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-constexpr double disk_inertia_factor = 0.5;  // I = m r^2 / 2
 // Rounding slack of the rain's contact geometry: a disk placed against two others touches them
 // to a few ulps, which must not read as an overlap.
 constexpr double touch_slack = 1.0e-9;
@@ -110,51 +108,44 @@ bool rest_on_pair(const cd::Disk& i, const cd::Disk& j, double r, double& x, dou
 
 }  // namespace
 
-FrozenPairs::FrozenPairs(const FrozenStep& frozen) : frozen_(frozen)
-{
-  for (const NeighbourPair& pair : frozen.pairs) carried_[pair_key(pair.a, pair.b)] = pair.warm_impulse;
-}
-
 void FrozenPairs::collect_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
                                 cd::StepContacts& contacts)
 {
   for (const NeighbourPair& pair : frozen_.pairs) {
     const cd::Disk& disk_a = frozen_.predicted[pair.a - 1];
-    const cd::PairKey key{pair.a, static_cast<double>(pair.b)};
+    const cd::PairKey key{pair.a, pair.b};
     if (pair.b == cd::world_body) {
       const double reach_a = reach.reach(pair.a);
       const auto touch = cd::wall_contact(frozen_.floor, pair.a, disk_a, reach_a + to_margin, frozen_.box);
       if (!touch || !reach.wall_in_look(pair.a, touch->geometry.gap, from_margin)) continue;
-      contacts.offer(touch->geometry, frozen_.floor.law, key);
+      contacts.offer(touch->geometry, frozen_.floor.law, key, pair.warm_impulse);
       continue;
     }
     cd::Disk disk_b = frozen_.predicted[pair.b - 1];
     disk_b.x += pair.b_shift_x;
     if (!reach.in_look(pair.a, disk_a, pair.b, disk_b, from_margin, to_margin)) continue;
-    contacts.offer(cd::disk_disk_geometry(pair.a, disk_a, pair.b, disk_b), frozen_.grain_law, key);
+    contacts.offer(cd::disk_disk_geometry(pair.a, disk_a, pair.b, disk_b), frozen_.grain_law, key, pair.warm_impulse);
   }
 }
 
-cd::Local2 FrozenPairs::carried_impulse(const cd::PairKey& key) const
-{
-  const auto found = carried_.find(pair_key(key.row, static_cast<int>(key.partner)));
-  return found == carried_.end() ? cd::Local2{} : found->second;
-}
+namespace {
 
-void FrozenPairs::remember_impulse(const cd::PairKey& key, cd::Local2 impulse)
-{
-  remembered[pair_key(key.row, static_cast<int>(key.partner))] = impulse;
-}
-
-cd::StepSettings step_settings(const FrozenStep& frozen, const cd::SolverSettings& solver, bool warm)
+cd::StepSettings step_settings(double theta, double alert, const cd::SolverSettings& solver, bool warm)
 {
   cd::StepSettings settings;
-  settings.theta = frozen.step.theta;
+  settings.theta = theta;
   settings.solver = solver;
-  settings.alert = frozen.alert;
+  settings.alert = alert;
   settings.warm_start = warm;
   settings.order = cd::ContactOrder::as_offered;
   return settings;
+}
+
+}  // namespace
+
+cd::StepSettings step_settings(const FrozenStep& frozen, const cd::SolverSettings& solver, bool warm)
+{
+  return step_settings(frozen.step.theta, frozen.alert, solver, warm);
 }
 
 void prepare_contacts(const FrozenStep& frozen, bool warm, std::vector<cd::Contact>& contacts)
@@ -165,15 +156,17 @@ void prepare_contacts(const FrozenStep& frozen, bool warm, std::vector<cd::Conta
   contacts = moreau_jean.contacts().solved;
 }
 
-GranularBed::GranularBed(const BedSpec& spec) : spec_(spec), length_x_(spec.cell_length * spec.mean_diameter)
+GranularBed::GranularBed(const BedSpec& spec)
+    : spec_(spec),
+      length_x_(spec.cell_length * spec.mean_diameter),
+      moreau_jean_(step_settings(spec.theta, spec.alert * spec.mean_diameter, spec.solver, true))
 {
   rain();
   velocity_.assign(disks_.size(), cd::BodyVelocity{});
   inertia_.resize(disks_.size());
   for (std::size_t k = 0; k < disks_.size(); k++) {
     const double r = disks_[k].radius;
-    const double mass = pi * r * r * spec_.density;
-    inertia_[k] = {1.0 / mass, 1.0 / (disk_inertia_factor * mass * r * r)};
+    inertia_[k] = cd::disk_inertia(cd::disk_mass(r, spec_.density), r);
   }
   for (int s = 0; s < spec_.settle_steps; s++) settle_reports_.push_back(step());
 }
@@ -345,10 +338,12 @@ cd::SolveReport GranularBed::step()
 {
   const FrozenStep frozen = freeze();
   FrozenPairs host(frozen);
-  moreau_jean_.settings() = step_settings(frozen, spec_.solver, true);
   cd::BodySet bodies = frozen.bodies;
   const cd::StepReport report = moreau_jean_.solve(bodies, frozen.step.dt, host);
-  carried_ = std::move(host.remembered);
+  carried_.clear();
+  moreau_jean_.contacts().for_each_loaded([&](const cd::PairKey& key, const cd::Contact& contact) {
+    carried_[pair_key(key.row, static_cast<int>(key.partner))] = contact.impulse;
+  });
   const cd::StepParameters step = frozen.step;
   for (std::size_t k = 0; k < disks_.size(); k++) {
     velocity_[k] = bodies.velocity[1 + k];

@@ -14,6 +14,7 @@
 
 #include "cd/gauss_seidel.h"
 #include "cd/step.h"
+#include "cd/walls.h"
 
 namespace testbed {
 
@@ -26,11 +27,11 @@ struct BedSpec {
   double gravity = 9.81;          // m/s^2, along -y
   double dt = 1.0e-5;             // s
   double theta = 0.5;
-  double skin = 0.2;            // neighbour pairs: gap below skin d (a LAMMPS size list)
-  double alert = 0.01;          // solved pairs: cd::is_candidate alert, in d (the fix's default)
-  double rain_window = 1.0;     // a disk lands within this many d of its drop abscissa
-  int settle_steps = 200;       // Moreau–Jean steps under gravity after the rain
-  double immobile_layer = 0.0;  // d: disks centred below this height are immobile obstacles
+  double skin = 0.2;                           // neighbour pairs: gap below skin d (a LAMMPS size list)
+  double alert = cd::default_alert_diameters;  // solved pairs: cd::is_candidate alert, in d
+  double rain_window = 1.0;                    // a disk lands within this many d of its drop abscissa
+  int settle_steps = 200;                      // Moreau–Jean steps under gravity after the rain
+  double immobile_layer = 0.0;                 // d: disks centred below this height are immobile obstacles
   std::uint64_t seed = 20240601;
   cd::ContactLaw grain_law{0.5, 0.5};
   cd::ContactLaw wall_law{0.5, 0.5};  // the floor y = 0
@@ -60,22 +61,16 @@ struct FrozenStep {
 };
 
 // The frozen step as a host of cd::MoreauJeanStep: its neighbour pairs and floor contacts,
-// offered in the order of frozen.pairs, the impulses they carried, and the impulses the step
-// leaves (remembered, by pair_key).
+// offered in the order of frozen.pairs, each with the impulse it carried (warm_impulse), keyed
+// {a, b}.
 class FrozenPairs : public cd::StepHost {
  public:
-  explicit FrozenPairs(const FrozenStep& frozen);
+  explicit FrozenPairs(const FrozenStep& frozen) : frozen_(frozen) {}
   void collect_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
                      cd::StepContacts& contacts) override;
-  cd::Local2 carried_impulse(const cd::PairKey& key) const override;
-  void forget_impulses() override { remembered.clear(); }
-  void remember_impulse(const cd::PairKey& key, cd::Local2 impulse) override;
-
-  std::unordered_map<std::uint64_t, cd::Local2> remembered;
 
  private:
   const FrozenStep& frozen_;
-  std::unordered_map<std::uint64_t, cd::Local2> carried_;
 };
 
 // The frozen step's settings of cd::MoreauJeanStep: its theta and alert, the bed's solver, the

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks of bench/rank_replicas.py's own logic, run by ctest (no simulation).
+"""Checks of scripts/cdtools/rank_replicas.py's own logic, run by ctest (no simulation).
 
     tests/chute/test_rank_replicas.py
 
@@ -21,14 +21,16 @@ import subprocess
 import sys
 import tempfile
 
-# cdtools and the bench tool under test, found from this file (scripts/cdtools/__init__.py)
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "scripts"))
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "bench"))
+SCRIPTS = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "scripts")
+# cdtools, found from this file (scripts/cdtools/__init__.py)
+sys.path.insert(0, SCRIPTS)
 
-import rank_replicas as replicas
+from cdtools import rank_replicas as replicas  # noqa: E402
 from cdtools.stats import mean_sd_se
 
-SCRIPT = replicas.__file__
+# The tool's command line, run as the package's module (bench/rank_replicas.py runs the same main).
+TOOL = [sys.executable, "-m", "cdtools.rank_replicas"]
+ENV = dict(os.environ, PYTHONPATH=SCRIPTS)
 
 
 def check(condition, message):
@@ -44,8 +46,8 @@ def check_seeds():
             check(False, f"--seeds {bad} accepted")
         except argparse.ArgumentTypeError:
             pass
-    done = subprocess.run([sys.executable, SCRIPT, "--out", "unused", "--seeds", "3-1"],
-                          capture_output=True, text=True)
+    done = subprocess.run([*TOOL, "--out", "unused", "--seeds", "3-1"],
+                          capture_output=True, text=True, env=ENV)
     lines = done.stderr.strip().splitlines()
     check(done.returncode == 2 and "--seeds" in lines[-1] and "3-1" in lines[-1],
           f"--seeds 3-1: exit {done.returncode}, '{lines[-1:]}'")
@@ -89,8 +91,9 @@ def check_missing_bed():
     # --beds names another study's folder: a seed it has no bed for stops the study before any run.
     with tempfile.TemporaryDirectory() as work:
         beds = os.path.join(work, "other")
-        done = subprocess.run([sys.executable, SCRIPT, "--out", os.path.join(work, "out"), "--beds", beds,
-                               "--seeds", "3", "--ranks", "1", "--lmp", "/bin/false"], capture_output=True, text=True)
+        done = subprocess.run([*TOOL, "--out", os.path.join(work, "out"), "--beds", beds,
+                               "--seeds", "3", "--ranks", "1", "--lmp", "/bin/false"],
+                              capture_output=True, text=True, env=ENV)
         last = "".join(done.stderr.strip().splitlines()[-1:])
         check(done.returncode == 1 and "--beds" in last and "seed 3" in last, f"--beds without the bed: '{last}'")
 
@@ -117,8 +120,8 @@ def check_against():
         for seed, u in ((1, 1.5), (2, 2.5)):
             write_run(base, seed, dict(U=u, phi=0.78, h=12, f=40, sweeps=160))
             write_run(other, seed, dict(U=u + 0.1 * (2 * seed - 1), phi=0.78, h=12, f=40, sweeps=160))
-        done = subprocess.run([sys.executable, SCRIPT, "--out", other, "--against", base, "--seeds", "1-2",
-                               "--ranks", "1", "--analyse-only"], capture_output=True, text=True)
+        done = subprocess.run([*TOOL, "--out", other, "--against", base, "--seeds", "1-2",
+                               "--ranks", "1", "--analyse-only"], capture_output=True, text=True, env=ENV)
         row = [line for line in done.stdout.splitlines() if line.startswith("| 1 | 2 |")]
         check(done.returncode == 0 and row and row[-1].split("|")[3].strip().startswith("+0.2 "),
               f"--against: {row or done.stdout + done.stderr}")
@@ -130,8 +133,8 @@ def check_against():
             write_run(base2, seed, dict(U=u, phi=0.78, h=12, f=40, sweeps=160))
         write_run(base, 3, dict(U=9.0, phi=0.78, h=12, f=40, sweeps=160))
         write_run(other, 3, dict(U=1.0, phi=0.78, h=12, f=40, sweeps=160))
-        done = subprocess.run([sys.executable, SCRIPT, "--out", other, "--against", base, base2, "--seeds", "1-3",
-                               "--ranks", "1", "--analyse-only"], capture_output=True, text=True)
+        done = subprocess.run([*TOOL, "--out", other, "--against", base, base2, "--seeds", "1-3",
+                               "--ranks", "1", "--analyse-only"], capture_output=True, text=True, env=ENV)
         row = [line for line in done.stdout.splitlines() if line.startswith("| 1 | 2 |")]
         check(done.returncode == 0 and row and row[-1].split("|")[3].strip().startswith("+0.3 "),
               f"--against two studies: {row or done.stdout + done.stderr}")
@@ -142,15 +145,15 @@ def check_clashing_variables():
     for flags, named in ((["--solver", "theta=23 order=shuffle"], "theta"),
                          (["--cell", "L=10 duration=5"], "duration"),
                          (["--cell", "L=10 seed=4"], "seed")):
-        done = subprocess.run([sys.executable, SCRIPT, "--out", "unused", "--analyse-only", *flags],
-                              capture_output=True, text=True)
+        done = subprocess.run([*TOOL, "--out", "unused", "--analyse-only", *flags],
+                              capture_output=True, text=True, env=ENV)
         last = done.stderr.strip().splitlines()[-1:]
         check(done.returncode == 2 and named in "".join(last), f"{flags}: exit {done.returncode}, {last}")
 
 
 def check_nothing_to_analyse():
     with tempfile.TemporaryDirectory() as work:
-        done = subprocess.run([sys.executable, SCRIPT, "--out", work, "--analyse-only"], capture_output=True, text=True)
+        done = subprocess.run([*TOOL, "--out", work, "--analyse-only"], capture_output=True, text=True, env=ENV)
         lines = done.stderr.strip().splitlines()
         check(done.returncode == 1 and len(lines) == 1 and work in lines[0] and "no finished run" in lines[0],
               f"--analyse-only of an empty folder: exit {done.returncode}, {lines}")
@@ -164,9 +167,9 @@ def check_timeline():
         for seed in (1, 2):
             write_run(work, seed, values, 1, lambda t: 0.1 * t)
             write_run(work, seed, values, 4, lambda t, seed=seed: 0.1 * t + (0.01 * seed if t >= 1 else 0))
-        command = [sys.executable, SCRIPT, "--out", work, "--seeds", "1-2", "--ranks", "1", "4", "--analyse-only",
+        command = [*TOOL, "--out", work, "--seeds", "1-2", "--ranks", "1", "4", "--analyse-only",
                    "--timeline", "0.5"]
-        done = subprocess.run(command, capture_output=True, text=True)
+        done = subprocess.run(command, capture_output=True, text=True, env=ENV)
         bins = ("| 0-", "| 0.5-", "| 1-", "| 1.5-")
         rows = [line.split("|") for line in done.stdout.splitlines() if line.startswith(bins)]
         expected = {"0-0.5": "+0 ", "0.5-1": "+0 ", "1-1.5": "+0.015 ± 0.005 (t +3.0)",
@@ -182,13 +185,13 @@ def check_timeline():
         for broken, named in ((lines[:123], "no sample in 1.5-2 s"), (lines[:50] + ["50 0.48 0 x 0\n"], ":51:")):
             with open(series, "w") as out:
                 out.writelines(broken)
-            done = subprocess.run(command, capture_output=True, text=True)
+            done = subprocess.run(command, capture_output=True, text=True, env=ENV)
             last = done.stderr.strip().splitlines()
             check(done.returncode == 1 and len(last) == 1 and "flow.time" in last[0] and named in last[0],
                   f"broken flow.time: exit {done.returncode}, {last}")
     for flags in (["--timeline", "0"], ["--timeline", "0.5", "--ranks", "1"]):    # no bin; nothing to pair
-        done = subprocess.run([sys.executable, SCRIPT, "--out", "unused", "--analyse-only", *flags],
-                              capture_output=True, text=True)
+        done = subprocess.run([*TOOL, "--out", "unused", "--analyse-only", *flags],
+                              capture_output=True, text=True, env=ENV)
         check(done.returncode == 2 and "--timeline" in done.stderr, f"{flags}: exit {done.returncode}")
 
 

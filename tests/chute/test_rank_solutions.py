@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks of bench/rank_solutions.py's own measures, run by ctest (no simulation).
+"""Checks of scripts/cdtools/rank_solutions.py's own measures, run by ctest (no simulation).
 
     tests/chute/test_rank_solutions.py
 
@@ -15,12 +15,15 @@ import subprocess
 import sys
 import tempfile
 
-# the bench tool under test, found from this file
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "bench"))
+SCRIPTS = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "scripts")
+# cdtools, found from this file (scripts/cdtools/__init__.py)
+sys.path.insert(0, SCRIPTS)
 
-import rank_solutions as solutions
+from cdtools import rank_solutions as solutions  # noqa: E402
 
-SCRIPT = solutions.__file__
+# The tool's command line, run as the package's module (bench/rank_solutions.py runs the same main).
+TOOL = [sys.executable, "-m", "cdtools.rank_solutions"]
+ENV = dict(os.environ, PYTHONPATH=SCRIPTS)
 
 
 def check(condition, message):
@@ -68,14 +71,15 @@ def check_bad_input():
         except RuntimeError as error:
             check(dump in str(error), f"the error does not name the file: {error}")
         missing = os.path.join(work, "no.restart")
-        done = subprocess.run([sys.executable, SCRIPT, "--out", work, "--snapshots", missing],
-                              capture_output=True, text=True)
+        done = subprocess.run([*TOOL, "--out", work, "--snapshots", missing],
+                              capture_output=True, text=True, env=ENV)
         last = done.stderr.strip().splitlines()[-1:]
         check(done.returncode == 2 and missing in "".join(last), f"missing snapshot: exit {done.returncode}, {last}")
         snapshot = os.path.join(work, "some.restart")
         open(snapshot, "w").close()
-        done = subprocess.run([sys.executable, SCRIPT, "--out", work, "--snapshots", snapshot,
-                               "--cell", "L=10 tolerance=1e-4", "--lmp", "false"], capture_output=True, text=True)
+        done = subprocess.run([*TOOL, "--out", work, "--snapshots", snapshot,
+                               "--cell", "L=10 tolerance=1e-4", "--lmp", "false"],
+                              capture_output=True, text=True, env=ENV)
         last = done.stderr.strip().splitlines()[-1:]
         check(done.returncode == 2 and "tolerance" in "".join(last),
               f"--cell tolerance: exit {done.returncode}, {last}")

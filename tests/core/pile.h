@@ -50,14 +50,13 @@ Pile make_pile(double grain_mu, double floor_mu)
 
   // The step's own selection (cd::StepContacts::offer): candidates within 0.01 radius, prepared.
   cd::StepContacts selected;
-  selected.begin(pile.bodies, step, 0.01 * radius);
+  selected.begin(pile.bodies, step, 0.01 * radius, false);
   for (int i = 0; i < count; i++) {
     if (disks[i].y < 1.5 * radius)
-      selected.offer(cd::disk_world_geometry(1 + i, disks[i], 0.0, disks[i].y, 0.0, 1.0), floor_law, {i, -1.0});
+      selected.offer(cd::disk_world_geometry(1 + i, disks[i], 0.0, disks[i].y, 0.0, 1.0), floor_law, {i, -1}, {});
     for (int j = i + 1; j < count; j++)
       if (std::hypot(disks[i].x - disks[j].x, disks[i].y - disks[j].y) < 2.5 * radius)
-        selected.offer(cd::disk_disk_geometry(1 + i, disks[i], 1 + j, disks[j]), grain_law,
-                       {i, static_cast<double>(j)});
+        selected.offer(cd::disk_disk_geometry(1 + i, disks[i], 1 + j, disks[j]), grain_law, {i, j}, {});
   }
   pile.contacts = selected.solved;
   return pile;

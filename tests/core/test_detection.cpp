@@ -49,13 +49,10 @@ class AllPairs : public cd::StepHost {
       for (int j = i + 1; j < static_cast<int>(scene.disks.size()); j++) {
         const cd::Disk &a = scene.disks[i], &b = scene.disks[j];
         if (!reach.in_look(1 + i, a, 1 + j, b, from_margin, to_margin)) continue;
-        contacts.offer(cd::disk_disk_geometry(1 + i, a, 1 + j, b), law, {i, static_cast<double>(j)});
+        contacts.offer(cd::disk_disk_geometry(1 + i, a, 1 + j, b), law, {i, j}, {});
         ++looked_at;
       }
   }
-  cd::Local2 carried_impulse(const cd::PairKey&) const override { return {}; }
-  void forget_impulses() override {}
-  void remember_impulse(const cd::PairKey&, cd::Local2) override {}
 
   int calls = 0;
   int looked_at = 0;

@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "cd/gauss_seidel.h"
+#include "cd/order.h"
 
 namespace {
 

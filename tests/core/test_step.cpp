@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <random>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -48,24 +50,26 @@ class Pile : public cd::StepHost {
       for (int j = i + 1; j < static_cast<int>(disks.size()); j++) {
         if (j < columns) continue;  // two obstacles: no contact, as the fix lists none
         if (!reach.in_look(1 + i, disks[i], 1 + j, disks[j], from_margin, to_margin)) continue;
-        contacts.offer(cd::disk_disk_geometry(1 + i, disks[i], 1 + j, disks[j]), law, {i, static_cast<double>(j)});
+        const cd::PairKey key{i, j};
+        const auto found = carried.find({key.row, key.partner});
+        const cd::Local2 impulse = found == carried.end() ? cd::Local2{} : found->second;
+        contacts.offer(cd::disk_disk_geometry(1 + i, disks[i], 1 + j, disks[j]), law, key, impulse);
       }
   }
-  cd::Local2 carried_impulse(const cd::PairKey& key) const override
+  // What a host keeps after a step: the loaded contacts' impulses, in place of the last step's.
+  void keep(const cd::StepContacts& contacts)
   {
-    const auto found = carried.find({key.row, key.partner});
-    return found == carried.end() ? cd::Local2{} : found->second;
-  }
-  void forget_impulses() override { carried.clear(); }
-  void remember_impulse(const cd::PairKey& key, cd::Local2 impulse) override
-  {
-    EXPECT_TRUE(carried.emplace(std::make_pair(key.row, key.partner), impulse).second) << "a pair stored twice";
+    carried.clear();
+    contacts.for_each_loaded([&](const cd::PairKey& key, const cd::Contact& contact) {
+      EXPECT_TRUE(carried.emplace(std::make_pair(key.row, key.partner), contact.impulse).second)
+          << "a pair stored twice";
+    });
   }
 
   static constexpr int columns = 5;  // disks per row; the first row are obstacles
   std::vector<cd::Disk> disks;
   cd::BodySet bodies;
-  std::map<std::pair<int, double>, cd::Local2> carried;
+  std::map<std::pair<int, std::int64_t>, cd::Local2> carried;
 };
 
 cd::StepSettings settings(cd::ContactOrder order, bool warm_start)
@@ -119,6 +123,7 @@ TEST(MoreauJeanStep, TheWarmStartFindsEachPairsImpulseByKey)
   cd::MoreauJeanStep moreau_jean(settings(cd::ContactOrder::shuffled, true), 2);
   const cd::StepReport cold = moreau_jean.solve(pile.bodies, dt, pile);
   const cd::StepContacts& contacts = moreau_jean.contacts();
+  pile.keep(contacts);
   int loaded = 0;
   for (std::size_t k = 0; k < contacts.solved.size(); k++) {
     const cd::Local2 p = contacts.solved[k].impulse;
@@ -144,6 +149,52 @@ TEST(MoreauJeanStep, TheWarmStartFindsEachPairsImpulseByKey)
   pile.bodies = free;
   cd::MoreauJeanStep without(settings(cd::ContactOrder::shuffled, false), 2);
   EXPECT_GT(without.solve(pile.bodies, dt, pile).solve.iterations, 5);
+}
+
+// The core checks every host's settings (cd::check): one line naming the fix's keyword, and a
+// step refuses settings that cannot run.
+TEST(StepSettings, CheckNamesTheSettingOutOfRange)
+{
+  EXPECT_EQ(cd::check(cd::StepSettings{}), "");
+  const auto refused = [](auto change) {
+    cd::StepSettings s;
+    change(s);
+    return cd::check(s);
+  };
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.theta = 0.3; }), "theta must be in [0.5,1], got 0.3");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.theta = std::nan(""); }).rfind("theta must be in [0.5,1]", 0), 0u);
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.tolerance = 0.0; }), "tolerance must be in (0,1), got 0");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.tolerance = 1.0; }), "tolerance must be in (0,1), got 1");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.tolerance = 1e300; }), "tolerance must be in (0,1), got 1e+300");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.relaxation = 1.5; }), "relaxation must be in (0,1], got 1.5");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.relaxation = 0.0; }), "relaxation must be in (0,1], got 0");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.max_iterations = 0; }), "max_iterations must be >= 1, got 0");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.full_sweep_every = 0; }),
+            "full_sweep_every must be >= 1, got 0");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.alert = -1.0; }), "alert must be >= 0, got -1");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.max_solves = 0; }), "max_solves must be >= 1, got 0");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.alert = INFINITY; }), "") << "infinity: every pair solved";
+}
+
+TEST(StepSettings, AStepRefusesSettingsThatCannotRun)
+{
+  cd::StepSettings bad;
+  bad.solver.tolerance = 2.0;
+  EXPECT_THROW(cd::MoreauJeanStep{bad}, std::invalid_argument);
+  cd::MoreauJeanStep step;
+  step.set_alert(1e-5);
+  EXPECT_EQ(step.settings().alert, 1e-5);
+  EXPECT_THROW(step.set_alert(-1e-5), std::invalid_argument);
+  EXPECT_EQ(step.settings().alert, 1e-5) << "a refused alert leaves the last one";
+}
+
+// The model's disks (cd::disk_mass, cd::disk_inertia): m = pi r^2 rho and I = m r^2 / 2.
+TEST(DiskModel, MassAndInertiaOfAUniformDisk)
+{
+  EXPECT_DOUBLE_EQ(cd::disk_mass(0.5, 4.0), M_PI);
+  const cd::BodyInertia inertia = cd::disk_inertia(2.0, 0.5);
+  EXPECT_DOUBLE_EQ(inertia.inv_mass, 0.5);
+  EXPECT_DOUBLE_EQ(inertia.inv_inertia, 1.0 / (0.5 * 2.0 * 0.25));
 }
 
 }  // namespace

@@ -1,0 +1,64 @@
+#include "cd/contact.h"
+
+#include <algorithm>
+
+namespace cd {
+
+void BodySet::reset(int body_count)
+{
+  inertia.assign(body_count, BodyInertia{});
+  start_velocity.assign(body_count, BodyVelocity{});
+  velocity.assign(body_count, BodyVelocity{});
+}
+
+Contact contact_frame(const ContactGeometry& g)
+{
+  Contact c;
+  c.body_a = g.body_a;
+  c.body_b = g.body_b;
+  c.normal_x = g.normal_x;
+  c.normal_y = g.normal_y;
+  c.lever_a = g.lever_a;
+  c.lever_b = g.lever_b;
+  c.gap = g.gap;
+  return c;
+}
+
+bool is_candidate(const Contact& frame, const BodySet& bodies, const StepParameters& step, double alert)
+{
+  const Local2 u_free = relative_velocity(frame, bodies.velocity[frame.body_a], bodies.velocity[frame.body_b]);
+  return frame.gap + step.theta * step.dt * std::min(u_free.n, 0.0) <= alert;
+}
+
+void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies, const StepParameters& step)
+{
+  const BodyInertia& a = bodies.inertia[c.body_a];
+  const BodyInertia& b = bodies.inertia[c.body_b];
+  c.inv_mass_a = a.inv_mass;
+  c.inv_mass_b = b.inv_mass;
+  c.spin_gain_a = c.lever_a * a.inv_inertia;
+  c.spin_gain_b = c.lever_b * b.inv_inertia;
+  const double translation = a.inv_mass + b.inv_mass;
+  // For disks the normal passes through both centres: no normal-tangential coupling.
+  c.delassus = DiskDelassus::of(translation, translation + c.lever_a * c.spin_gain_a + c.lever_b * c.spin_gain_b);
+  c.mu = law.mu;
+  c.impulse = {};
+
+  // A touching pair is an impact whatever its pre-step velocity, and at e = 0 its bias is 0:
+  // nothing to read, so a scene without restitution does not pay for it.
+  if (c.gap <= 0.0 && law.restitution == 0.0) {
+    c.velocity_bias = 0.0;
+    return;
+  }
+  const double u_start = relative_velocity(c, bodies.start_velocity[c.body_a], bodies.start_velocity[c.body_b]).n;
+  const double advance = step.theta * step.dt;
+  const bool impact = c.gap <= 0.0 || c.gap + advance * u_start <= 0.0;
+  c.velocity_bias = impact ? law.restitution * std::min(u_start, 0.0) : c.gap / advance;
+}
+
+void warm_start(Contact& c, Local2 carried)
+{
+  c.impulse = {carried.n, c.mu == 0.0 ? 0.0 : carried.t};
+}
+
+}  // namespace cd

@@ -1,0 +1,116 @@
+// The contacts of a step and their mechanics: the bodies a step moves, the law of a pair, a
+// contact's frame and Delassus block, the candidates, the velocity bias of the normal law and the
+// warm start. What the sweeps solve (cd/gauss_seidel.h) and what a step collects (cd/detection.h)
+// are made of these.
+//
+// Restitution needs no stage of its own: Newton's law is imposed on u_n^+ + e u_n^-, so the
+// pre-impact velocity enters once, as a velocity bias, when the contact is prepared.
+#pragma once
+
+#include <vector>
+
+#include "cd/contact_geometry.h"
+#include "cd/coulomb_local.h"
+
+namespace cd {
+
+// Friction and restitution of one kind of contact.
+struct ContactLaw {
+  double mu = 0.0;           // Coulomb coefficient (one value, no static/dynamic split)
+  double restitution = 0.0;  // Newton normal restitution e in [0, 1]
+};
+
+struct StepParameters {
+  double dt = 0.0;     // time step (s)
+  double theta = 0.5;  // Moreau–Jean theta: x_{n+1} = x_n + dt((1-theta) v_n + theta v_{n+1})
+};
+
+// State of every body for one step. Index 0 is the world (walls): zero inverse mass and zero
+// velocity, so wall contacts run through the same code as grain contacts.
+struct BodySet {
+  std::vector<BodyInertia> inertia;
+  std::vector<BodyVelocity> start_velocity;  // v_n
+  std::vector<BodyVelocity> velocity;        // free velocity before the solve, v_{n+1} after
+
+  void reset(int body_count);  // world body included in the count
+};
+
+// One active contact, holding everything the sweep needs so that it never looks up a body.
+struct Contact {
+  int body_a = 0;
+  int body_b = 0;
+  double normal_x = 0.0;  // unit normal from b to a; tangent t = (-n_y, n_x)
+  double normal_y = 0.0;
+  double lever_a = 0.0;  // centre-to-contact distances (m)
+  double lever_b = 0.0;
+  double inv_mass_a = 0.0;  // 1/kg
+  double inv_mass_b = 0.0;
+  double spin_gain_a = 0.0;  // lever * inverse inertia: spin change per tangential impulse
+  double spin_gain_b = 0.0;
+  DiskDelassus delassus;  // local W, diagonal for disks
+  double mu = 0.0;
+  double velocity_bias = 0.0;  // b (m/s): the normal law acts on u_n + b (prepare_mechanics)
+  double gap = 0.0;            // at the predicted configuration (m)
+  Local2 impulse;              // accumulated over the step (N s)
+  Local2 direction;            // its change in the last sweep (conjugate acceleration only)
+};
+
+// Relative velocity of a with respect to b at the contact point, in the local frame.
+// Inline: the sweep calls it for every contact update.
+inline Local2 relative_velocity(const Contact& c, const BodyVelocity& a, const BodyVelocity& b)
+{
+  const double dvx = a.vx - b.vx;
+  const double dvy = a.vy - b.vy;
+  return {dvx * c.normal_x + dvy * c.normal_y,
+          -dvx * c.normal_y + dvy * c.normal_x - c.lever_a * a.spin - c.lever_b * b.spin};
+}
+
+// The frame of a candidate contact: bodies, normal, levers and gap; no mechanics yet.
+Contact contact_frame(const ContactGeometry& geometry);
+
+// Candidate selection: the pair is kept in the step's problem if its gap, closed at the free
+// relative velocity for theta dt, is at most `alert` (m): gap + theta dt min(u_n^free, 0) <= alert.
+// Pairs further apart cannot meet within the step unless other impulses drive them together
+// faster than alert / (theta dt); they are watched for overlap but not solved.
+bool is_candidate(const Contact& frame, const BodySet& bodies, const StepParameters& step, double alert);
+
+// Completes a candidate: inverse masses, Delassus block, friction, and the velocity bias b of
+// the normal law u_n^+ + b >= 0 ⊥ p_n >= 0:
+//   impact (touching at x_m, or meeting within the step at the pre-step velocity v_n):
+//       b = e min(u_n^-, 0), Newton's restitution on the pre-impact velocity u_n^-;
+//   otherwise (open, and closing only through the step's forces or other impulses):
+//       b = gap / (theta dt), the gap may close but not overlap by the end of the step.
+// The second law holds resting contacts whose gap is a rounding error above zero, and
+// keeps contacts that close gently from overlapping; it adds no restitution.
+void prepare_mechanics(Contact& contact, const ContactLaw& law, const BodySet& bodies, const StepParameters& step);
+
+// Starts a contact from the impulse it carried at the end of the previous step. A frictionless
+// contact keeps only the normal part: it can carry no tangential impulse, and the sweep never
+// changes its p_t nor any spin (a carried p_t can only come from a run with another mu).
+void warm_start(Contact& contact, Local2 carried);
+
+// u_n of a pair not (yet) solved: relative_velocity(contact_frame(pair), ...).n.
+inline double normal_velocity(const ContactGeometry& pair, const std::vector<BodyVelocity>& velocity)
+{
+  const BodyVelocity& a = velocity[pair.body_a];
+  const BodyVelocity& b = velocity[pair.body_b];
+  return (a.vx - b.vx) * pair.normal_x + (a.vy - b.vy) * pair.normal_y;
+}
+
+// Linearised gap at the end of the step: gap + theta dt u_n^+ (m).
+inline double end_of_step_gap(double gap, double normal_velocity, const StepParameters& step)
+{
+  return gap + step.theta * step.dt * normal_velocity;
+}
+
+// True if a pair left out of the solve would overlap at the end of the step with the solved
+// velocities: other impulses (a grain stopped by the floor, say) drove it shut faster than
+// the candidate selection foresaw. Such pairs join the contacts and the solve continues.
+// Inline: a solve asks it of every watched pair several times.
+inline bool closes_after_solve(const ContactGeometry& pair, const std::vector<BodyVelocity>& velocity,
+                               const StepParameters& step)
+{
+  return end_of_step_gap(pair.gap, normal_velocity(pair, velocity), step) < 0.0;
+}
+
+}  // namespace cd
