@@ -244,6 +244,17 @@ TEST(Cli, ForcedWindowThatDriftsIsLabelledEverywhere)
   EXPECT_NE(slurp(dir / "late/report.md").find("Stationary window given on the command line, U drifts by"),
             std::string::npos);
   EXPECT_NE(slurp(dir / "late/figures/u_t.gp").find("shaded: stationary window"), std::string::npos);
+
+  // With columns.chunk, the along-the-cell paragraph names the forced window as the rest do.
+  truth.with_columns = true;
+  truth.recorded_length_d = 45;
+  dir = run_with_wall_tops("columns", truth);
+  outcome = cdpost("run " + dir.string() + " --t-start 0");
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const auto along = slurp(dir / "post/report.md");
+  EXPECT_NE(along.find("tiling the cell (columns.chunk), over the window (not stationary)."), std::string::npos)
+      << along;
+  EXPECT_EQ(along.find("stationary window"), std::string::npos);
 }
 
 TEST(Cli, BrokenInputGivesOneLineNamingFileAndLine)

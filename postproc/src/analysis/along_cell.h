@@ -102,7 +102,8 @@ AlongCell analyse_along_cell(const SpaceTimeField& field, const SpectralPeak& pe
 void write_along_cell_tables(const AlongCell& along, const std::string& out_dir);
 // The (k, f) map of log10 power and the coherence against distance with its fit.
 Figure along_cell_figure(const AlongCell& along);
-// The report's paragraph: method, then the verdict.
-std::string along_cell_text(const AlongCell& along);
+// The report's paragraph: method, then the verdict; `window` names the time window analysed
+// ("stationary window", or a forced one labelled not stationary: window_name).
+std::string along_cell_text(const AlongCell& along, const std::string& window);
 
 }  // namespace cdpost

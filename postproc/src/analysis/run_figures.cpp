@@ -226,7 +226,7 @@ void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::
   report.table(run.results);
   if (run.along_cell) {
     report.heading("Along the cell");
-    report.paragraph(along_cell_text(*run.along_cell));
+    report.paragraph(along_cell_text(*run.along_cell, window_name(run)));
   }
   report.heading("Figures");
   for (const auto& figure : figures) {
