@@ -78,7 +78,7 @@ std::vector<OptionSpec> analysis_options()
       {"t-start", "TIME", "start of the stationary window (input time units; disables detection)"},
       {"t-end", "TIME", "end of the stationary window (input time units)"},
       {"max-drift", "FRACTION", "stationarity: largest drift of U across the window / mean (default 0.02)"},
-      {"min-window", "FRACTION", "stationarity: smallest window, fraction of the run (default 0.25)"},
+      {"min-window-fraction", "FRACTION", "stationarity: smallest window, fraction of the run (default 0.25)"},
       {"segment", "SECONDS", "spectrum segment duration (default 1)"},
       {"overlap", "FRACTION", "spectrum segment overlap (default 0.5)"},
       {"fmin", "HZ", "lowest frequency searched for the peak (default 5)"},
@@ -108,7 +108,7 @@ RunSettings settings_from(const ParsedOptions& options, const std::string& comma
   s.t_start = options.number("t-start");
   s.t_end = options.number("t-end");
   s.criterion.max_relative_drift = options.number("max-drift").value_or(s.criterion.max_relative_drift);
-  s.criterion.min_window_fraction = options.number("min-window").value_or(s.criterion.min_window_fraction);
+  s.criterion.min_window_fraction = options.number("min-window-fraction").value_or(s.criterion.min_window_fraction);
   s.spectrum.segment_duration_s = options.number("segment").value_or(s.spectrum.segment_duration_s);
   s.spectrum.overlap = options.number("overlap").value_or(s.spectrum.overlap);
   s.peak_fmin_hz = options.number("fmin").value_or(s.peak_fmin_hz);
