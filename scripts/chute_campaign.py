@@ -45,7 +45,7 @@ def argument_parser():
                         help="extend a run that cdpost finds not stationary, up to this chute time "
                              "in s (default 20; at most --duration disables)")
     parser.add_argument("--extend", type=float, default=5.0, help="extension step in s (default 5)")
-    parser.add_argument("--min-window", type=float, default=3.0,
+    parser.add_argument("--min-window-seconds", type=float, default=3.0,
                         help="extend a run whose stationary window is shorter than this, in s (default 3)")
     parser.add_argument("--var", action="append", default=[], metavar="NAME=VALUE",
                         help="deck variable for every run, e.g. --var tolerance=1e-4 (repeatable)")

@@ -49,13 +49,15 @@ struct DumpAtom {
   double x, y, vx, vy, radius;
 };
 
-inline std::string dump_frame_text(long timestep, double lx, double ly, const std::vector<DumpAtom>& atoms)
+// boundary: the flags of the "ITEM: BOX BOUNDS" line (x y z), as LAMMPS writes them.
+inline std::string dump_frame_text(long timestep, double lx, double ly, const std::vector<DumpAtom>& atoms,
+                                   const std::string& boundary = "pp ff pp")
 {
   std::ostringstream out;
   out.precision(10);
   out << "ITEM: TIMESTEP\n"
       << timestep << "\nITEM: NUMBER OF ATOMS\n"
-      << atoms.size() << "\nITEM: BOX BOUNDS pp ff pp\n0 " << lx << "\n0 " << ly << "\n-0.5 0.5\n"
+      << atoms.size() << "\nITEM: BOX BOUNDS " << boundary << "\n0 " << lx << "\n0 " << ly << "\n-0.5 0.5\n"
       << "ITEM: ATOMS id type x y vx vy radius\n";
   for (const auto& a : atoms)
     out << a.id << " 1 " << a.x << ' ' << a.y << ' ' << a.vx << ' ' << a.vy << ' ' << a.radius << '\n';

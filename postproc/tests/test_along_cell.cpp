@@ -214,6 +214,57 @@ TEST(AlongCell, IncoherentColumnsSitAtTheNoiseFloorAndAreLocal)
   EXPECT_NE(result.along.verdict.text.find("below one column width"), std::string::npos);
 }
 
+TEST(AlongCell, CoherenceThatDoesNotDecayGivesAVerdictNotALength)
+{
+  // A uniform oscillation with noise of each column's own: C = 0.9974 at every distance (its
+  // expectation is the same at all of them). No length, no warning, the verdict says why.
+  for (unsigned seed : {1u, 2u, 3u, 4u, 5u, 6u}) {
+    const double f = 30, a = 0.3;
+    const auto field = field_of(
+        30, 10, 0.1, [&](double, double t) { return a * std::sin(2 * M_PI * f * t); }, seed);
+    const auto result = analyse(field, f, 1.0);
+    EXPECT_FALSE(result.along.fit && result.along.fit->length);
+    EXPECT_TRUE(result.warnings.empty()) << result.warnings.front();
+    ASSERT_TRUE(result.along.decay);
+    EXPECT_LT(result.along.decay->value,
+              2 * result.along.decay->error.value_or(0) + result.along.coherence.noise_floor);
+    EXPECT_NE(result.along.verdict.text.find("no coherence length: the coherence does not decay over the cell"),
+              std::string::npos)
+        << result.along.verdict.text;
+    EXPECT_EQ(result.results.find("coherence_length"), nullptr);
+  }
+}
+
+TEST(AlongCell, FittedCoherencesNeverExceedOne)
+{
+  // Measured coherences all below 1 that fall by 0.002 from the first distance on: the expected
+  // estimate of coherencies g0 = 1.006, g_far = 0.995, xi = 1.5 d (g0 above 1: a field cannot
+  // have it, but its curve is below 1 from r = 1.5 d on). Coherencies fitted as free numbers
+  // extrapolate to c0 = 1.012 at r = 0; as magnitudes they stay at or below 1. The fall is below
+  // the noise floor: no length.
+  CoherenceByDistance coherence;
+  coherence.noise_floor = 0.04;
+  const double g0 = 1.006, g_far = 0.995, xi = 1.5;
+  for (int s = 1; s <= 8; ++s) {
+    const double r = 1.5 * s, gamma = g_far + (g0 - g_far) * std::exp(-r / xi), c = gamma * gamma;
+    coherence.distance.push_back(r);
+    coherence.coherence.push_back(c + (1 - c) * (1 - c) * coherence.noise_floor);
+    ASSERT_LT(coherence.coherence.back(), 1.0);
+  }
+  for (int g = 0; g < 5; ++g) {  // leave-one-out curves scattered by 1e-4
+    auto curve = coherence.coherence;
+    for (size_t i = 0; i < curve.size(); ++i) curve[i] -= 1e-4 * std::sin(3.0 * g + double(i));
+    coherence.without_group.push_back(curve);
+  }
+  const auto fit = fit_coherence(coherence);
+  EXPECT_LE(fit.short_range.value, 1.0);
+  EXPECT_LE(fit.plateau.value, 1.0);
+  EXPECT_GT(fit.short_range.value, 0.99);
+  EXPECT_NEAR(fit.plateau.value, g_far * g_far, 0.002);
+  EXPECT_FALSE(fit.length);
+  EXPECT_FALSE(coherence_decays(coherence));
+}
+
 TEST(AlongCell, BandCoversThePeakHalfWidthAndAtLeastOneBin)
 {
   auto band = band_around(1.0, 501, 20.3, 4.8);
@@ -237,7 +288,7 @@ TEST(AlongCell, UnequalColumnsAreRefusedAndTooFewLeaveNoFit)
   const auto short_window = analyse(field_of(8, 1, 0.1, [](double, double) { return 0.0; }), 20, 1);
   EXPECT_FALSE(short_window.along.fit);
   EXPECT_TRUE(short_window.warnings.empty());
-  EXPECT_NE(along_cell_text(short_window.along).find("holds 1 segment(s)"), std::string::npos);
+  EXPECT_NE(along_cell_text(short_window.along, "stationary window").find("holds 1 segment(s)"), std::string::npos);
 }
 
 // Through the reader: a synthetic run folder with columns.chunk, the layer's oscillation in

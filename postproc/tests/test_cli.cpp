@@ -10,6 +10,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "lammps_text.h"
 #include "synthetic_run.h"
 
 namespace cdpost {
@@ -324,6 +325,17 @@ TEST(Cli, ForcedWindowThatDriftsIsLabelledEverywhere)
   EXPECT_NE(slurp(dir / "late/report.md").find("Stationary window given on the command line, U drifts by"),
             std::string::npos);
   EXPECT_NE(slurp(dir / "late/figures/u_t.gp").find("shaded: stationary window"), std::string::npos);
+
+  // With columns.chunk, the along-the-cell paragraph names the forced window as the rest do.
+  truth.with_columns = true;
+  truth.recorded_length_d = 45;
+  dir = run_with_wall_tops("columns", truth);
+  outcome = cdpost("run " + dir.string() + " --t-start 0");
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  const auto along = slurp(dir / "post/report.md");
+  EXPECT_NE(along.find("tiling the cell (columns.chunk), over the window (not stationary)."), std::string::npos)
+      << along;
+  EXPECT_EQ(along.find("stationary window"), std::string::npos);
 }
 
 TEST(Cli, BrokenInputGivesOneLineNamingFileAndLine)
@@ -342,6 +354,42 @@ TEST(Cli, BrokenInputGivesOneLineNamingFileAndLine)
   outcome = cdpost("run " + dir.string());
   EXPECT_EQ(outcome.err, "cdpost: error: " + (dir / "flow.time").string() + ": file is empty\n");
   EXPECT_EQ(cdpost("snapshot " + (dir / "nothing.gz").string()).status, 1);
+}
+
+TEST(Cli, SnapshotOfAnyDumpTakesItsDiameterAndPeriodicityFromIt)
+{
+  // LAMMPS's pour into a box (f fm p), in LJ units: grains of diameter 0.5 to 1, no chute.params.
+  const auto dir = testing::scratch_dir();
+  const auto dump = testing::write_file(
+      dir / "dump.pour",
+      testing::dump_frame_text(25000, 100, 50, {{1, 10, 0.4, 0, 0, 0.25}, {2, 90, 0.5, 0, 0, 0.5}}, "ff fm pp"));
+  auto outcome = cdpost("snapshot " + dump + " --units reduced");
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_EQ(outcome.out.substr(0, outcome.out.find('\n')),
+            "snapshot: d 0.75 input length units (the dump's mean diameter); not periodic (the dump's box bounds)");
+  const auto script = slurp(dir / "snapshot.gp");
+  EXPECT_EQ(script.find("periodic images"), std::string::npos);
+  EXPECT_NE(script.find("xrange [0:133.333"), std::string::npos) << script;  // 100 / 0.75: x in d
+  outcome = cdpost("snapshot " + dump + " --units reduced --d 1 --periodic x");
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_NE(outcome.out.find("d 1 m (from --d or chute.params); periodic in x (from --periodic)"), std::string::npos)
+      << outcome.out;
+  EXPECT_EQ(cdpost("snapshot " + dump + " --periodic z").err,
+            "cdpost: cdpost snapshot: --periodic takes x, y, xy or none, not 'z' (see cdpost --help)\n");
+}
+
+TEST(Cli, BinaryDumpIsRefusedInOneShortLine)
+{
+  // 15 KB of a binary dump's bytes: the error names the file and says what it is, nothing more.
+  const auto dir = testing::scratch_dir();
+  std::string bytes(15000, '\0');
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>((i * 131) % 256);
+  const auto dump = testing::write_file(dir / "dump.bin", bytes);
+  const auto outcome = cdpost("snapshot " + dump);
+  EXPECT_EQ(outcome.status, 1);
+  EXPECT_EQ(outcome.err, "cdpost: error: " + dump +
+                             ":1: binary data, not text: cdpost reads LAMMPS text output, plain or gzip-compressed "
+                             "(write dumps with dump custom, not a binary .bin dump)\n");
 }
 
 TEST(Cli, SpectrumOfOneColumn)

@@ -1,5 +1,6 @@
 // Randomised robustness test of the file readers: mutated files must either read or fail
-// with one InputError line that starts with the file name; never crash or read non-finite values.
+// with one InputError line that starts with the file name and holds no control byte (a binary
+// byte is never echoed); never crash or read non-finite values.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,7 +18,7 @@ namespace {
 std::string mutate(std::string text, std::mt19937& rng)
 {
   const std::string alphabet = "0123456789 .-+eE#\nITEMnaXx\t";
-  std::uniform_int_distribution<int> kind(0, 5);
+  std::uniform_int_distribution<int> kind(0, 6);
   int edits = 1 + static_cast<int>(rng() % 3);
   for (int e = 0; e < edits && !text.empty(); ++e) {
     size_t at = rng() % text.size();
@@ -27,6 +28,7 @@ std::string mutate(std::string text, std::mt19937& rng)
       case 2: text[at] = alphabet[rng() % alphabet.size()]; break;
       case 3: text.resize(at); break;
       case 4: text.erase(at, rng() % 40); break;
+      case 5: text.insert(at, 1, static_cast<char>(rng() % 256)); break;  // any byte: NULs, control bytes
       default: text.insert(at, text.substr(at, rng() % 60)); break;
     }
   }
@@ -83,6 +85,7 @@ TEST(ReaderFuzz, MutatedFilesReadOrFailWithOneLocatedLine)
         std::string message = e.what();
         EXPECT_EQ(message.rfind(path + ":", 0), 0u) << message;
         EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+        for (char c : message) EXPECT_FALSE((c >= 0 && c < 0x20 && c != '\t') || c == 0x7f) << message;
         ++failures;
       }
     }

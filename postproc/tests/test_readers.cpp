@@ -165,6 +165,75 @@ TEST(Dump, TruncatedFrameNamesTheLine)
             path + ":21: file ends where atom 2 of 2 was expected (truncated dump?)");
 }
 
+// Bytes no text file holds: a NUL at `nul_at` among bytes of every value (LAMMPS's binary dump
+// writes doubles and ints: NULs and control bytes throughout).
+std::string binary_bytes(size_t size, size_t nul_at)
+{
+  std::string bytes;
+  for (size_t i = 0; i < size; ++i) bytes.push_back(static_cast<char>((i * 37 + 11) % 256));
+  bytes[nul_at] = '\0';
+  return bytes;
+}
+
+// The message names the file and says binary; it is one short line of printable characters.
+void expect_binary_refused(const std::string& message, const std::string& path, long line)
+{
+  EXPECT_EQ(message.rfind(path + ":" + std::to_string(line) + ": binary data, not text", 0), 0u) << message;
+  EXPECT_LT(message.size(), path.size() + 200);
+  for (char c : message) EXPECT_TRUE(c >= 0x20 && c < 0x7f) << "byte " << int(static_cast<unsigned char>(c));
+}
+
+TEST(Dump, BinaryFilesAreRefusedWithoutEchoingTheirBytes)
+{
+  auto dir = scratch_dir();
+  const std::string bytes = binary_bytes(15000, 9);
+  const std::string after_text = testing::dump_frame_text(0, 10, 5, {{1, 1, 1, 0.5, 0, 0.25}});
+  const struct {
+    std::string path;
+    long line;
+  } cases[] = {
+      {write_file(dir / "dump.bin", bytes), 1},                                                 // a binary dump
+      {write_gzip(dir / "dump.bin.gz", bytes), 1},                                              // gzip, but not of text
+      {write_file(dir / "nul.txt", after_text + "1 1 2" + std::string(1, '\0') + " 3\n"), 11},  // a NUL in a line
+      {write_file(dir / "ctrl.txt", after_text + "\x01\x02\n"), 11},                            // control bytes
+  };
+  for (const auto& c : cases) {
+    const auto message = error_of([&] {
+      DumpReader reader(c.path);
+      DumpFrame frame;
+      while (reader.next(frame)) {
+      }
+    });
+    expect_binary_refused(message, c.path, c.line);
+  }
+  // The other readers share the line source.
+  const auto path = write_file(dir / "flow.time", bytes);
+  expect_binary_refused(error_of([&] { read_ave_time(path); }), path, 1);
+}
+
+TEST(Dump, BoxBoundsFlagsGiveThePeriodicity)
+{
+  auto dir = scratch_dir();
+  const std::vector<testing::DumpAtom> one = {{1, 1, 1, 0, 0, 0.25}};
+  auto periodic_of = [&](const std::string& flags) {
+    DumpReader reader(write_file(dir / "d.txt", testing::dump_frame_text(0, 10, 5, one, flags)));
+    DumpFrame frame;
+    reader.next(frame);
+    return frame.periodic;
+  };
+  EXPECT_EQ(periodic_of("pp fm pp"), (std::array<bool, 3>{true, false, true}));
+  EXPECT_EQ(periodic_of("ff ff pp"), (std::array<bool, 3>{false, false, true}));
+  EXPECT_EQ(periodic_of("xy xz yz pp ss pp"), (std::array<bool, 3>{true, false, true}));  // triclinic
+  EXPECT_FALSE(periodic_of(""));
+  const auto path = write_file(dir / "bad.txt", testing::dump_frame_text(0, 10, 5, one, "pp q"));
+  EXPECT_EQ(error_of([&] {
+              DumpReader reader(path);
+              DumpFrame frame;
+              reader.next(frame);
+            }),
+            path + ":5: expected three boundary flags (e.g. 'pp fm pp') after 'ITEM: BOX BOUNDS', found ' pp q'");
+}
+
 // chute.params as inputs/in.chute prints it: '#' comments, "name value" lines.
 TEST(ChuteRecord, ReadsNamedValuesAndRefusesMalformedLines)
 {

@@ -1,10 +1,12 @@
 // The snapshot figure: walls on the periodic boundary up to the wall tops, periodic images
-// only where a grain can cross (centre above the wall tops).
+// only where a grain can cross (centre above the wall tops) and only across periodic sides; the
+// diameter and the periodicity read from the dump unless given.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "analysis/snapshot.h"
+#include "io/line_source.h"
 #include "lammps_text.h"
 #include "temp_files.h"
 
@@ -20,7 +22,7 @@ const Curve* curve_named(const Figure& figure, const std::string& title)
 
 // A 20 d cell (d = 1 input unit), wall tops at y = 8: grains next to both boundaries below
 // and above the wall tops, and one in the middle.
-SnapshotRequest cell_dump()
+SnapshotRequest cell_dump(std::optional<double> wall_tops = 8.0)
 {
   const std::vector<testing::DumpAtom> atoms = {
       {1, 0.6, 3.0, 0, 0, 0.5},    // in the bed, at x = 0
@@ -32,6 +34,7 @@ SnapshotRequest cell_dump()
   SnapshotRequest request;
   request.dump_path = (testing::scratch_dir() / "dump.cell").string();
   testing::write_file(request.dump_path, testing::dump_frame_text(100, 20, 30, atoms));
+  request.wall_tops = wall_tops;
   return request;
 }
 
@@ -44,7 +47,7 @@ Units unit_d()
 
 TEST(Snapshot, WallsStandOnTheBoundaryUpToTheWallTops)
 {
-  const Figure figure = snapshot_figure(cell_dump(), unit_d(), 8.0);
+  const Figure figure = snapshot_figure(cell_dump(), unit_d()).figure;
   const Curve* walls = curve_named(figure, "walls");
   ASSERT_NE(walls, nullptr);
   ASSERT_EQ(walls->x.size(), 5u);
@@ -63,7 +66,7 @@ TEST(Snapshot, WallsStandOnTheBoundaryUpToTheWallTops)
 
 TEST(Snapshot, ImagesOnlyAboveTheWallTops)
 {
-  const Figure figure = snapshot_figure(cell_dump(), unit_d(), 8.0);
+  const Figure figure = snapshot_figure(cell_dump(), unit_d()).figure;
   ASSERT_NE(curve_named(figure, "grains"), nullptr);
   EXPECT_EQ(curve_named(figure, "grains")->x.size(), 5u);
   const Curve* images = curve_named(figure, "periodic images");
@@ -79,7 +82,7 @@ TEST(Snapshot, ImagesOnlyAboveTheWallTops)
 
 TEST(Snapshot, WithoutWallsEveryGrainNearTheBoundaryHasAnImage)
 {
-  const Figure figure = snapshot_figure(cell_dump(), unit_d(), 0.0);
+  const Figure figure = snapshot_figure(cell_dump(std::nullopt), unit_d()).figure;
   EXPECT_EQ(curve_named(figure, "walls"), nullptr);
   const Curve* images = curve_named(figure, "periodic images");
   ASSERT_NE(images, nullptr);
@@ -88,9 +91,86 @@ TEST(Snapshot, WithoutWallsEveryGrainNearTheBoundaryHasAnImage)
 
 TEST(Snapshot, GnuplotBreaksTheLineBetweenTheWalls)
 {
-  const std::string script = gnuplot_script(snapshot_figure(cell_dump(), unit_d(), 8.0));
+  const std::string script = gnuplot_script(snapshot_figure(cell_dump(), unit_d()).figure);
   EXPECT_NE(script.find("0 -8\n0 0\n\n20 -8\n20 0\nEOD"), std::string::npos) << script;
   EXPECT_NE(script.find("with lines lw 3 lc rgb 'black'"), std::string::npos);
+}
+
+// One frame of a box 12 x 6 input units with the given boundary flags: grains of radius 0.25 and
+// 0.5 (mean diameter 0.75), one near each side and one in the middle.
+SnapshotRequest box_dump(const std::string& boundary)
+{
+  const std::vector<testing::DumpAtom> atoms = {
+      {1, 0.5, 3.0, 0, 0, 0.25},  // near x = 0
+      {2, 11.5, 3.0, 0, 0, 0.5},  // near x = 12
+      {3, 6.0, 0.5, 0, 0, 0.25},  // near y = 0
+      {4, 6.0, 3.0, 0, 0, 0.5},   // middle
+      {5, 0.5, 5.5, 0, 0, 0.25},  // near the corner x = 0, y = 6
+      {6, 6.0, 5.5, 0, 0, 0.5},   // near y = 6
+  };
+  SnapshotRequest request;
+  request.dump_path = (testing::scratch_dir() / "dump.box").string();
+  testing::write_file(request.dump_path, testing::dump_frame_text(7, 12, 6, atoms, boundary));
+  return request;
+}
+
+TEST(Snapshot, DiameterFromTheDumpUnlessGiven)
+{
+  auto request = box_dump("ff fm pp");
+  request.diameter_from_dump = true;
+  const auto snapshot = snapshot_figure(request, Units{});  // the default d (5e-4 m) is not used
+  const Curve* grains = curve_named(snapshot.figure, "grains");
+  ASSERT_NE(grains, nullptr);
+  // Lengths in the dump's mean diameter, 0.75 input units (SI: 0.75 m).
+  EXPECT_NEAR(grains->x[1], 11.5 / 0.75, 1e-12);
+  EXPECT_NEAR(grains->radius[1], 0.5 / 0.75, 1e-12);
+  EXPECT_NE(snapshot.parameters.find("d 0.75 input length units (the dump's mean diameter)"), std::string::npos)
+      << snapshot.parameters;
+  request.diameter_from_dump = false;
+  EXPECT_NEAR(curve_named(snapshot_figure(request, unit_d()).figure, "grains")->x[1], 11.5, 1e-12);
+}
+
+TEST(Snapshot, ImagesOnlyAcrossThePeriodicSidesOfTheBox)
+{
+  // The pour's box (f fm p): no periodic side in the plane, no image, no caption about them.
+  auto closed = snapshot_figure(box_dump("ff fm pp"), unit_d());
+  EXPECT_EQ(curve_named(closed.figure, "periodic images"), nullptr);
+  EXPECT_EQ(closed.figure.caption.find("periodic images"), std::string::npos);
+  EXPECT_NE(closed.parameters.find("not periodic (the dump's box bounds)"), std::string::npos) << closed.parameters;
+  // Periodic in y only: grains 3, 5 and 6 (within 0.15 of the height of y = 0 or 6) get an image
+  // 6 away along y, none along x.
+  const auto along_y = snapshot_figure(box_dump("ff pp pp"), unit_d());
+  const Curve* images = curve_named(along_y.figure, "periodic images");
+  ASSERT_NE(images, nullptr);
+  ASSERT_EQ(images->x.size(), 3u);
+  EXPECT_DOUBLE_EQ(images->x[0], 6.0);
+  EXPECT_DOUBLE_EQ(images->y[0], 6.5);
+  EXPECT_DOUBLE_EQ(images->x[1], 0.5);
+  EXPECT_DOUBLE_EQ(images->y[1], -0.5);
+  EXPECT_DOUBLE_EQ(images->y[2], -0.5);
+  // Periodic in both: grains 1, 2 across x, 3 and 6 across y, 5 across x, y and the corner.
+  const auto both = snapshot_figure(box_dump("pp pp pp"), unit_d());
+  EXPECT_EQ(curve_named(both.figure, "periodic images")->x.size(), 7u);
+  EXPECT_NE(both.parameters.find("periodic in x and y"), std::string::npos);
+}
+
+TEST(Snapshot, PeriodicityGivenWinsAndNoFlagsAsksForIt)
+{
+  auto request = box_dump("pp pp pp");
+  request.periodic = std::array<bool, 2>{false, false};
+  const auto told = snapshot_figure(request, unit_d());
+  EXPECT_EQ(curve_named(told.figure, "periodic images"), nullptr);
+  EXPECT_NE(told.parameters.find("(from --periodic)"), std::string::npos);
+  // A dump whose "ITEM: BOX BOUNDS" line has no flags (LAMMPS before 2010).
+  auto bare = box_dump("");
+  try {
+    snapshot_figure(bare, unit_d());
+    FAIL() << "a dump without boundary flags was drawn";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("give --periodic"), std::string::npos) << e.what();
+  }
+  bare.periodic = std::array<bool, 2>{true, false};
+  EXPECT_NE(curve_named(snapshot_figure(bare, unit_d()).figure, "periodic images"), nullptr);
 }
 
 }  // namespace

@@ -342,9 +342,9 @@ def main():
         check(rows["mu0.5_theta24_L45"].rstrip().endswith("| analysed |"),
               "a run that records no deck variables was not analysed:\n" + rows["mu0.5_theta24_L45"])
 
-        # A stationary window shorter than --min-window reopens the run, longer by --extend.
+        # A stationary window shorter than --min-window-seconds reopens the run, longer by --extend.
         cmd = [sys.executable, RUNNER, "--out", campaign, "--cdpost", "none", "--lmp", "/bin/false",
-               "--min-window", "5", "--max-duration", "12"] + SERIES_ARGS
+               "--min-window-seconds", "5", "--max-duration", "12"] + SERIES_ARGS
         rerun = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
         check("mu0.5_theta24_L45: stationary window 4.00 s, extended to 12 s" in rerun.stdout,
               "a run with a 4 s window was not extended:\n" + rerun.stdout + rerun.stderr)

@@ -18,6 +18,8 @@ constexpr double kTravellingBalance = 1.0 / 3;
 constexpr double kIncoherentNeighbours = 2;
 // The coherence is kept across the cell when its plateau is at least half that of neighbours.
 constexpr double kCoherentPlateau = 0.5;
+// The coherence fit's three parameters need more distances than that.
+constexpr size_t kFitDistances = 4;
 // m = 0 dominates when it holds at least half the power at f: more than every other m together.
 constexpr double kUniformFraction = 0.5;
 
@@ -29,12 +31,23 @@ std::string number(double value)
 // The expected estimate, from n = 1/floor averages, of the true coherence C(r) = gamma(r)^2
 // with the coherency gamma(r) = g_far + (g0 - g_far) exp(-r / xi): C + (1 - C)^2 / n (Carter,
 // Knapp & Nuttall 1973, to first order in 1/n), the floor where C vanishes, nothing added at 1.
-double expected_estimate(const std::vector<double>& parameters, double floor, double r)
+double expected_estimate(double g0, double g_far, double inverse_length, double floor, double r)
 {
-  const double g0 = parameters[0], g_far = parameters[1], inverse_length = parameters[2];
   const double gamma = g_far + (g0 - g_far) * std::exp(-r * inverse_length);
   const double c = gamma * gamma;
   return c + (1 - c) * (1 - c) * floor;
+}
+
+// The coherencies are magnitudes of a correlation, 0 <= g <= 1: the fit varies angles a with
+// g = sin(a)^2, which covers that range and no more. (Fitted as free numbers, g0 came out above 1
+// where the measured coherence is near 1 at every distance: the model's extrapolation to r = 0.)
+double coherency(double angle)
+{
+  return std::pow(std::sin(angle), 2);
+}
+double coherency_angle(double g)
+{
+  return std::asin(std::sqrt(std::clamp(g, 0.0, 1.0)));  // an initial guess from a measured value
 }
 
 // The samples of one column, its empty ones interpolated in time between the nearest occupied.
@@ -124,19 +137,20 @@ SpaceTimeField field_from_chunks(const ChunkSeries& chunks, const std::vector<si
 
 double fitted_coherence(const CoherenceFit& fit, double floor, double distance)
 {
-  const auto& raw = fit.raw;
-  return expected_estimate({raw["g0"].value, raw["g_far"].value, raw["inverse_length"].value}, floor, distance);
+  return expected_estimate(fit.g0, fit.g_far, fit.inverse_length.value, floor, distance);
 }
 
 namespace {
 
-// The coherencies g0, g_far and 1/xi fitted to `measured` (see CoherenceFit).
+// The angles of the coherencies g0, g_far and 1/xi fitted to `measured` (see CoherenceFit).
 FitResult fit_decay(const std::vector<double>& r, const std::vector<double>& measured, double floor)
 {
-  auto model = [&](const std::vector<double>& p, size_t i) { return expected_estimate(p, floor, r[i]); };
-  auto root = [](double c) { return std::sqrt(std::max(c, 0.0)); };
-  return fit_nonlinear(measured, model, {root(measured.front()), root(measured.back()), 1 / r.back()},
-                       {"g0", "g_far", "inverse_length"});
+  auto model = [&](const std::vector<double>& p, size_t i) {
+    return expected_estimate(coherency(p[0]), coherency(p[1]), p[2], floor, r[i]);
+  };
+  auto angle = [](double c) { return coherency_angle(std::sqrt(std::max(c, 0.0))); };
+  return fit_nonlinear(measured, model, {angle(measured.front()), angle(measured.back()), 1 / r.back()},
+                       {"g0_angle", "g_far_angle", "inverse_length"});
 }
 
 // The jackknife standard error of each parameter: sqrt((G - 1)/G sum_g (p_g - mean p)^2).
@@ -158,7 +172,9 @@ std::vector<double> jackknife_errors(const std::vector<std::vector<double>>& lea
 CoherenceFit fit_coherence(const CoherenceByDistance& coherence)
 {
   const auto& r = coherence.distance;
-  if (r.size() < 4) throw AnalysisError("the coherence fit needs 4 distances, got " + std::to_string(r.size()));
+  if (r.size() < kFitDistances)
+    throw AnalysisError("the coherence fit needs " + std::to_string(kFitDistances) + " distances, got " +
+                        std::to_string(r.size()));
   if (coherence.without_group.size() < 3)
     throw AnalysisError("the coherence fit's jackknife needs 3 groups of segments, got " +
                         std::to_string(coherence.without_group.size()) + ": analyse a longer window");
@@ -168,8 +184,8 @@ CoherenceFit fit_coherence(const CoherenceByDistance& coherence)
   // errors far too small: the errors are the jackknife's over the groups of segments.
   const double groups = double(coherence.without_group.size());
   auto parameters = [](const FitResult& f) {  // coherencies squared: coherences
-    const double c0 = std::pow(f["g0"].value, 2), plateau = std::pow(f["g_far"].value, 2);
-    return std::vector<double>{c0, plateau, f["inverse_length"].value, c0 - plateau};
+    const double g0 = coherency(f["g0_angle"].value), g_far = coherency(f["g_far_angle"].value);
+    return std::vector<double>{g0 * g0, g_far * g_far, f["inverse_length"].value};
   };
   std::vector<std::vector<double>> leave_one_out;
   for (const auto& curve : coherence.without_group)
@@ -179,9 +195,28 @@ CoherenceFit fit_coherence(const CoherenceByDistance& coherence)
   fit.short_range = Estimate{values[0], errors[0]};
   fit.plateau = Estimate{values[1], errors[1]};
   fit.inverse_length = Estimate{values[2], errors[2]};
-  const double kappa = values[2], decaying = values[3];
-  if (kappa > 2 * errors[2] && decaying > 2 * errors[3]) fit.length = Estimate{1 / kappa, errors[2] / (kappa * kappa)};
+  fit.g0 = coherency(fit.raw["g0_angle"].value);
+  fit.g_far = coherency(fit.raw["g_far_angle"].value);
+  const double kappa = values[2];
+  if (kappa > 2 * errors[2] && coherence_decays(coherence))
+    fit.length = Estimate{1 / kappa, errors[2] / (kappa * kappa)};
   return fit;
+}
+
+Estimate coherence_decay(const CoherenceByDistance& coherence)
+{
+  if (coherence.without_group.size() < 2 || coherence.coherence.empty())
+    throw AnalysisError("the coherence's decay needs 2 groups of segments and a distance");
+  auto decay = [](const std::vector<double>& c) { return c.front() - c.back(); };
+  std::vector<std::vector<double>> leave_one_out;
+  for (const auto& curve : coherence.without_group) leave_one_out.push_back({decay(curve)});
+  return Estimate{decay(coherence.coherence), jackknife_errors(leave_one_out).front()};
+}
+
+bool coherence_decays(const CoherenceByDistance& coherence)
+{
+  const auto decay = coherence_decay(coherence);
+  return decay.value > 2 * decay.error.value_or(0) && decay.value > coherence.noise_floor;
 }
 
 namespace {
@@ -259,6 +294,14 @@ PatternVerdict judge_pattern(const std::vector<double>& band_power, int columns,
     headline = "standing";
   }
   verdict.text = headline + "; " + wavenumber_text(verdict, cell_length_d) + "; " + far;
+  if (verdict.pattern != OscillationPattern::Local && coherence.without_group.size() >= 2 &&
+      !coherence_decays(coherence)) {
+    const auto decay = coherence_decay(coherence);
+    verdict.text +=
+        "; no coherence length: the coherence does not decay over the cell (" + number(coherence.coherence.front()) +
+        " at r = " + number(coherence.distance.front()) + " d, less by " + format_estimate(decay.value, decay.error) +
+        " at r = " + number(coherence.distance.back()) + " d: not beyond twice its error and the noise floor)";
+  }
   return verdict;
 }
 
@@ -278,6 +321,10 @@ void add_results(const AlongCell& along, ResultTable& results)
   results.add("coherence_floor", c.noise_floor, "", "expected coherence of incoherent columns, 1 / averages");
   results.add("coherence_far", c.coherence.back(), "",
               "coherence of v at f between columns " + number(c.distance.back()) + " d apart (the largest distance)");
+  if (along.decay)
+    results.add("coherence_decay", *along.decay, "",
+                "coherence at the first distance minus at the last: xi is given only when it exceeds twice its error "
+                "and the noise floor");
   if (along.fit) {
     results.add("coherence_short_range", along.fit->short_range, "",
                 "c0 = g0^2 of the fit C(r) = (g_far + (g0 - g_far) exp(-r / xi))^2, the coherence at r -> 0");
@@ -311,15 +358,20 @@ AlongCell analyse_along_cell(const SpaceTimeField& field, const SpectralPeak& pe
   along.band_power = band_power_by_m(along.spectrum, along.coherence.band);
   // A window of fewer than 3 segments has no jackknife: the report says so, as it says when the
   // coherence does not decay; a fit that fails on enough data is a warning.
-  if (along.coherence.without_group.size() < 3)
+  if (along.coherence.without_group.size() < 3) {
     along.no_fit_reason = "no coherence length: the window holds " + std::to_string(along.coherence.segments) +
                           " segment(s), its error (a jackknife) needs 3";
-  else try {
-      along.fit = fit_coherence(along.coherence);
-    } catch (const AnalysisError& e) {
-      along.no_fit_reason = "coherence length not fitted: " + std::string(e.what());
-      warnings.push_back(along.no_fit_reason);
-    }
+  } else {
+    along.decay = coherence_decay(along.coherence);
+    if (along.coherence.distance.size() >= kFitDistances && !coherence_decays(along.coherence))
+      along.no_fit_reason = "no coherence length: the coherence does not decay over the cell";
+    else try {
+        along.fit = fit_coherence(along.coherence);
+      } catch (const AnalysisError& e) {
+        along.no_fit_reason = "coherence length not fitted: " + std::string(e.what());
+        warnings.push_back(along.no_fit_reason);
+      }
+  }
   along.verdict =
       judge_pattern(along.band_power, along.spectrum.columns, along.coherence, along.fit, field.cell_length);
   if (along.verdict.pattern == OscillationPattern::Travelling) {

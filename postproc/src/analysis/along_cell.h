@@ -39,19 +39,29 @@ SpaceTimeField field_from_chunks(const ChunkSeries& chunks, const std::vector<si
 // whose correlation at f is a part coherent across the whole cell (a uniform or standing
 // oscillation: the plateau C = g_far^2) plus a part decaying as exp(-r / xi) (for a pure
 // exponential, C = exp(-2 r / xi)). c0 = g0^2 < 1 when each column carries noise of its own.
-// Fitted as the expected estimate from n averages, C + (1 - C)^2 / n (the noise floor 1/n where C
-// vanishes). 1/xi is fitted, so that no decay is a value like any other; xi is given when 1/xi
-// and c0 - plateau exceed twice their errors. The errors are the jackknife's over the groups of
-// segments (CoherenceByDistance::without_group): every distance is measured on the same
+// The coherencies are magnitudes, 0 <= g0, g_far <= 1 (fitted through angles, g = sin^2 a), so
+// c0 and the plateau never exceed 1. Fitted as the expected estimate from n averages,
+// C + (1 - C)^2 / n (the noise floor 1/n where C vanishes). 1/xi is fitted, so that no decay is a
+// value like any other. xi is given only when 1/xi exceeds twice its error and the coherence
+// decays over the measured distances (coherence_decays). The errors are the jackknife's over the
+// groups of segments (CoherenceByDistance::without_group): every distance is measured on the same
 // segments, so the scatter about the fit underestimates them.
 struct CoherenceFit {
   Estimate short_range;            // c0, the coherence extrapolated to r = 0
   Estimate plateau;                // g_far^2, the coherence left at every distance
   Estimate inverse_length;         // 1/xi, 1/d
   std::optional<Estimate> length;  // xi, d
-  FitResult raw;                   // g0, g_far, inverse_length
+  double g0 = 0, g_far = 0;        // the fitted coherencies
+  FitResult raw;                   // g0_angle, g_far_angle, inverse_length
 };
-CoherenceFit fit_coherence(const CoherenceByDistance& coherence);                 // needs 4 distances, 3 groups
+CoherenceFit fit_coherence(const CoherenceByDistance& coherence);  // needs 4 distances, 3 groups
+
+// The measured coherence at the first distance minus at the last, with its jackknife error
+// (needs 2 groups). The coherence decays when that exceeds twice its error and the noise floor
+// (the coherence incoherent columns read: a smaller decay is not resolved by the estimate). A
+// decay before the first distance is not measured: the fit's extrapolation to r = 0 is no decay.
+Estimate coherence_decay(const CoherenceByDistance& coherence);
+bool coherence_decays(const CoherenceByDistance& coherence);
 double fitted_coherence(const CoherenceFit& fit, double floor, double distance);  // the expected estimate
 
 struct PatternVerdict {
@@ -74,6 +84,7 @@ PatternVerdict judge_pattern(const std::vector<double>& band_power, int columns,
 struct AlongCell {
   SpaceTimeSpectrum spectrum;       // v in sqrt(g d), lengths in d
   CoherenceByDistance coherence;    // distances in d
+  std::optional<Estimate> decay;    // coherence_decay, when the window has 3 groups of segments
   std::optional<CoherenceFit> fit;  // absent when it could not be made, for no_fit_reason
   std::string no_fit_reason;
   std::vector<double> band_power;  // per m, as band_power_by_m
@@ -91,7 +102,8 @@ AlongCell analyse_along_cell(const SpaceTimeField& field, const SpectralPeak& pe
 void write_along_cell_tables(const AlongCell& along, const std::string& out_dir);
 // The (k, f) map of log10 power and the coherence against distance with its fit.
 Figure along_cell_figure(const AlongCell& along);
-// The report's paragraph: method, then the verdict.
-std::string along_cell_text(const AlongCell& along);
+// The report's paragraph: method, then the verdict; `window` names the time window analysed
+// ("stationary window", or a forced one labelled not stationary: window_name).
+std::string along_cell_text(const AlongCell& along, const std::string& window);
 
 }  // namespace cdpost

@@ -131,13 +131,13 @@ Figure along_cell_figure(const AlongCell& along)
           600};
 }
 
-std::string along_cell_text(const AlongCell& along)
+std::string along_cell_text(const AlongCell& along, const std::string& window)
 {
   const auto& s = along.spectrum;
   const auto& c = along.coherence;
   return "v(x, t) of the flowing layer in " + std::to_string(s.columns) + " columns of " +
-         number(s.cell_length / s.columns) +
-         " d tiling the cell (columns.chunk), over the stationary window. Space-time spectrum (space_time.csv): "
+         number(s.cell_length / s.columns) + " d tiling the cell (columns.chunk), over the " + window +
+         ". Space-time spectrum (space_time.csv): "
          "Welch in time (" +
          std::to_string(s.segments) + " Hann-windowed, detrended segments of " + number(s.segment_duration_s) +
          " s), periodic transform in x; the power at (m, f) is the mean a^2 of a wave a cos(2 pi (m x/L - f t)) "

@@ -243,7 +243,8 @@ void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::
     SnapshotRequest request;
     request.dump_path = dump_path;
     request.progress = run.settings.progress;
-    figures.push_back(snapshot_figure(request, run.settings.units, run.settings.z0));
+    request.wall_tops = run.settings.z0;
+    figures.push_back(snapshot_figure(request, run.settings.units).figure);
   }
   MarkdownReport report("Run " + run.settings.directory);
   report.paragraph(method_text(run));
@@ -256,7 +257,7 @@ void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::
   }
   if (run.along_cell) {
     report.heading("Along the cell");
-    report.paragraph(along_cell_text(*run.along_cell));
+    report.paragraph(along_cell_text(*run.along_cell, window_name(run)));
   }
   report.heading("Figures");
   for (const auto& figure : figures) {

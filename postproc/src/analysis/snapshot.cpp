@@ -1,6 +1,7 @@
 #include "analysis/snapshot.h"
 
 #include <limits>
+#include <sstream>
 
 #include "io/dump.h"
 #include "io/progress.h"
@@ -30,57 +31,105 @@ DumpFrame select_frame(const SnapshotRequest& request)
   return chosen;
 }
 
+// The mean of the frame's diameters, input length units.
+double mean_diameter(const DumpFrame& frame, size_t radius)
+{
+  if (frame.atoms == 0)
+    throw InputError(frame.source, frame.line, "no grain in the frame to take the mean diameter from: give --d");
+  double sum = 0;
+  for (size_t atom = 0; atom < frame.atoms; ++atom) sum += 2 * frame.value(atom, radius);
+  if (!(sum > 0)) throw InputError(frame.source, frame.line, "the radius column's mean is not positive: give --d");
+  return sum / double(frame.atoms);
+}
+
+std::array<bool, 2> periodicity(const SnapshotRequest& request, const DumpFrame& frame)
+{
+  if (request.periodic) return *request.periodic;
+  if (!frame.periodic)
+    throw InputError(frame.source, frame.line,
+                     "the 'ITEM: BOX BOUNDS' line names no boundary flags: give --periodic x, y, xy or none");
+  return {(*frame.periodic)[0], (*frame.periodic)[1]};
+}
+
+// "d ...; periodic in ..." with where each came from.
+std::string describe(const Units& used, bool d_from_dump, std::array<bool, 2> periodic, bool periodic_given)
+{
+  std::ostringstream text;
+  if (d_from_dump) text << "d " << used.d_m / used.length_unit_m << " input length units (the dump's mean diameter)";
+  else text << "d " << used.d_m << " m (from --d or chute.params)";
+  const char* axes = periodic[0] && periodic[1] ? "x and y" : periodic[0] ? "x" : periodic[1] ? "y" : "";
+  text << "; " << (*axes ? std::string("periodic in ") + axes : std::string("not periodic"))
+       << (periodic_given ? " (from --periodic)" : " (the dump's box bounds)");
+  return text.str();
+}
+
 }  // namespace
 
-Figure snapshot_figure(const SnapshotRequest& request, const Units& units, double z0)
+Snapshot snapshot_figure(const SnapshotRequest& request, const Units& units)
 {
   const DumpFrame frame = select_frame(request);
   const size_t x = frame.column_index("x"), y = frame.column_index("y");
   const size_t vx = frame.column_index("vx"), radius = frame.column_index("radius");
-  const double to_d = units.length_unit_m / units.d_m;
-  const double to_reduced = units.velocity_unit_mps() / units.reduced_velocity_mps();
-  const double length = (frame.xhi - frame.xlo) * to_d, xlo = frame.xlo * to_d, xhi = frame.xhi * to_d;
-  const double margin = request.image_fraction * length;
+  Units used = units;
+  if (request.diameter_from_dump) used.d_m = mean_diameter(frame, radius) * units.length_unit_m;
+  const auto periodic = periodicity(request, frame);
+  const double to_d = used.length_unit_m / used.d_m;
+  const double to_reduced = used.velocity_unit_mps() / used.reduced_velocity_mps();
+  const double z0 = request.wall_tops.value_or(0);
+  const double xlo = frame.xlo * to_d, xhi = frame.xhi * to_d, length = xhi - xlo;
+  const double zlo = (frame.ylo - z0) * to_d, zhi = (frame.yhi - z0) * to_d, height = zhi - zlo;
+  const double margin_x = request.image_fraction * length, margin_z = request.image_fraction * height;
   // The bed-trapping walls stand on the periodic boundary from the floor (the box bottom) to
   // the wall tops z = 0: only a grain whose centre is above them can cross to the other side.
-  const double floor_z = (frame.ylo - z0) * to_d;
-  const bool walls = floor_z < 0.0;
+  const bool walls = periodic[0] && request.wall_tops && zlo < 0.0;
 
   Curve grains{"grains", CurveStyle::Circles, {}, {}, {}, {}, {}};
   Curve images{"periodic images", CurveStyle::ShadedCircles, {}, {}, {}, {}, {}};
   for (size_t atom = 0; atom < frame.atoms; ++atom) {
     const double gx = frame.value(atom, x) * to_d, gz = (frame.value(atom, y) - z0) * to_d;
     const double r = frame.value(atom, radius) * to_d, u = frame.value(atom, vx) * to_reduced;
-    auto add = [&](Curve& curve, double px) {
+    auto add = [&](Curve& curve, double px, double pz) {
       curve.x.push_back(px);
-      curve.y.push_back(gz);
+      curve.y.push_back(pz);
       curve.radius.push_back(r);
       curve.colour.push_back(u);
     };
-    add(grains, gx);
-    if (walls && gz <= 0.0) continue;
-    if (gx - xlo < margin) add(images, gx + length);
-    if (xhi - gx < margin) add(images, gx - length);
+    add(grains, gx, gz);
+    std::vector<double> shift_x{0}, shift_z{0};  // the image's offsets across each periodic side
+    if (periodic[0] && !(walls && gz <= 0.0)) {
+      if (gx - xlo < margin_x) shift_x.push_back(length);
+      if (xhi - gx < margin_x) shift_x.push_back(-length);
+    }
+    if (periodic[1]) {
+      if (gz - zlo < margin_z) shift_z.push_back(height);
+      if (zhi - gz < margin_z) shift_z.push_back(-height);
+    }
+    for (double sx : shift_x)
+      for (double sz : shift_z)
+        if (sx != 0.0 || sz != 0.0) add(images, gx + sx, gz + sz);
   }
   Panel panel;
   panel.title = "Cell at timestep " + std::to_string(frame.timestep) + " (" + std::to_string(frame.atoms) + " grains)";
   panel.x_label = "x / d";
-  panel.y_label = "z / d";
+  panel.y_label = request.wall_tops ? "z / d" : "y / d";
   panel.colour_label = "u_x / sqrt(g d)";
   panel.equal_axes = true;
   panel.key = "off";
-  panel.x_range = std::make_pair(xlo - margin, xhi + margin);
+  const double pad_x = periodic[0] ? margin_x : 0.0, pad_z = periodic[1] ? margin_z : 0.0;
+  panel.x_range = std::make_pair(xlo - pad_x, xhi + pad_x);
+  if (periodic[1]) panel.y_range = std::make_pair(zlo - pad_z, zhi + pad_z);
   panel.curves = {grains};
   if (!images.x.empty()) panel.curves.push_back(images);
-  std::string caption = "Snapshot of the cell, grains coloured by x-velocity; periodic images shaded";
+  std::string caption = "Snapshot of the cell, grains coloured by x-velocity";
+  if (periodic[0] || periodic[1]) caption += "; periodic images shaded";
   if (walls) {
     const double nan = std::numeric_limits<double>::quiet_NaN();  // a break between the two walls
     panel.curves.push_back(
-        Curve{"walls", CurveStyle::Walls, {xlo, xlo, nan, xhi, xhi}, {floor_z, 0.0, nan, floor_z, 0.0}, {}, {}, {}});
+        Curve{"walls", CurveStyle::Walls, {xlo, xlo, nan, xhi, xhi}, {zlo, 0.0, nan, zlo, 0.0}, {}, {}, {}});
     caption += " above the wall tops (z = 0), where grains cross the periodic boundary; the walls in black";
   }
-  Figure figure{"snapshot", caption, {panel}, 1400, 700};
-  return figure;
+  return {Figure{"snapshot", caption, {panel}, 1400, 700},
+          describe(used, request.diameter_from_dump, periodic, request.periodic.has_value())};
 }
 
 }  // namespace cdpost

@@ -1,8 +1,10 @@
 #include "cli/commands.h"
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <map>
 
 #include "analysis/published_run.h"
 #include "analysis/run_analysis.h"
@@ -102,7 +104,7 @@ std::vector<OptionSpec> analysis_options()
       {"t-start", "TIME", "start of the stationary window (input time units; disables detection)"},
       {"t-end", "TIME", "end of the stationary window (input time units)"},
       {"max-drift", "FRACTION", "stationarity: largest drift of U across the window / mean (default 0.02)"},
-      {"min-window", "FRACTION", "stationarity: smallest window, fraction of the run (default 0.25)"},
+      {"min-window-fraction", "FRACTION", "stationarity: smallest window, fraction of the run (default 0.25)"},
       {"segment", "SECONDS", "spectrum segment duration (default 1)"},
       {"overlap", "FRACTION", "spectrum segment overlap (default 0.5)"},
       {"fmin", "HZ", "lowest frequency searched for the peak (default 5)"},
@@ -133,7 +135,7 @@ RunSettings settings_from(const ParsedOptions& options, const std::string& comma
   s.t_start = options.number("t-start");
   s.t_end = options.number("t-end");
   s.criterion.max_relative_drift = options.number("max-drift").value_or(s.criterion.max_relative_drift);
-  s.criterion.min_window_fraction = options.number("min-window").value_or(s.criterion.min_window_fraction);
+  s.criterion.min_window_fraction = options.number("min-window-fraction").value_or(s.criterion.min_window_fraction);
   s.spectrum.segment_duration_s = options.number("segment").value_or(s.spectrum.segment_duration_s);
   s.spectrum.overlap = options.number("overlap").value_or(s.spectrum.overlap);
   s.peak_fmin_hz = options.number("fmin").value_or(s.peak_fmin_hz);
@@ -289,14 +291,34 @@ int command_spectrum(const std::vector<std::string>& arguments)
   return 0;
 }
 
+// --periodic: "x", "y", "xy" or "none"; nothing when not given.
+std::optional<std::array<bool, 2>> periodic_option(const ParsedOptions& options)
+{
+  const auto given = options.text("periodic");
+  if (!given) return std::nullopt;
+  const std::map<std::string, std::array<bool, 2>> axes = {
+      {"x", {true, false}}, {"y", {false, true}}, {"xy", {true, true}}, {"none", {false, false}}};
+  const auto found = axes.find(*given);
+  if (found == axes.end()) throw UsageError("cdpost snapshot: --periodic takes x, y, xy or none, not '" + *given + "'");
+  return found->second;
+}
+
 int command_snapshot(const std::vector<std::string>& arguments)
 {
   auto specs = unit_options();
+  for (auto& spec : specs)
+    if (spec.name == "d")
+      spec.help =
+          "mean grain diameter (default: the chute.params beside the dump, else the dump's mean diameter, "
+          "from its radius column)";
   specs.insert(specs.end(), {{"timestep", "N", "frame to draw (default: the last)"},
                              {"z0", "LENGTH",
                               "height of the wall tops in input length units: walls on the periodic boundary from the "
                               "box bottom up to it, periodic images shaded above it (default: the chute.params beside "
-                              "the dump, else 0: no walls)"},
+                              "the dump, else no walls)"},
+                             {"periodic", "x|y|xy|none",
+                              "the periodic dimensions, whose images are shaded (default: the dump's "
+                              "'ITEM: BOX BOUNDS' flags)"},
                              {"out", "DIR", "output directory (default: the dump's directory)"}});
   auto options = parse_or_help("cdpost snapshot", "cdpost snapshot DUMP [options]", arguments, specs, 1);
   if (!options) return 0;
@@ -304,13 +326,17 @@ int command_snapshot(const std::vector<std::string>& arguments)
   request.dump_path = options->positional[0];
   request.timestep = options->integer("timestep");
   request.progress = options->flag("progress");
+  request.periodic = periodic_option(*options);
   auto out = options->text("out").value_or(std::filesystem::path(request.dump_path).parent_path().string());
   if (out.empty()) out = ".";
-  std::filesystem::create_directories(out);
   const auto recorded = run_parameters(*options, "cdpost snapshot", folder_of(request.dump_path), WallTops::optional);
   if (recorded.recorded) std::cout << "parameters: " << recorded.description << '\n';
-  auto figure = snapshot_figure(request, recorded.units, recorded.z0.value_or(0));
-  if (auto problem = render_figure(figure, out)) throw std::runtime_error(*problem);
+  request.diameter_from_dump = !recorded.d_given;
+  request.wall_tops = recorded.z0;
+  auto snapshot = snapshot_figure(request, recorded.units);
+  std::cout << "snapshot: " << snapshot.parameters << '\n';
+  std::filesystem::create_directories(out);
+  if (auto problem = render_figure(snapshot.figure, out)) throw std::runtime_error(*problem);
   std::cout << "snapshot: " << out << "/snapshot.png, " << out << "/snapshot.svg\n";
   return 0;
 }

@@ -67,6 +67,7 @@ RunParameters run_parameters(const ParsedOptions& options, const std::string& co
   RunParameters p;
   p.recorded = recorded != nullptr;
   p.units = units_from(options, command, recorded);
+  p.d_given = options.text("d") || (recorded && recorded->find("d_m"));
   const std::string from_record = recorded ? "from " + recorded->source : "";
   auto source = [&](const std::string& option, bool in_record) {
     return options.text(option) ? "from --" + option : in_record ? from_record : std::string("by default");

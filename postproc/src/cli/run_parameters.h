@@ -18,6 +18,7 @@ enum class WallTops { required, optional };
 
 struct RunParameters {
   Units units;
+  bool d_given = false;                  // d from --d or the record, not the default
   std::optional<double> z0;              // wall-top height, input length units
   std::optional<double> sample_rate_hz;  // of the uniform samples; none: the time file's longest interval
   std::optional<double> cell_length_d;   // L in d: the columns of columns.chunk tile it

@@ -54,7 +54,7 @@ void read_block_rows(LineSource& source, ChunkSeries& series, long timestep)
       source.fail("expected " + std::to_string(width) + " values (Chunk, " + join_names(series.names) + "), found " +
                   std::to_string(tokens.size()));
     if (parse_integer(tokens[0], source, "Chunk") != static_cast<long>(chunk + 1))
-      source.fail("expected chunk " + std::to_string(chunk + 1) + ", found '" + std::string(tokens[0]) + "'");
+      source.fail("expected chunk " + std::to_string(chunk + 1) + ", found " + quoted_excerpt(tokens[0]));
     for (size_t c = 1; c < width; ++c)
       series.values.push_back(parse_number(tokens[c], source, "column " + series.names[c - 1]));
   }

@@ -32,8 +32,20 @@ size_t DumpFrame::column_index(const std::string& name) const
   return static_cast<size_t>(found - columns.begin());
 }
 
-void DumpReader::read_box(DumpFrame& frame)
+void DumpReader::read_box(DumpFrame& frame, const std::string& flags)
 {
+  auto named = split_whitespace(flags);  // "xy xz yz" first in a triclinic box
+  if (!named.empty() && named[0] == "xy") named.erase(named.begin(), named.begin() + std::min<size_t>(3, named.size()));
+  frame.periodic.reset();
+  if (!named.empty()) {
+    const auto boundary_flag = [](std::string_view t) {
+      return t.size() == 2 && t.find_first_not_of("pfsm") == std::string_view::npos;
+    };
+    if (named.size() != 3 || !std::all_of(named.begin(), named.end(), boundary_flag))
+      source_.fail("expected three boundary flags (e.g. 'pp fm pp') after 'ITEM: BOX BOUNDS', found " +
+                   quoted_excerpt(flags));
+    frame.periodic = std::array<bool, 3>{named[0] == "pp", named[1] == "pp", named[2] == "pp"};
+  }
   double* bounds[2][2] = {{&frame.xlo, &frame.xhi}, {&frame.ylo, &frame.yhi}};
   for (int dim = 0; dim < 3; ++dim) {
     auto line = require_line("a box bounds line");
@@ -74,7 +86,7 @@ bool DumpReader::next(DumpFrame& frame)
   do {
     if (!source_.next(line)) return false;
   } while (line.find_first_not_of(" \t") == std::string::npos);
-  if (line != item_prefix + "TIMESTEP") source_.fail("expected 'ITEM: TIMESTEP', found '" + line + "'");
+  if (line != item_prefix + "TIMESTEP") source_.fail("expected 'ITEM: TIMESTEP', found " + quoted_excerpt(line));
   frame.line = source_.line_number();
   frame.source = source_.path();
   auto step_line = require_line("the timestep");
@@ -84,7 +96,7 @@ bool DumpReader::next(DumpFrame& frame)
   bool have_atom_count = false, have_box = false;
   while (true) {
     line = require_line("an 'ITEM:' line");
-    if (!starts_with(line, item_prefix)) source_.fail("expected an 'ITEM:' line, found '" + line + "'");
+    if (!starts_with(line, item_prefix)) source_.fail("expected an 'ITEM:' line, found " + quoted_excerpt(line));
     std::string item = line.substr(item_prefix.size());
     if (starts_with(item, "NUMBER OF ATOMS")) {
       auto count_line = require_line("the number of atoms");
@@ -95,7 +107,7 @@ bool DumpReader::next(DumpFrame& frame)
       frame.atoms = static_cast<size_t>(atoms);
       have_atom_count = true;
     } else if (starts_with(item, "BOX BOUNDS")) {
-      read_box(frame);
+      read_box(frame, item.substr(std::string("BOX BOUNDS").size()));
       have_box = true;
     } else if (starts_with(item, "UNITS") || starts_with(item, "TIME")) {
       require_line(item);
@@ -104,7 +116,7 @@ bool DumpReader::next(DumpFrame& frame)
       read_atoms(frame, item);
       return true;
     } else {
-      source_.fail("unknown dump item '" + item + "'");
+      source_.fail("unknown dump item " + quoted_excerpt(item));
     }
   }
 }

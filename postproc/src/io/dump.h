@@ -2,7 +2,9 @@
 // at a time, so dumps larger than memory can be scanned.
 #pragma once
 
+#include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,7 +15,10 @@ namespace cdpost {
 struct DumpFrame {
   long timestep = 0;
   double xlo = 0, xhi = 0, ylo = 0, yhi = 0;  // box bounds, input length units
-  std::vector<std::string> columns;           // as named on the "ITEM: ATOMS" line
+  // Whether x, y, z are periodic, from the flags of "ITEM: BOX BOUNDS" ("pp fm pp": x and z);
+  // nothing when the line has no flags (dumps of LAMMPS before 2010).
+  std::optional<std::array<bool, 3>> periodic;
+  std::vector<std::string> columns;  // as named on the "ITEM: ATOMS" line
   size_t atoms = 0;
   std::vector<double> values;  // values[atom * columns.size() + column]
   std::string source;          // the dump file
@@ -33,7 +38,7 @@ class DumpReader {
 
  private:
   std::string require_line(const std::string& what);
-  void read_box(DumpFrame& frame);
+  void read_box(DumpFrame& frame, const std::string& flags);
   void read_atoms(DumpFrame& frame, const std::string& item);
   LineSource source_;
 };

@@ -2,6 +2,8 @@
 
 #include <zlib.h>
 
+#include <cstring>
+
 #include <sys/stat.h>
 
 namespace cdpost {
@@ -14,6 +16,15 @@ std::string position(const std::string& file, long line)
 gzFile as_gz(void* file)
 {
   return static_cast<gzFile>(file);
+}
+// A control byte other than tab, newline and carriage return: not in a LAMMPS text file.
+bool has_control_byte(const char* text, size_t length)
+{
+  for (size_t i = 0; i < length; ++i) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    if ((byte < 0x20 && byte != '\t' && byte != '\n' && byte != '\r') || byte == 0x7f) return true;
+  }
+  return false;
 }
 }  // namespace
 
@@ -43,9 +54,17 @@ bool LineSource::next(std::string& line)
   line.clear();
   char buffer[4096];
   bool got_any = false;
-  while (gzgets(as_gz(file_), buffer, sizeof buffer)) {
+  while (true) {
+    const z_off_t before = gztell(as_gz(file_));
+    if (!gzgets(as_gz(file_), buffer, sizeof buffer)) break;
+    // gzgets stops at a newline, not at a NUL: fewer characters than bytes read means a NUL.
+    const size_t length = std::strlen(buffer);
+    if (static_cast<z_off_t>(length) != gztell(as_gz(file_)) - before || has_control_byte(buffer, length))
+      throw InputError(path_, line_number_ + 1,
+                       "binary data, not text: cdpost reads LAMMPS text output, plain or gzip-compressed "
+                       "(write dumps with dump custom, not a binary .bin dump)");
     got_any = true;
-    line += buffer;
+    line.append(buffer, length);
     if (!line.empty() && line.back() == '\n') break;
   }
   // A line without its newline is the last one: make sure it is not cut by a broken stream.

@@ -15,7 +15,8 @@ class InputError : public std::runtime_error {
 };
 
 // Reads a text file one line at a time; gzip input is detected from the data, not the name.
-// The file is streamed: only the current line is held in memory.
+// The file is streamed: only the current line is held in memory. A line holding a NUL or another
+// control byte (a binary file, or gzip of one) fails in one line that does not echo its bytes.
 class LineSource {
  public:
   explicit LineSource(const std::string& path);

@@ -27,6 +27,12 @@ bool is_blank(std::string_view line)
   return line.find_first_not_of(" \t") == std::string_view::npos;
 }
 
+std::string quoted_excerpt(std::string_view text)
+{
+  constexpr size_t kShown = 40;
+  return "'" + std::string(text.substr(0, kShown)) + (text.size() > kShown ? "...'" : "'");
+}
+
 bool is_comment(std::string_view line)
 {
   auto first = line.find_first_not_of(" \t");
@@ -53,8 +59,8 @@ double parse_number(std::string_view token, const LineSource& source, const std:
   if (!token.empty() && *first == '+') ++first;
   auto [end, error] = std::from_chars(first, last, value);
   if (error != std::errc() || end != last || token.empty())
-    source.fail("bad number '" + std::string(token) + "' for " + what);
-  if (!std::isfinite(value)) source.fail("non-finite value '" + std::string(token) + "' for " + what);
+    source.fail("bad number " + quoted_excerpt(token) + " for " + what);
+  if (!std::isfinite(value)) source.fail("non-finite value " + quoted_excerpt(token) + " for " + what);
   return value;
 }
 
@@ -63,7 +69,7 @@ long parse_integer(std::string_view token, const LineSource& source, const std::
   long value = 0;
   auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
   if (error != std::errc() || end != token.data() + token.size() || token.empty())
-    source.fail("bad integer '" + std::string(token) + "' for " + what);
+    source.fail("bad integer " + quoted_excerpt(token) + " for " + what);
   return value;
 }
 

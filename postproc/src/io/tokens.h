@@ -16,6 +16,8 @@ std::vector<std::string_view> split_whitespace(std::string&& line) = delete;
 // The finite number written in `token`; anything else (garbage, "nan", "inf", trailing
 // characters) fails with the source's file and line and `what` names the quantity.
 bool is_blank(std::string_view line);
+// `text` in quotes for an error message, cut to its first 40 characters and "..." if longer.
+std::string quoted_excerpt(std::string_view text);
 bool is_comment(std::string_view line);  // first non-blank character is '#'
 
 // A repeated column header (LAMMPS writes one again when a restarted run appends) must

@@ -44,7 +44,7 @@ def parameter_problem(jobs):
 
 def reopen_extended_runs(jobs, args):
     """Runs whose duration was raised since they finished are continued, and so are analysed
-    runs whose stationary window is shorter than --min-window (while --max-duration allows)."""
+    runs whose stationary window is shorter than --min-window-seconds (while --max-duration allows)."""
     for job in jobs:
         if job.kind == "run" and job.done and float(job.vars["duration"]) > recorded_duration(job) + 1e-12:
             os.remove(os.path.join(job.folder, "DONE"))
@@ -56,7 +56,7 @@ def reopen_extended_runs(jobs, args):
 
 def short_window(job, args):
     window = window_seconds(job)
-    return window is not None and window < args.min_window
+    return window is not None and window < args.min_window_seconds
 
 
 def can_extend(job, args):
@@ -92,7 +92,7 @@ def print_commands(pending, args):
 
 def after_run(job, args, cdpost, pending):
     """Report a finished run, postprocess it, and extend it when it is not stationary or its
-    stationary window is shorter than --min-window."""
+    stationary window is shorter than --min-window-seconds."""
     line = f"done run {job.name}"
     cost = read_json(os.path.join(job.folder, "cost.json"), {})
     if cost.get("cpu_per_physical_second"):
