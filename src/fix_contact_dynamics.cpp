@@ -123,6 +123,10 @@ int FixContactDynamics::setmask()
 void FixContactDynamics::init()
 {
   distributed = comm->nprocs > 1;
+  // Walls are imaged across periodic boundaries as in an orthogonal box, and the sweep's own
+  // velocity exchange does not add a deforming box's shear to images across the tilted side.
+  if (domain->triclinic)
+    error->all(FLERR, "Fix contact/dynamics requires an orthogonal box: a triclinic (tilted) box is not supported");
   if (!comm->ghost_velocity)
     error->all(FLERR, "Fix contact/dynamics requires ghost velocities: use comm_modify vel yes");
   if (atom->map_style == Atom::MAP_NONE)

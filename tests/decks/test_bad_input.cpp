@@ -126,6 +126,11 @@ const BadCase bad_cases[] = {
      "units si\natom_style sphere\nregion box block 0 1 0 1 0 1\ncreate_box 1 box\n"
      "fix cd all contact/dynamics 0.5 0.5\n",
      "requires dimension 2"},
+    {"triclinic_box",
+     "units si\ndimension 2\natom_style sphere\natom_modify map array\ncomm_modify vel yes\n"
+     "region box prism 0 0.01 0 0.01 -0.001 0.001 0.005 0 0\ncreate_box 1 box\n"
+     "fix cd all contact/dynamics 0.5 0.5\nrun 0\n",
+     "requires an orthogonal box: a triclinic (tilted) box is not supported"},
     {"atom_style_without_radius",
      "units si\ndimension 2\natom_style atomic\nregion box block 0 1 0 1 -0.1 0.1\ncreate_box 1 box\n"
      "fix cd all contact/dynamics 0.5 0.5\n",
