@@ -34,7 +34,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.
 
 from cdtools.lammps_files import read_dump, read_time_file
 from cdtools.logs import read_progress
-from cdtools.run import BUILT_LMP_CD, DECK, lmp_command, name_value_pairs, run_checked
+from cdtools.run import BUILT_LMP_CD, DECK, check_snapshot_study, lmp_command, name_value_pairs, run_checked
 
 STATE_COLUMNS = ("id", "radius", "x", "y", "vx", "vy")
 # in.chute -vars each solve sets (--cell must leave them alone).
@@ -64,11 +64,7 @@ def options(argv=None):
     args = parser.parse_args(argv)
     if args.max_iterations < 1 or args.dt <= 0 or args.band <= 0:
         parser.error("--max-iterations must be at least 1, --dt and --band > 0")
-    if min(args.tolerances + [args.reference_tolerance]) <= 0:
-        parser.error("tolerances must be > 0")
-    missing = [s for s in args.snapshots if not os.path.isfile(s)]
-    if missing:
-        parser.error(f"--snapshots: no file {missing[0]}")
+    check_snapshot_study(parser, args)
     try:
         args.cell_vars = name_value_pairs(args.cell)
         args.solver_vars = name_value_pairs(args.solver)

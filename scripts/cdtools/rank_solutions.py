@@ -30,7 +30,7 @@ import sys
 
 
 from .lammps_files import read_dump, read_time_file
-from .run import BUILT_LMP_CD, DECK, lmp_command, mpi_launcher, name_value_pairs, run_checked
+from .run import BUILT_LMP_CD, DECK, check_snapshot_study, lmp_command, mpi_launcher, name_value_pairs, run_checked
 
 SAME_SOLUTION = 1e-3    # error below which two solves count as one solution (see doc/benchmarks.md)
 # Columns of in.chute's solver.time: the sweeps and the fraction of steps converged.
@@ -59,11 +59,7 @@ def options(argv=None):
     args = parser.parse_args(argv)
     if min(args.ranks) < 1 or args.max_iterations < 1 or args.dt <= 0:
         parser.error("--ranks, --max-iterations must be at least 1 and --dt > 0")
-    if min(args.tolerances + [args.reference_tolerance]) <= 0:
-        parser.error("tolerances must be > 0")
-    missing = [s for s in args.snapshots if not os.path.isfile(s)]
-    if missing:
-        parser.error(f"--snapshots: no file {missing[0]}")
+    check_snapshot_study(parser, args)
     try:
         args.cell_vars = name_value_pairs(args.cell)
     except ValueError as error:

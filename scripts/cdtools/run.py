@@ -93,3 +93,14 @@ def start_detached(command, folder):
     leaves no simulation writing into folders it will resume."""
     return subprocess.Popen(command, cwd=folder, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True, preexec_fn=_die_with_parent)
+
+
+def check_snapshot_study(parser, args):
+    """The option checks of the studies that solve one step from snapshots (bench/
+    solve_error_by_depth.py, rank_solutions): tolerances > 0 and snapshot files that exist;
+    parser.error otherwise."""
+    if min(args.tolerances + [args.reference_tolerance]) <= 0:
+        parser.error("tolerances must be > 0")
+    missing = [s for s in args.snapshots if not os.path.isfile(s)]
+    if missing:
+        parser.error(f"--snapshots: no file {missing[0]}")
