@@ -361,7 +361,7 @@ def length_case(length, duration, deposition, cell):
         base, chute = chute_flow(args, folder, deposition, dict(cell, theta=24, duration=duration))
         if chute is None:
             return base
-        base["check"] = (f"U end {chute['U'] / SQRT_GD:.3g} sqrt(g d), h {chute['h_d']:.1f} d, "
+        base["check"] = (f"U end {chute['U_sqrt_gd']:.3g} sqrt(g d), h {chute['h_d']:.1f} d, "
                          f"{int(chute['steps_capped'])} capped steps of {int(chute['steps_solved'])}")
         return base
     return Case(f"L{length:g}", "cell length",
