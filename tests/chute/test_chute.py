@@ -612,6 +612,7 @@ BAD_VARS = [
     ("reading", "both", "-var reading both"),
     ("column_width", "0", "-var column_width 0"),
     ("frozen_depth", "31", "-var frozen_depth 31: must be in [0, wall_height]"),
+    ("size_law", "volume", "-var size_law volume: must be diameter or area"),
     ("frozen_depth", "deep", "frozen_depth_is_not_a_number"),
     ("grains", "100", "-var grains 100: too few to cover the wall tops (at least 1425"),
 ]
