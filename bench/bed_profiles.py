@@ -36,6 +36,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.
 
 from cdtools.lammps_files import read_chunk_file, read_time_file
 from cdtools.logs import read_progress
+from cdtools.stats import mean_sd_se
 
 D, G, Y_TOP = 5.0e-4, 9.81, 30 * 5.0e-4
 SCALE = math.sqrt(G * D)
@@ -59,8 +60,8 @@ def options(argv=None):
 # ------------------------------------------------------------------ reading
 
 def windows(folder):
-    """[(end time s, {band index: count-weighted mean u}, {bin z: mean u})] of a run's profile.chunk,
-    band index from the --band width set on the module (see band_of)."""
+    """[(end time s, {bin centre z: (grains, mean u)})], one per 0.1 s window of a run's
+    profile.chunk."""
     times = {int(r["TimeStep"]): r["v_time"] for r in read_time_file(os.path.join(folder, "flow.time"))}
     result = []
     for step, rows in read_chunk_file(os.path.join(folder, "profile.chunk")):
@@ -83,21 +84,19 @@ def band_means(bins, width):
 
 
 def time_mean(window_list, width):
-    """Over windows: {band: mean of the band means}, {z: mean u}."""
-    bands, bins = {}, {}
+    """Over windows: {band: mean of the band means}."""
+    bands = {}
     for _, window_bins in window_list:
         for b, u in band_means(window_bins, width).items():
             bands.setdefault(b, []).append(u)
-        for z, (_, u) in window_bins.items():
-            bins.setdefault(z, []).append(u)
-    return ({b: statistics.mean(v) for b, v in bands.items()}, {z: statistics.mean(v) for z, v in bins.items()})
+    return {b: statistics.mean(v) for b, v in bands.items()}
 
 
 def mean_se(values):
-    values = [v for v in values if not math.isnan(v)]
-    if len(values) < 2:
-        return (values[0] if values else math.nan), math.nan
-    return statistics.mean(values), statistics.stdev(values) / math.sqrt(len(values))
+    """Mean and standard error over the values that are numbers (cdpost leaves NaN where a
+    run has no value)."""
+    mean, _, se = mean_sd_se(v for v in values if not math.isnan(v))
+    return mean, se
 
 
 def cost(folder):
@@ -149,20 +148,17 @@ def floor_table(args):
 # ------------------------------------------------------------------ flows
 
 def flow_tables(args):
-    """{flow name: {tolerance: dict(bands={band: (mean, se)}, bins={z: (mean, se)}, layer, cost,
-    relaxation)}}."""
+    """{flow name: {tolerance: dict(replicas, bands={band: (mean, se)}, layer, cost, relaxation)}}."""
     flows = {}
     for flow_dir in sorted(glob.glob(os.path.join(args.study, "flow", "*"))):
         per_tolerance = {}
         for tolerance, folders in replicas(os.path.join(flow_dir, "tol*")).items():
-            replica_bands, replica_bins, layer, costs, relax = [], [], [], [], {}
+            replica_bands, layer, costs, relax = [], [], [], {}
             for folder in folders:
                 all_windows = windows(folder)
                 start = all_windows[0][0] - 0.1
                 used = [w for w in all_windows if w[0] > start + args.flow_from + 0.1 - 1e-9]
-                bands, bins = time_mean(used, args.band)
-                replica_bands.append(bands)
-                replica_bins.append(bins)
+                replica_bands.append(time_mean(used, args.band))
                 for end, window_bins in all_windows:
                     for b, u in band_means(window_bins, args.band).items():
                         relax.setdefault((round(end - start, 3), b), []).append(u)
@@ -171,7 +167,6 @@ def flow_tables(args):
             per_tolerance[tolerance] = dict(
                 replicas=len(folders),
                 bands={b: mean_se(r[b] for r in replica_bands if b in r) for b in replica_bands[0]},
-                bins={z: mean_se(r[z] for r in replica_bins if z in r) for z in replica_bins[0]},
                 layer={k: mean_se(x[k] for x in layer) for k in layer[0]},
                 cost=statistics.median(costs),
                 relaxation={k: statistics.mean(v) for k, v in relax.items()})

@@ -43,7 +43,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.
 from cdtools.campaign.legs import LEG_OUTPUTS, splice_legs
 from cdtools.lammps_files import time_span
 from cdtools.logs import read_progress
-from cdtools.run import BUILT_CDPOST, BUILT_LMP_CD, DECK, lmp_command
+from cdtools.run import BUILT_CDPOST, BUILT_LMP_CD, deck_copy, lmp_command
 
 CELL = dict(reading="layer", L="45", seed="20261122")
 FLOOR = dict(mu="0.5", theta="12", duration="0.6", max_iterations="100000")
@@ -134,23 +134,12 @@ def cpu_seconds(folder):
     return sum(read_progress(os.path.join(leg, "log.lammps")).cpu for leg in legs(folder))
 
 
-def study_deck(out):
-    """The study's own copy of in.chute, taken at its first run: LAMMPS reads a deck as it goes,
-    so an edit of inputs/in.chute must never reach a run under way."""
-    deck = os.path.join(out, "in.chute")
-    if not os.path.exists(deck):
-        os.makedirs(out, exist_ok=True)
-        shutil.copy2(DECK, deck + ".tmp")
-        os.replace(deck + ".tmp", deck)
-    return deck
-
-
 def run_deposition(out, args):
     folder = os.path.join(out, "deposition")
     if os.path.exists(os.path.join(folder, "deposition.restart")):
         return
     os.makedirs(folder, exist_ok=True)
-    command = args.pin + lmp_command(args.lmp, study_deck(out), dict(CELL, stage="deposition"), screen="none")
+    command = args.pin + lmp_command(args.lmp, deck_copy(out), dict(CELL, stage="deposition"), screen="none")
     subprocess.run(command, cwd=folder, check=True)
 
 
@@ -196,7 +185,7 @@ def run_job(job, args):
         leg = os.path.join(folder, "legs", f"{len(legs(folder)):02d}")
         os.makedirs(leg)
         variables = dict(job.vars, stage="flow", start=start)
-        command = args.pin + lmp_command(args.lmp, study_deck(args.out), variables, screen="none")
+        command = args.pin + lmp_command(args.lmp, deck_copy(args.out), variables, screen="none")
         with open(os.path.join(leg, "command.sh"), "w") as script:
             script.write("#!/bin/sh\ncd " + shlex.quote(leg) + " && " + shlex.join(command) + "\n")
         print(f"{job.name}: leg {os.path.basename(leg)} from {os.path.relpath(start, args.out)}", flush=True)

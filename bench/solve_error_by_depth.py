@@ -25,7 +25,6 @@ import argparse
 import csv
 import math
 import os
-import shutil
 import subprocess
 import sys
 
@@ -34,7 +33,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.
 
 from cdtools.lammps_files import read_dump, read_time_file
 from cdtools.logs import read_progress
-from cdtools.run import BUILT_LMP_CD, DECK, check_snapshot_study, lmp_command, name_value_pairs, run_checked
+from cdtools.run import BUILT_LMP_CD, check_snapshot_study, deck_copy, lmp_command, name_value_pairs, run_checked
 
 STATE_COLUMNS = ("id", "radius", "x", "y", "vx", "vy")
 # in.chute -vars each solve sets (--cell must leave them alone).
@@ -94,16 +93,6 @@ def state_dump(args, restart, dump):
     return atoms, step
 
 
-def study_deck(args):
-    """The study's own copy of in.chute (LAMMPS reads a deck as it goes: an edit of
-    inputs/in.chute must never reach a solve under way)."""
-    deck = os.path.join(args.out, "in.chute")
-    if not os.path.exists(deck):
-        shutil.copy2(DECK, deck + ".tmp")
-        os.replace(deck + ".tmp", deck)
-    return deck
-
-
 def restart_time(args, restart, folder):
     """The chute time (s) stored in a restart file: a run with adapt_dt counts its steps at the
     step it took, so the time, not the step, places the one step solved. The fix (ID cd, as in
@@ -129,7 +118,7 @@ def solve_one_step(args, snapshot, start_step, folder, tolerance, solver_vars):
                     "snapshot_interval": f"{args.dt:.17g}", "restart_interval": f"{args.dt:.17g}",
                     "tolerance": f"{tolerance:g}", "max_iterations": str(args.max_iterations)}
         variables = {**args.cell_vars, **solver_vars, **one_step}
-        run_checked(lmp_command(args.lmp, study_deck(args), variables, screen="none"), folder)
+        run_checked(lmp_command(args.lmp, deck_copy(args.out), variables, screen="none"), folder)
         state_dump(args, os.path.join(folder, "chute.restart"), os.path.join(folder, "after.dump"))
     after, step = state_dump(args, None, os.path.join(folder, "after.dump"))
     if step != start_step + 1:

@@ -3,6 +3,7 @@ their -var arguments, MPI launchers, and processes run to completion (checked, o
 CPU use) or started to run on their own."""
 
 import os
+import shutil
 import signal
 import subprocess
 import threading
@@ -12,6 +13,17 @@ TOP = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))
 DECK = os.path.join(TOP, "inputs", "in.chute")
 BUILT_LMP_CD = os.path.join(TOP, "build", "lmp_cd")
 BUILT_CDPOST = os.path.join(TOP, "build", "postproc", "cdpost")
+
+
+def deck_copy(folder):
+    """folder/in.chute, copied from inputs/in.chute at its first use: LAMMPS reads a deck as it
+    goes, so an edit of inputs/in.chute must never reach a study's run under way."""
+    deck = os.path.join(folder, "in.chute")
+    if not os.path.exists(deck):
+        os.makedirs(folder, exist_ok=True)
+        shutil.copy2(DECK, deck + ".tmp")
+        os.replace(deck + ".tmp", deck)
+    return deck
 
 
 def var_arguments(variables):
