@@ -457,6 +457,25 @@ def case_static(args):
           f"{max(u_all, u_flow, v_flow):.2e} sqrt(g d)")
 
 
+def case_size_law(args):
+    """size_law area: the same rain as chute.deposition's (the same seed draws the same number
+    r in [0, 1) for each grain) with d = d0 sqrt((1 - s/2)^2 + 2 s r) (s the dispersity 0.4)
+    instead of d0 (1 - s/2 + s r): each grain's diameter follows from its diameter-law one,
+    d^2/d0^2 = 0.64 + 2 (d_diameter/d0 - 0.8), within 5e-5 (the dump's six digits of each radius
+    leave ~1.5e-5; the diameter law itself is off the area law by up to 0.04); the rain settles."""
+    folder = os.path.join(args.work, "size_law")
+    shutil.rmtree(folder, ignore_errors=True)
+    _, output = run_lmp(args.lmp, folder, dict(CELL, stage="deposition", size_law="area"))
+    check(summary(output, "DEPOSITION")["ke_per_grain"] < 1e-4, "the area-law rain did not settle")
+    by_diameter = read_dump(os.path.join(args.work, "deposition", "deposition.dump"))[0][2]
+    by_area = read_dump(os.path.join(folder, "deposition.dump"))[0][2]
+    check(sorted(by_area) == sorted(by_diameter), "the two rains hold other grains")
+    worst = max(abs((2 * a["radius"] / D) ** 2 - (0.64 + 2 * (2 * by_diameter[i]["radius"] / D - 0.8)))
+                for i, a in by_area.items())
+    check(worst < 5e-5, f"a diameter is off the area law by {worst:.2e} (in d^2)")
+    print(f"size law area: every grain's diameter from its diameter-law draw within {worst:.1e} d^2")
+
+
 def case_frozen_bed(args):
     """frozen_depth 4: the grains deeper than 4 d below the wall tops at the tilt are obstacles:
     over 0.05 s of flow at 24 degrees they do not move at all (position and velocity exactly as
@@ -745,6 +764,7 @@ CASES = {
     "runaway": case_runaway,
     "bad_var": case_bad_var,
     "frozen_bed": case_frozen_bed,
+    "size_law": case_size_law,
     "solve_error_by_depth": case_solve_error_by_depth,
     "columns": case_columns,
     "reading": case_reading,
