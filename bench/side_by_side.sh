@@ -7,27 +7,31 @@
 #   bench/side_by_side.sh runs/mu0.5_theta24/chute.restart 8.5 "-var join after" "-var join during" \
 #       "-var mu 0.5 -var theta 24"
 #
-# Environment: LMP (default build/lmp_cd), DECK (inputs/in.chute), OUT (a new temporary folder).
+# Environment: LMP (default build/lmp_cd), DECK (inputs/in.chute), OUT (a new temporary folder);
+# LMP_A and LMP_B (default LMP) run A and B with two builds: a new build against an old one.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 lmp=${LMP:-$here/../build/lmp_cd}
+lmp_a=${LMP_A:-$lmp} lmp_b=${LMP_B:-$lmp}
 deck=${DECK:-$here/../inputs/in.chute}
 [ $# -ge 4 ] || { echo "usage: side_by_side.sh START DURATION A_VARS B_VARS [COMMON_VARS]" >&2; exit 1; }
 start=$(realpath "$1") duration=$2 vars_a=$3 vars_b=$4 common=${5:-}
 [ -f "$start" ] || { echo "side_by_side.sh: no restart file $start" >&2; exit 1; }
-[ -x "$lmp" ] || { echo "side_by_side.sh: no executable $lmp: build lmp_cd first" >&2; exit 1; }
+for exe in "$lmp_a" "$lmp_b"; do
+  [ -x "$exe" ] || { echo "side_by_side.sh: no executable $exe: build lmp_cd first" >&2; exit 1; }
+done
 out=${OUT:-$(mktemp -d /tmp/side_by_side.XXXXXX)}
 mkdir -p "$out"
 
-# run NAME CORE VARS: one run in $out/NAME, its user time in $out/NAME/user.txt
+# run NAME CORE EXECUTABLE VARS: one run in $out/NAME, its user time in $out/NAME/user.txt
 run() {
   mkdir -p "$out/$1"
   # shellcheck disable=SC2086  # the -var pairs are split on purpose
-  (cd "$out/$1" && taskset -c "$2" /usr/bin/time -f %U -o user.txt "$lmp" -in "$deck" -var stage flow \
-    -var start "$start" -var duration "$duration" $common $3 -screen none -log log.lammps)
+  (cd "$out/$1" && taskset -c "$2" /usr/bin/time -f %U -o user.txt "$3" -in "$deck" -var stage flow \
+    -var start "$start" -var duration "$duration" $common $4 -screen none -log log.lammps)
 }
-run a1 0 "$vars_a" & run b1 1 "$vars_b" & wait
-run a2 1 "$vars_a" & run b2 0 "$vars_b" & wait
+run a1 0 "$lmp_a" "$vars_a" & run b1 1 "$lmp_b" "$vars_b" & wait
+run a2 1 "$lmp_a" "$vars_a" & run b2 0 "$lmp_b" "$vars_b" & wait
 
 python3 - "$out" <<'PY'
 import sys
