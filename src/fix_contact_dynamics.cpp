@@ -800,7 +800,7 @@ void FixContactDynamics::measure_overlaps()
 // Between runs outputs are read without the run's lists: measure the last step's now.
 void FixContactDynamics::post_run()
 {
-  if (overlaps_measured_at != update->ntimestep) measure_overlaps();
+  if (mean_diameter > 0.0 && overlaps_measured_at != update->ntimestep) measure_overlaps();
 }
 
 /* ----------------------------------------------------------------------
@@ -929,7 +929,9 @@ double FixContactDynamics::compute_vector(int n)
     case 3: return loaded_contacts_total;
     case 4:
     case 5:
-      if (update->whichflag != 0 && overlaps_measured_at != update->ntimestep) measure_overlaps();
+      // Within a run and once the fix has set up (an earlier fix may read it before).
+      if (update->whichflag != 0 && mean_diameter > 0.0 && overlaps_measured_at != update->ntimestep)
+        measure_overlaps();
       return n == 4 ? max_overlap : mean_overlap;
     case 6: return last_report.converged ? 1.0 : 0.0;
     case 7: return total_iterations;
