@@ -95,7 +95,7 @@ FixContactDynamics::FixContactDynamics(LAMMPS* lmp, int narg, char** arg) : Fix(
   if (update->ntimestep == 0) set_clock(0.0);
 
   history_width = cd::impulse_row::width(settings.max_contacts);
-  maxexchange = history_width;
+  maxexchange = history_width + ObstacleMotion::values_per_atom;
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
   atom->add_callback(Atom::RESTART);
@@ -264,6 +264,11 @@ void FixContactDynamics::survey_group()
   mean_diameter = group_mean_diameter();
   contact_step.set_alert(settings.alert.value_or(cd::default_alert_diameters * mean_diameter));
   natoms_surveyed = atom->natoms;
+  int obstacle_here = 0;
+  for (int i = 0; i < atom->nlocal && !obstacle_here; i++) obstacle_here = (atom->mask[i] & groupbit) ? 0 : 1;
+  int obstacle_anywhere = 0;
+  MPI_Allreduce(&obstacle_here, &obstacle_anywhere, 1, MPI_INT, MPI_MAX, world);
+  obstacles_present = obstacle_anywhere != 0;
 }
 
 // Disks need m = pi r^2 rho. Sphere masses (4/3 pi r^3 rho, as fix pour and set density give)
@@ -324,6 +329,8 @@ void FixContactDynamics::setup(int)
   survey_group();
   check_subdomains();
   warn_initial_overlaps();
+  obstacles.record_starts(*atom, groupbit);
+  overlaps_measured_at = -1;
   if (settings.adaptive_step()) init_step_grid();
 }
 
@@ -414,27 +421,36 @@ void FixContactDynamics::for_each_listed_pair(Visit&& visit) const
   }
 }
 
+template <class Visit>
+void FixContactDynamics::for_each_grain_gap(Visit&& visit) const
+{
+  double** x = atom->x;
+  const double* radius = atom->radius;
+  const int* mask = atom->mask;
+  for_each_listed_pair([&](int i, int j) {
+    if (!(mask[i] & groupbit) && !(mask[j] & groupbit)) return;
+    visit(cd::disk_disk_geometry(0, {x[i][0], x[i][1], radius[i]}, 0, {x[j][0], x[j][1], radius[j]}).gap);
+  });
+  const cd::PeriodicBox box = periodic_box();
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    for (const cd::Wall& wall : settings.walls)
+      if (const auto touch = cd::wall_contact(wall, 0, {x[i][0], x[i][1], radius[i]}, 0.0, box))
+        visit(touch->geometry.gap);
+  }
+}
+
 // Rigid contacts never push overlapping grains apart: grains created overlapping (random
 // placement, a lattice that does not fit the periodic cell) stay so. Say it at the start.
 void FixContactDynamics::warn_initial_overlaps()
 {
   const double threshold = initial_overlap_warning * mean_diameter;
-  double** x = atom->x;
-  const double* radius = atom->radius;
   double local[2] = {0.0, 0.0};  // count, deepest
-  auto note = [&](double gap) {
+  for_each_grain_gap([&](double gap) {
     if (-gap <= threshold) return;
     local[0] += 1.0;
     local[1] = std::max(local[1], -gap);
-  };
-  for_each_listed_pair([&](int i, int j) {
-    note(cd::disk_disk_geometry(0, {x[i][0], x[i][1], radius[i]}, 0, {x[j][0], x[j][1], radius[j]}).gap);
   });
-  const cd::PeriodicBox box = periodic_box();
-  for (int i = 0; i < atom->nlocal; i++)
-    for (const cd::Wall& wall : settings.walls)
-      if (const auto touch = cd::wall_contact(wall, 0, {x[i][0], x[i][1], radius[i]}, 0.0, box))
-        note(touch->geometry.gap);
   double global[2];
   MPI_Allreduce(&local[0], &global[0], 1, MPI_DOUBLE, MPI_SUM, world);
   MPI_Allreduce(&local[1], &global[1], 1, MPI_DOUBLE, MPI_MAX, world);
@@ -514,6 +530,7 @@ void FixContactDynamics::final_integrate()
     survey_group();
   }
   if (neighbor->ago == 0) check_subdomains();
+  place_obstacles();
   gather_bodies();
   RankExchange exchange(*this);
   LammpsHost host(*this);
@@ -523,7 +540,8 @@ void FixContactDynamics::final_integrate()
   store_impulses();
   fill_local_output();
   write_back_motion();
-  reduce_step_outputs(report.overlaps);
+  reduce_step_outputs();
+  if (obstacles_present) obstacles.record_starts(*atom, groupbit);
 
   total_iterations += last_report.iterations;
   total_steps += 1.0;
@@ -542,6 +560,32 @@ void FixContactDynamics::final_integrate()
 cd::StepParameters FixContactDynamics::step_parameters() const
 {
   return {update->dt, contact_step.settings().theta};
+}
+
+// Obstacles that other fixes moved this step are met at the grains' instant x_m
+// (ObstacleMotion); one moving more than half the skin could pass through a pair the
+// neighbour list does not hold.
+void FixContactDynamics::place_obstacles()
+{
+  obstacles.measure_travel(*atom, *domain, groupbit);
+  if (!obstacles_present) return;
+  const double step_limit = 0.5 * neighbor->skin;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const cd::Displacement& s = obstacles.travel(i);
+    if (std::hypot(s.dx, s.dy) > step_limit)
+      error->one(FLERR,
+                 "Fix contact/dynamics: obstacle atom {} moved {} in step {}, more than half the neighbour skin {}; "
+                 "reduce the time step or raise the skin",
+                 atom->tag[i], std::hypot(s.dx, s.dy), update->ntimestep, neighbor->skin);
+  }
+  forward_field = ForwardField::obstacle_travel;
+  comm->forward_comm_fix(this, 2);
+  forward_field = ForwardField::velocity;
+}
+
+cd::Disk FixContactDynamics::disk_at_solve(int i) const
+{
+  return obstacles.disk_at_solve(i, atom->x[i], atom->radius[i], contact_step.settings().theta);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -583,10 +627,13 @@ void FixContactDynamics::gather_bodies()
                  "Fix contact/dynamics: atom {} has radius {}, larger than the {} the "
                  "neighbour cutoff was set for; start a new run",
                  atom->tag[i], radius[i], covered_radius);
-    const cd::BodyVelocity start{v[i][0], v[i][1], omega[i][2]};
+    const cd::BodyVelocity own{v[i][0], v[i][1], omega[i][2]};
+    const bool grain = mask[i] & groupbit;
+    // An obstacle: infinite mass, at the velocity of the step another fix moved it through.
+    const cd::BodyVelocity start = grain ? own : obstacles.velocity(i, own, dt);
     bodies.start_velocity[1 + i] = start;
     bodies.velocity[1 + i] = start;
-    if (!(mask[i] & groupbit)) continue;  // obstacle: infinite mass, keeps its velocity
+    if (!grain) continue;
     // Ghost masses are refreshed only at reneighbouring: take them from the density if set.
     const double mass = settings.disc_density > 0.0 ? cd::disk_mass(radius[i], settings.disc_density) : rmass[i];
     const cd::BodyInertia& inertia = bodies.inertia[1 + i] = cd::disk_inertia(mass, radius[i]);
@@ -611,14 +658,12 @@ void FixContactDynamics::LammpsHost::collect_pairs(const cd::PairReach& reach, d
 void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
                                              cd::StepContacts& contacts)
 {
-  double** x = atom->x;
-  const double* radius = atom->radius;
   const int* type = atom->type;
   const int* mask = atom->mask;
   for_each_listed_pair([&](int i, int j) {
     if (!(mask[i] & groupbit) && !(mask[j] & groupbit)) return;
     const int body_j = body_of_atom[j];
-    const cd::Disk disk_i{x[i][0], x[i][1], radius[i]}, disk_j{x[j][0], x[j][1], radius[j]};
+    const cd::Disk disk_i = disk_at_solve(i), disk_j = disk_at_solve(j);
     if (!reach.in_look(1 + i, disk_i, body_j, disk_j, from_margin, to_margin)) return;
     if (body_j == 1 + i)
       error->one(FLERR, "Fix contact/dynamics: atom {} touches its own periodic image; the cell is too short",
@@ -719,19 +764,43 @@ void FixContactDynamics::write_back_motion()
   }
 }
 
-// The step's output vector: sums and maxima over ranks.
-void FixContactDynamics::reduce_step_outputs(const cd::OverlapSums& overlaps)
+// The step's output vector: sums over ranks.
+void FixContactDynamics::reduce_step_outputs()
 {
-  const double local_sums[4] = {static_cast<double>(contact_step.contacts().solved.size()),
-                                static_cast<double>(loaded_contacts), overlaps.total, last_report.contact_updates};
-  double sums[4], deepest = 0.0;
-  MPI_Allreduce(local_sums, sums, 4, MPI_DOUBLE, MPI_SUM, world);
-  MPI_Allreduce(&overlaps.deepest, &deepest, 1, MPI_DOUBLE, MPI_MAX, world);
+  const double local_sums[3] = {static_cast<double>(contact_step.contacts().solved.size()),
+                                static_cast<double>(loaded_contacts), last_report.contact_updates};
+  double sums[3];
+  MPI_Allreduce(local_sums, sums, 3, MPI_DOUBLE, MPI_SUM, world);
   solved_contacts_total = sums[0];
   loaded_contacts_total = sums[1];
-  full_sweep_work = sums[0] > 0.0 ? sums[3] / sums[0] : 0.0;
+  full_sweep_work = sums[0] > 0.0 ? sums[2] / sums[0] : 0.0;
+}
+
+// Outputs 5 and 6 from the positions when they are read, after every fix has moved its atoms
+// (the corrector, fix move, ...): what a user measures at the end of the step. The ghosts are
+// brought to their owners' positions first. Called on every rank (LAMMPS evaluates global
+// outputs on all), once a step.
+void FixContactDynamics::measure_overlaps()
+{
+  comm->forward_comm();
+  double local[2] = {0.0, 0.0};  // deepest, sum (m)
+  for_each_grain_gap([&](double gap) {
+    if (gap >= 0.0) return;
+    local[0] = std::max(local[0], -gap);
+    local[1] -= gap;
+  });
+  double deepest = 0.0, total = 0.0;
+  MPI_Allreduce(&local[0], &deepest, 1, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(&local[1], &total, 1, MPI_DOUBLE, MPI_SUM, world);
   max_overlap = deepest / mean_diameter;
-  mean_overlap = sums[0] > 0.0 ? sums[2] / sums[0] / mean_diameter : 0.0;
+  mean_overlap = solved_contacts_total > 0.0 ? total / solved_contacts_total / mean_diameter : 0.0;
+  overlaps_measured_at = update->ntimestep;
+}
+
+// Between runs outputs are read without the run's lists: measure the last step's now.
+void FixContactDynamics::post_run()
+{
+  if (mean_diameter > 0.0 && overlaps_measured_at != update->ntimestep) measure_overlaps();
 }
 
 /* ----------------------------------------------------------------------
@@ -769,6 +838,7 @@ bool FixContactDynamics::RankExchange::on_any_rank(bool here)
 
 int FixContactDynamics::pack_forward_comm(int n, int* list, double* buf, int, int*)
 {
+  if (forward_field == ForwardField::obstacle_travel) return obstacles.pack_travel(n, list, buf);
   int m = 0;
   for (int k = 0; k < n; k++) {
     const cd::BodyVelocity& velocity = bodies.velocity[body_of_atom[list[k]]];
@@ -781,6 +851,7 @@ int FixContactDynamics::pack_forward_comm(int n, int* list, double* buf, int, in
 
 void FixContactDynamics::unpack_forward_comm(int n, int first, double* buf)
 {
+  if (forward_field == ForwardField::obstacle_travel) return obstacles.unpack_travel(n, first, buf);
   int m = 0;
   for (int g = first; g < first + n; g++, m += 3) {
     if (body_of_atom[g] != 1 + g) continue;  // an image: its body is updated elsewhere
@@ -831,10 +902,10 @@ void FixContactDynamics::fill_local_output()
     memory->destroy(array_local);
     memory->create(array_local, local_rows_allocated, output_columns, "contact/dynamics:array_local");
   }
-  double** x = atom->x;
   int row = 0;
   contact_step.contacts().for_each_loaded([&](const cd::PairKey& key, const cd::Contact& c) {
     const int a = c.body_a - 1;  // an owned atom
+    const cd::Disk disk_a = disk_at_solve(a);
     const bool wall = c.body_b == cd::world_body;
     const double to_point = c.lever_a + 0.5 * c.gap;
     double* out = array_local[row++];
@@ -843,8 +914,8 @@ void FixContactDynamics::fill_local_output()
     out[2] = wall ? wall_number(key.partner) : 0;
     out[3] = c.impulse.n;
     out[4] = c.impulse.t;
-    out[5] = x[a][0] - to_point * c.normal_x;
-    out[6] = x[a][1] - to_point * c.normal_y;
+    out[5] = disk_a.x - to_point * c.normal_x;
+    out[6] = disk_a.y - to_point * c.normal_y;
   });
   size_local_rows = row;
 }
@@ -856,8 +927,12 @@ double FixContactDynamics::compute_vector(int n)
     case 1: return last_report.residual;
     case 2: return solved_contacts_total;
     case 3: return loaded_contacts_total;
-    case 4: return max_overlap;
-    case 5: return mean_overlap;
+    case 4:
+    case 5:
+      // Within a run and once the fix has set up (an earlier fix may read it before).
+      if (update->whichflag != 0 && mean_diameter > 0.0 && overlaps_measured_at != update->ntimestep)
+        measure_overlaps();
+      return n == 4 ? max_overlap : mean_overlap;
     case 6: return last_report.converged ? 1.0 : 0.0;
     case 7: return total_iterations;
     case 8: return total_unconverged_steps;
@@ -933,30 +1008,34 @@ void FixContactDynamics::set_clock(double time)
 void FixContactDynamics::grow_arrays(int nmax)
 {
   memory->grow(history, nmax, history_width, "contact/dynamics:history");
+  obstacles.grow(nmax);
 }
 
 void FixContactDynamics::copy_arrays(int i, int j, int)
 {
   std::memcpy(history[j], history[i], sizeof(double) * cd::impulse_row::used(history[i]));
+  obstacles.copy(i, j);
 }
 
 void FixContactDynamics::set_arrays(int i)
 {
   cd::impulse_row::clear(history[i]);
+  obstacles.set_start(i, atom->x[i]);
 }
 
+// The warm-start row, then the obstacle start.
 int FixContactDynamics::pack_exchange(int i, double* buf)
 {
   const int n = cd::impulse_row::used(history[i]);
   std::memcpy(buf, history[i], sizeof(double) * n);
-  return n;
+  return n + obstacles.pack(i, buf + n);
 }
 
 int FixContactDynamics::unpack_exchange(int nlocal, double* buf)
 {
   const int n = cd::impulse_row::used(buf);
   std::memcpy(history[nlocal], buf, sizeof(double) * n);
-  return n;
+  return n + obstacles.unpack(nlocal, buf + n);
 }
 
 int FixContactDynamics::pack_restart(int i, double* buf)
@@ -995,6 +1074,7 @@ int FixContactDynamics::maxsize_restart()
 double FixContactDynamics::memory_usage()
 {
   double bytes = static_cast<double>(atom->nmax) * history_width * sizeof(double);
+  bytes += obstacles.memory_usage(atom->nmax);
   bytes += static_cast<double>(contact_step.contacts().memory_bytes());
   bytes += bodies.velocity.capacity() * (2 * sizeof(cd::BodyVelocity) + sizeof(cd::BodyInertia));
   bytes += static_cast<double>(local_rows_allocated) * output_columns * sizeof(double);

@@ -19,6 +19,7 @@ FixStyle(contact/dynamics,FixContactDynamics);
 #include "cd/step.h"
 #include "cd/walls.h"
 #include "fix.h"
+#include "fix_contact_dynamics_obstacles.h"
 #include "fix_contact_dynamics_settings.h"
 
 namespace LAMMPS_NS {
@@ -35,6 +36,7 @@ class FixContactDynamics : public Fix {
   void pre_force(int) override;
   void final_integrate() override;
   void end_of_step() override;
+  void post_run() override;
   double compute_vector(int) override;
 
   int pack_forward_comm(int, int*, double*, int, int*) override;
@@ -100,7 +102,9 @@ class FixContactDynamics : public Fix {
   bool distributed = false;                       // more than one rank: exchange every sweep
   cd::MoreauJeanStep contact_step;                // the core's step: pairs, order, warm start, solve
   cd::SolveReport last_report;
-  double max_overlap = 0.0, mean_overlap = 0.0;                     // in units of the mean diameter, over all ranks
+  // Outputs 5 and 6 (in mean diameters, over all ranks), measured when read (measure_overlaps).
+  double max_overlap = 0.0, mean_overlap = 0.0;
+  bigint overlaps_measured_at = -1;  // the step they were measured at; -1: not yet this run
   double solved_contacts_total = 0.0, loaded_contacts_total = 0.0;  // over all ranks
   double full_sweep_work = 0.0;  // the step's local solves over all ranks / solved contacts
   int loaded_contacts = 0;       // on this rank
@@ -111,6 +115,11 @@ class FixContactDynamics : public Fix {
   // --- per-atom warm-start store: [count, (partner key, p_n, p_t) x max_contacts] ---
   double** history = nullptr;
   int history_width = 0;
+
+  // --- obstacles that other fixes move: their starts travel with the atoms ---
+  ObstacleMotion obstacles{memory};
+  bool obstacles_present = false;  // some atom outside the group, on any rank
+  enum class ForwardField { velocity, obstacle_travel } forward_field = ForwardField::velocity;
 
   // --- local output: one row per loaded contact ---
   int local_rows_allocated = 0;
@@ -130,7 +139,13 @@ class FixContactDynamics : public Fix {
   // Every pair of LAMMPS's neighbour list once, as visit(i, j) (definition in the .cpp).
   template <class Visit>
   void for_each_listed_pair(Visit&& visit) const;
+  // The gap of every listed pair with a grain and of every grain near a wall, at the positions now.
+  template <class Visit>
+  void for_each_grain_gap(Visit&& visit) const;
   void warn_initial_overlaps();
+  void measure_overlaps();
+  void place_obstacles();
+  cd::Disk disk_at_solve(int i) const;
   cd::PeriodicBox periodic_box() const;
   void map_bodies();
   void gather_bodies();
@@ -143,7 +158,7 @@ class FixContactDynamics : public Fix {
   cd::Local2 carried_impulse(const cd::PairKey& key) const;
   void store_impulses();
   void write_back_motion();
-  void reduce_step_outputs(const cd::OverlapSums& overlaps);
+  void reduce_step_outputs();
   void init_step_grid();
   int fastest_grain_level();
   void set_timestep(double dt);
