@@ -97,8 +97,15 @@ class FixContactDynamics : public Fix {
   cd::BodySet bodies;                             // world, owned atoms, then ghosts owned elsewhere
   std::vector<int> body_of_atom;                  // body of every owned and ghost atom this step
   std::vector<cd::BodyVelocity> ghost_reference;  // ghost velocities at the last forward comm
-  bool distributed = false;                       // more than one rank: exchange every sweep
-  cd::MoreauJeanStep contact_step;                // the core's step: pairs, order, warm start, solve
+  // A deforming box (fix deform ... remap v): every ghost's edge vectors from its owner, and the
+  // box at the predicted configuration, whose images move with it.
+  bool domain_deforms = false;
+  bool sending_image_shifts = false;  // the forward comm carries image shifts, not velocities
+  std::vector<cd::PeriodicBox::Shift> image_shift;
+  cd::PeriodicBox step_box;
+  double contact_pressure[4] = {0.0, 0.0, 0.0, 0.0};  // xx, yy, xy, yx over all ranks (N/m in 2D SI)
+  bool distributed = false;                           // more than one rank: exchange every sweep
+  cd::MoreauJeanStep contact_step;                    // the core's step: pairs, order, warm start, solve
   cd::SolveReport last_report;
   double max_overlap = 0.0, mean_overlap = 0.0;                     // in units of the mean diameter, over all ranks
   double solved_contacts_total = 0.0, loaded_contacts_total = 0.0;  // over all ranks
@@ -132,6 +139,10 @@ class FixContactDynamics : public Fix {
   void for_each_listed_pair(Visit&& visit) const;
   void warn_initial_overlaps();
   cd::PeriodicBox periodic_box() const;
+  void check_deforming_box();
+  void share_image_shifts();
+  void image_velocity_of(int atom, double& vx, double& vy) const;
+  void tally_contact_stress();
   void map_bodies();
   void gather_bodies();
   cd::BodyVelocity velocity_change_of_ghost(int ghost) const;
