@@ -7,13 +7,15 @@ cell at fixed area) run at several packing fractions, each giving one inertial n
 For each phi: I = rate d / sqrt(P_yy / rho) and mu = -P_xy / P_yy, from the pressure tensor of
 compute pressure (the fix's contact stress plus the kinetic part of compute temp/deform) over the
 second half of the shear, with d = 1 the mean diameter and rho = 1 the disks' areal density; the
-standard errors from five blocks of that window. Writes OUT/plane_shear.csv and the figure
+standard errors from five blocks of that window, and the deepest overlap the fix warned of at
+the start of that window (start_overlap, mean diameters). Writes OUT/plane_shear.csv and the figure
 OUT/plane_shear.png (doc/figures/plane_shear.png is one). Standard library and gnuplot.
 """
 
 import argparse
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -21,6 +23,15 @@ sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 from cdtools import lammps_files, logs, run, stats
 
 DECK = os.path.join(run.TOP, "inputs", "examples", "in.plane_shear")
+# The fix's warning of grains overlapping at the start of a run (the averaging half, here).
+OVERLAP_WARNING = re.compile(r"overlap by up to (\S+) mean diameters")
+
+
+def start_overlap(folder):
+    """The deepest overlap the fix warned of at the start of a run in folder/log.lammps (in mean
+    diameters; 0 if none beyond its 0.01 threshold)."""
+    with open(os.path.join(folder, "log.lammps")) as log:
+        return max((float(m.group(1)) for m in OVERLAP_WARNING.finditer(log.read())), default=0.0)
 
 
 def measure(folder):
@@ -33,7 +44,7 @@ def measure(folder):
     mu, _, mu_se = stats.mean_sd_se(friction)
     inertial_mean, _, inertial_se = stats.mean_sd_se(inertial)
     return {"phi": summary["phi"], "I": inertial_mean, "I_se": inertial_se, "mu": mu, "mu_se": mu_se,
-            "pyy": summary["pyy"], "capped": summary["capped"]}
+            "pyy": summary["pyy"], "capped": summary["capped"], "overlap": start_overlap(folder)}
 
 
 def figure(csv, stem):
@@ -71,10 +82,10 @@ def main():
         print(f"phi {phi}: I {rows[-1]['I']:.4g} mu {rows[-1]['mu']:.4g} ({seconds:.0f} s)", flush=True)
     csv = os.path.join(args.out, "plane_shear.csv")
     with open(csv, "w") as out:
-        out.write("phi,I,I_se,mu,mu_se,pyy,capped\n")
+        out.write("phi,I,I_se,mu,mu_se,pyy,capped,start_overlap\n")
         for r in rows:
             out.write(f"{r['phi']:.4f},{r['I']:.5g},{r['I_se']:.3g},{r['mu']:.5g},{r['mu_se']:.3g},"
-                      f"{r['pyy']:.5g},{r['capped']:g}\n")
+                      f"{r['pyy']:.5g},{r['capped']:g},{r['overlap']:g}\n")
     figure(csv, os.path.join(args.out, "plane_shear"))
     print(open(csv).read())
 

@@ -495,13 +495,21 @@ void FixContactDynamics::check_subdomains()
 }
 
 // Width of the narrowest subdomain, over all ranks, along the axes split between ranks (an RCB
-// tiling may split either).
+// tiling may split either). A triclinic box splits in reduced coordinates: a slice along x is
+// bounded by lines along the tilted edge (xy, ly), a slice along y by lines along x.
 double FixContactDynamics::narrowest_split_subdomain()
 {
+  double width[2];
+  if (domain->triclinic) {
+    width[0] = (domain->subhi_lamda[0] - domain->sublo_lamda[0]) * domain->xprd * domain->yprd /
+               std::hypot(domain->yprd, domain->xy);
+    width[1] = (domain->subhi_lamda[1] - domain->sublo_lamda[1]) * domain->yprd;
+  } else {
+    for (int axis = 0; axis < 2; axis++) width[axis] = domain->subhi[axis] - domain->sublo[axis];
+  }
   double local = std::numeric_limits<double>::max();
   for (int axis = 0; axis < 2; axis++)
-    if (comm->layout == Comm::LAYOUT_TILED || comm->procgrid[axis] > 1)
-      local = std::min(local, domain->subhi[axis] - domain->sublo[axis]);
+    if (comm->layout == Comm::LAYOUT_TILED || comm->procgrid[axis] > 1) local = std::min(local, width[axis]);
   double global = local;
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MIN, world);
   return global;
