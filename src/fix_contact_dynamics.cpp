@@ -115,7 +115,7 @@ FixContactDynamics::~FixContactDynamics()
 
 int FixContactDynamics::setmask()
 {
-  int mask = INITIAL_INTEGRATE | FINAL_INTEGRATE;
+  int mask = INITIAL_INTEGRATE | FINAL_INTEGRATE | PRE_EXCHANGE;
   if (settings.disc_density > 0.0) mask |= PRE_FORCE;
   if (settings.adaptive_step()) mask |= END_OF_STEP;
   return mask;
@@ -513,6 +513,30 @@ double FixContactDynamics::narrowest_split_subdomain()
   double global = local;
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MIN, world);
   return global;
+}
+
+// LAMMPS is about to wrap the grains that crossed a periodic side (Domain::pbc), by the box of
+// the start of the step, adding the velocity of the image they become (remap v). The step meets
+// that image at the predicted configuration, where the box has moved on by (1 - theta) dt at its
+// rates (as every ghost is met, collect_grain_pairs): the grain goes there too.
+void FixContactDynamics::pre_exchange()
+{
+  if (!domain_deforms) return;
+  const double lag = (1.0 - contact_step.settings().theta) * update->dt;
+  const cd::PeriodicBox box = periodic_box();
+  double** x = atom->x;
+  for (int i = 0; i < atom->nlocal; i++) {
+    // The edge vectors the wrap will subtract: the cell of the box the grain lies in.
+    const double cell_y = std::floor((x[i][1] - domain->boxlo[1]) / box.length_y);
+    const double x_along = x[i][0] - domain->boxlo[0] - box.tilt_xy * (x[i][1] - domain->boxlo[1]) / box.length_y;
+    const cd::PeriodicBox::Shift wrapped{box.periodic_x ? -static_cast<int>(std::floor(x_along / box.length_x)) : 0,
+                                         box.periodic_y ? -static_cast<int>(cell_y) : 0};
+    if (wrapped.x == 0 && wrapped.y == 0) continue;
+    double vx = 0.0, vy = 0.0;
+    box.image_velocity(wrapped, vx, vy);
+    x[i][0] += lag * vx;
+    x[i][1] += lag * vy;
+  }
 }
 
 void FixContactDynamics::pre_force(int)

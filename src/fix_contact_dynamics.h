@@ -33,6 +33,7 @@ class FixContactDynamics : public Fix {
   void setup(int) override;
   void initial_integrate(int) override;
   void pre_force(int) override;
+  void pre_exchange() override;
   void final_integrate() override;
   void end_of_step() override;
   double compute_vector(int) override;

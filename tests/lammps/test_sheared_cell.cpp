@@ -94,4 +94,40 @@ run 1
   EXPECT_GT(std::fabs(start_vx - s.v(1, 0)), 1e-6);
 }
 
+// A disk falls freely at 0.1 m/s through the bottom side of a box sheared at 10/s. LAMMPS wraps
+// it to the top, into the image that moves with the box at w = rate L along x, and gives it that
+// velocity (remap v): from then on it moves with its image, x = x0 + xy(t) = x0 + w t, where the
+// step meets images (at the predicted configuration, as every ghost, not where the box stood at
+// the start of the step, (1 - theta) dt w behind).
+TEST(ShearedBox, DiskCrossingTheShearedSideMovesWithItsImage)
+{
+  constexpr double L = 0.01, r = 5e-4, rate = 10.0, dt = 1e-5, fall = 0.1, x0 = 0.003, y0 = 0.001;
+  constexpr int steps = 3000;  // 30 ms: across the side at 10 ms, the tilt 3 mm (below half of L)
+  LammpsSession s;
+  s.commands(cdtest::disk_preamble);
+  s.commands(fmt::format(R"(
+boundary p p p
+region box prism 0 {L} 0 {L} -{r} {r} 0 0 0
+create_box 1 box
+create_atoms 1 single {x0} {y0} 0
+set atom 1 diameter {d} density/disc 2500
+velocity all set 0 -{fall} 0 units box
+neighbor {skin} bin
+timestep {dt}
+fix shear all deform 1 xy erate {rate} remap v
+fix cd all contact/dynamics 0.5 0.5 tolerance 1e-12
+fix 2d all enforce2d
+run {steps}
+)",
+                         fmt::arg("L", L), fmt::arg("r", r), fmt::arg("x0", x0), fmt::arg("y0", y0),
+                         fmt::arg("d", 2 * r), fmt::arg("fall", fall), fmt::arg("skin", 0.4 * r), fmt::arg("dt", dt),
+                         fmt::arg("rate", rate), fmt::arg("steps", steps)));
+  const double w = rate * L, elapsed = steps * dt;
+  EXPECT_NEAR(s.lmp->domain->xy, w * elapsed, 1e-15);
+  EXPECT_NEAR(s.v(1, 0), w, 1e-15);
+  EXPECT_NEAR(s.v(1, 1), -fall, 1e-15);
+  EXPECT_NEAR(s.x(1, 0), x0 + w * elapsed, 1e-12);
+  EXPECT_NEAR(s.x(1, 1), y0 - fall * elapsed + L, 1e-12);
+}
+
 }  // namespace
