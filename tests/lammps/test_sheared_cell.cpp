@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "domain.h"
 #include "fmt/format.h"
@@ -48,6 +49,31 @@ run 8000
   EXPECT_LT(std::sqrt(2 * 0.0145 / g), 0.06);  // the fall ends within the 80 ms run
 }
 
+// A periodic box L square of 1 mm disks (radius r), sheared at `rate` (xy erate, remap v) with
+// time step dt: the disks created by `atoms`, then the fix with `fix_arguments`, run `steps`.
+void sheared_cell(LammpsSession& s, double rate, double dt, const std::string& atoms, const std::string& fix_arguments,
+                  int steps)
+{
+  constexpr double L = 0.01, r = 5e-4;
+  s.commands(cdtest::disk_preamble);
+  s.commands(fmt::format(R"(
+boundary p p p
+region box prism 0 {L} 0 {L} -{r} {r} 0 0 0
+create_box 1 box
+{atoms}
+set group all diameter {d} density/disc 2500
+neighbor {skin} bin
+timestep {dt}
+fix shear all deform 1 xy erate {rate} remap v
+fix cd all contact/dynamics {fix}
+fix 2d all enforce2d
+run {steps}
+)",
+                         fmt::arg("L", L), fmt::arg("r", r), fmt::arg("atoms", atoms), fmt::arg("d", 2 * r),
+                         fmt::arg("skin", 0.4 * r), fmt::arg("dt", dt), fmt::arg("rate", rate),
+                         fmt::arg("fix", fix_arguments), fmt::arg("steps", steps)));
+}
+
 // Two disks touch across the top side of a box sheared at rate 10/s (xy erate, remap v): disk
 // 2 at (x_b, r), disk 1 where the image of disk 2 across the top, at (x_b + xy, L + r), touches
 // it along n = (1, -1)/sqrt 2. Both are at rest, but the image moves at w = (rate L, 0) with
@@ -59,24 +85,8 @@ TEST(ShearedBox, ImageAcrossTheShearedSideStrikesWithTheBoxVelocity)
   constexpr double L = 0.01, r = 5e-4, rate = 10.0, e = 0.5, dt = 1e-5;
   const double xb = 0.004, xa = xb + std::sqrt(2.0) * r, ya = L + r - std::sqrt(2.0) * r;
   LammpsSession s;
-  s.commands(cdtest::disk_preamble);
-  s.commands(fmt::format(R"(
-boundary p p p
-region box prism 0 {L} 0 {L} -{r} {r} 0 0 0
-create_box 1 box
-create_atoms 1 single {xa} {ya} 0
-create_atoms 1 single {xb} {r} 0
-set group all diameter {d} density/disc 2500
-neighbor {skin} bin
-timestep {dt}
-fix shear all deform 1 xy erate {rate} remap v
-fix cd all contact/dynamics 0.0 {e} tolerance 1e-12
-fix 2d all enforce2d
-run 1
-)",
-                         fmt::arg("L", L), fmt::arg("r", r), fmt::arg("xa", xa), fmt::arg("ya", ya), fmt::arg("xb", xb),
-                         fmt::arg("d", 2 * r), fmt::arg("skin", 0.4 * r), fmt::arg("dt", dt), fmt::arg("rate", rate),
-                         fmt::arg("e", e)));
+  sheared_cell(s, rate, dt, fmt::format("create_atoms 1 single {} {} 0\ncreate_atoms 1 single {} {} 0", xa, ya, xb, r),
+               fmt::format("0.0 {} tolerance 1e-12", e), 1);
   const double w = rate * L;
   EXPECT_DOUBLE_EQ(s.lmp->domain->h_rate[5], w);
   const double image_x = xb + 0.5 * dt * w;  // theta 0.5; xy = 0 at the start of the step
@@ -101,27 +111,12 @@ run 1
 // the start of the step, (1 - theta) dt w behind).
 TEST(ShearedBox, DiskCrossingTheShearedSideMovesWithItsImage)
 {
-  constexpr double L = 0.01, r = 5e-4, rate = 10.0, dt = 1e-5, fall = 0.1, x0 = 0.003, y0 = 0.001;
+  constexpr double L = 0.01, rate = 10.0, dt = 1e-5, fall = 0.1, x0 = 0.003, y0 = 0.001;
   constexpr int steps = 3000;  // 30 ms: across the side at 10 ms, the tilt 3 mm (below half of L)
   LammpsSession s;
-  s.commands(cdtest::disk_preamble);
-  s.commands(fmt::format(R"(
-boundary p p p
-region box prism 0 {L} 0 {L} -{r} {r} 0 0 0
-create_box 1 box
-create_atoms 1 single {x0} {y0} 0
-set atom 1 diameter {d} density/disc 2500
-velocity all set 0 -{fall} 0 units box
-neighbor {skin} bin
-timestep {dt}
-fix shear all deform 1 xy erate {rate} remap v
-fix cd all contact/dynamics 0.5 0.5 tolerance 1e-12
-fix 2d all enforce2d
-run {steps}
-)",
-                         fmt::arg("L", L), fmt::arg("r", r), fmt::arg("x0", x0), fmt::arg("y0", y0),
-                         fmt::arg("d", 2 * r), fmt::arg("fall", fall), fmt::arg("skin", 0.4 * r), fmt::arg("dt", dt),
-                         fmt::arg("rate", rate), fmt::arg("steps", steps)));
+  sheared_cell(s, rate, dt,
+               fmt::format("create_atoms 1 single {} {} 0\nvelocity all set 0 -{} 0 units box", x0, y0, fall),
+               "0.5 0.5 tolerance 1e-12", steps);
   const double w = rate * L, elapsed = steps * dt;
   EXPECT_NEAR(s.lmp->domain->xy, w * elapsed, 1e-15);
   EXPECT_NEAR(s.v(1, 0), w, 1e-15);
