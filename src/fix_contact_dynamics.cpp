@@ -13,6 +13,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "fix_deform.h"
 #include "force.h"
 #include "group.h"
 #include "memory.h"
@@ -77,7 +78,7 @@ FixContactDynamics::FixContactDynamics(LAMMPS* lmp, int narg, char** arg) : Fix(
 
   time_integrate = 1;
   vector_flag = 1;
-  size_vector = 12;
+  size_vector = 16;
   global_freq = 1;
   extvector = 0;
   local_flag = 1;
@@ -87,8 +88,10 @@ FixContactDynamics::FixContactDynamics(LAMMPS* lmp, int narg, char** arg) : Fix(
   restart_global = 1;
   restart_peratom = 1;
   create_attribute = 1;
-  comm_forward = 3;  // vx, vy, spin of a body
-  comm_reverse = 3;  // the change of a ghost's vx, vy, spin over one sweep
+  comm_forward = 3;        // vx, vy, spin of a body
+  comm_reverse = 3;        // the change of a ghost's vx, vy, spin over one sweep
+  virial_global_flag = 1;  // the contact stress, into compute pressure with fix_modify virial yes
+  thermo_virial = 0;
 
   // With a varying step the clock is LAMMPS's time, not step x dt; step 0 is time 0 (this
   // version's reset_timestep keeps the time already run, e.g. a deposition before the chute).
@@ -112,7 +115,7 @@ FixContactDynamics::~FixContactDynamics()
 
 int FixContactDynamics::setmask()
 {
-  int mask = INITIAL_INTEGRATE | FINAL_INTEGRATE;
+  int mask = INITIAL_INTEGRATE | FINAL_INTEGRATE | PRE_EXCHANGE;
   if (settings.disc_density > 0.0) mask |= PRE_FORCE;
   if (settings.adaptive_step()) mask |= END_OF_STEP;
   return mask;
@@ -123,10 +126,7 @@ int FixContactDynamics::setmask()
 void FixContactDynamics::init()
 {
   distributed = comm->nprocs > 1;
-  // Walls are imaged across periodic boundaries as in an orthogonal box, and the sweep's own
-  // velocity exchange does not add a deforming box's shear to images across the tilted side.
-  if (domain->triclinic)
-    error->all(FLERR, "Fix contact/dynamics requires an orthogonal box: a triclinic (tilted) box is not supported");
+  check_deforming_box();
   if (!comm->ghost_velocity)
     error->all(FLERR, "Fix contact/dynamics requires ghost velocities: use comm_modify vel yes");
   if (atom->map_style == Atom::MAP_NONE)
@@ -198,6 +198,31 @@ void FixContactDynamics::check_alert()
                "Fix contact/dynamics: alert {} is larger than the neighbour skin {}: pairs that far apart are "
                "not listed; lower alert or raise the skin (neighbor command)",
                *settings.alert, neighbor->skin);
+}
+
+// A deforming box is followed when its images move at its rates (remap v, LAMMPS's Lees-Edwards
+// cell) and every atom's velocity is remapped as it crosses a side (group all). remap x moves
+// grains affinely through their contacts at the end of the step; remap none leaves a grain that
+// crosses the sheared side at its old velocity. fix deform sets the box by step count, not time.
+void FixContactDynamics::check_deforming_box()
+{
+  domain_deforms = false;
+  for (int f = 0; f < modify->nfix; f++) {
+    if (!utils::strmatch(modify->fix[f]->style, "^deform")) continue;
+    const auto* deform = static_cast<FixDeform*>(modify->fix[f]);
+    if (deform->remapflag != Domain::V_REMAP)
+      error->all(FLERR,
+                 "Fix contact/dynamics: fix {} (deform) must use remap v: remap x moves grains through their "
+                 "contacts, remap none leaves a grain crossing a moving side at its old velocity",
+                 deform->id);
+    if (deform->igroup != 0)
+      error->all(FLERR, "Fix contact/dynamics: fix {} (deform) must act on group all to remap every velocity",
+                 deform->id);
+    if (settings.adaptive_step())
+      error->all(FLERR, "Fix contact/dynamics: fix {} (deform) counts steps, not time: it cannot follow dt_max",
+                 deform->id);
+    domain_deforms = true;
+  }
 }
 
 // fix pour in this LAMMPS (29 Sep 2021) resizes the atom map after an insertion step only when
@@ -486,16 +511,48 @@ void FixContactDynamics::check_subdomains()
 }
 
 // Width of the narrowest subdomain, over all ranks, along the axes split between ranks (an RCB
-// tiling may split either).
+// tiling may split either). A triclinic box splits in reduced coordinates: a slice along x is
+// bounded by lines along the tilted edge (xy, ly), a slice along y by lines along x.
 double FixContactDynamics::narrowest_split_subdomain()
 {
+  double width[2];
+  if (domain->triclinic) {
+    width[0] = (domain->subhi_lamda[0] - domain->sublo_lamda[0]) * domain->xprd * domain->yprd /
+               std::hypot(domain->yprd, domain->xy);
+    width[1] = (domain->subhi_lamda[1] - domain->sublo_lamda[1]) * domain->yprd;
+  } else {
+    for (int axis = 0; axis < 2; axis++) width[axis] = domain->subhi[axis] - domain->sublo[axis];
+  }
   double local = std::numeric_limits<double>::max();
   for (int axis = 0; axis < 2; axis++)
-    if (comm->layout == Comm::LAYOUT_TILED || comm->procgrid[axis] > 1)
-      local = std::min(local, domain->subhi[axis] - domain->sublo[axis]);
+    if (comm->layout == Comm::LAYOUT_TILED || comm->procgrid[axis] > 1) local = std::min(local, width[axis]);
   double global = local;
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MIN, world);
   return global;
+}
+
+// LAMMPS is about to wrap the grains that crossed a periodic side (Domain::pbc), by the box of
+// the start of the step, adding the velocity of the image they become (remap v). The step meets
+// that image at the predicted configuration, where the box has moved on by (1 - theta) dt at its
+// rates (as every ghost is met, collect_grain_pairs): the grain goes there too.
+void FixContactDynamics::pre_exchange()
+{
+  if (!domain_deforms) return;
+  const double lag = (1.0 - contact_step.settings().theta) * update->dt;
+  const cd::PeriodicBox box = periodic_box();
+  double** x = atom->x;
+  for (int i = 0; i < atom->nlocal; i++) {
+    // The edge vectors the wrap will subtract: the cell of the box the grain lies in.
+    const double cell_y = std::floor((x[i][1] - domain->boxlo[1]) / box.length_y);
+    const double x_along = x[i][0] - domain->boxlo[0] - box.tilt_xy * (x[i][1] - domain->boxlo[1]) / box.length_y;
+    const cd::PeriodicBox::Shift wrapped{box.periodic_x ? -static_cast<int>(std::floor(x_along / box.length_x)) : 0,
+                                         box.periodic_y ? -static_cast<int>(cell_y) : 0};
+    if (wrapped.x == 0 && wrapped.y == 0) continue;
+    double vx = 0.0, vy = 0.0;
+    box.image_velocity(wrapped, vx, vy);
+    x[i][0] += lag * vx;
+    x[i][1] += lag * vy;
+  }
 }
 
 void FixContactDynamics::pre_force(int)
@@ -509,8 +566,9 @@ void FixContactDynamics::pre_force(int)
    final_integrate solves for v_{n+1} at x_m and completes x_{n+1} = x_m + theta dt v_{n+1}.
 ------------------------------------------------------------------------- */
 
-void FixContactDynamics::initial_integrate(int)
+void FixContactDynamics::initial_integrate(int vflag)
 {
+  v_init(vflag);
   const cd::StepParameters step = step_parameters();
   double** x = atom->x;
   double** v = atom->v;
@@ -531,6 +589,8 @@ void FixContactDynamics::final_integrate()
   }
   if (neighbor->ago == 0) check_subdomains();
   place_obstacles();
+  step_box = periodic_box().advanced((1.0 - contact_step.settings().theta) * update->dt);
+  if (domain_deforms) share_image_shifts();
   gather_bodies();
   RankExchange exchange(*this);
   LammpsHost host(*this);
@@ -538,6 +598,7 @@ void FixContactDynamics::final_integrate()
   last_report = report.solve;
   loaded_contacts = report.loaded_contacts;
   store_impulses();
+  tally_contact_stress();
   fill_local_output();
   write_back_motion();
   reduce_step_outputs();
@@ -627,7 +688,10 @@ void FixContactDynamics::gather_bodies()
                  "Fix contact/dynamics: atom {} has radius {}, larger than the {} the "
                  "neighbour cutoff was set for; start a new run",
                  atom->tag[i], radius[i], covered_radius);
-    const cd::BodyVelocity own{v[i][0], v[i][1], omega[i][2]};
+    // LAMMPS gave a ghost its owner's velocity plus its image's: the body keeps its owner's.
+    double image_vx = 0.0, image_vy = 0.0;
+    image_velocity_of(i, image_vx, image_vy);
+    const cd::BodyVelocity own{v[i][0] - image_vx, v[i][1] - image_vy, omega[i][2]};
     const bool grain = mask[i] & groupbit;
     // An obstacle: infinite mass, at the velocity of the step another fix moved it through.
     const cd::BodyVelocity start = grain ? own : obstacles.velocity(i, own, dt);
@@ -660,17 +724,30 @@ void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double 
 {
   const int* type = atom->type;
   const int* mask = atom->mask;
+  // An image across a side of a deforming box moves at its body's velocity plus the box's (j is
+  // the ghost; i is owned): LAMMPS placed it with the box at the start of the step, the step
+  // meets it at the predicted configuration, and its look reaches as far as its speed.
+  const double predictor = (1.0 - contact_step.settings().theta) * update->dt;
+  const double advance = contact_step.settings().theta * update->dt;
   for_each_listed_pair([&](int i, int j) {
     if (!(mask[i] & groupbit) && !(mask[j] & groupbit)) return;
     const int body_j = body_of_atom[j];
-    const cd::Disk disk_i = disk_at_solve(i), disk_j = disk_at_solve(j);
-    if (!reach.in_look(1 + i, disk_i, body_j, disk_j, from_margin, to_margin)) return;
+    double image_vx = 0.0, image_vy = 0.0;
+    image_velocity_of(j, image_vx, image_vy);
+    const double image_reach = advance * std::sqrt(image_vx * image_vx + image_vy * image_vy);
+    const cd::Disk disk_i = disk_at_solve(i);
+    cd::Disk disk_j = disk_at_solve(j);
+    disk_j.x += predictor * image_vx;
+    disk_j.y += predictor * image_vy;
+    if (!reach.in_look(1 + i, disk_i, body_j, disk_j, from_margin + image_reach, to_margin + image_reach)) return;
     if (body_j == 1 + i)
       error->one(FLERR, "Fix contact/dynamics: atom {} touches its own periodic image; the cell is too short",
                  atom->tag[i]);
     const cd::PairKey key = pair_key(i, j);
-    contacts.offer(cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j), settings.law(type[i], type[j]), key,
-                   carried_impulse(key));
+    cd::ContactGeometry geometry = cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j);
+    geometry.image_vx = image_vx;
+    geometry.image_vy = image_vy;
+    contacts.offer(geometry, settings.law(type[i], type[j]), key, carried_impulse(key));
   });
 }
 
@@ -685,21 +762,33 @@ cd::PairKey FixContactDynamics::pair_key(int i, int j) const
 
 cd::PeriodicBox FixContactDynamics::periodic_box() const
 {
-  return {domain->xperiodic != 0, domain->yperiodic != 0, domain->xprd, domain->yprd};
+  const double* rate = domain->h_rate;  // Voigt: xx, yy, zz, yz, xz, xy
+  return {domain->xperiodic != 0,
+          domain->yperiodic != 0,
+          domain->xprd,
+          domain->yprd,
+          domain->triclinic ? domain->xy : 0.0,
+          rate[0],
+          rate[1],
+          rate[5]};
 }
 
 void FixContactDynamics::collect_wall_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
                                             cd::StepContacts& contacts)
 {
   if (settings.walls.empty()) return;
-  const cd::PeriodicBox box = periodic_box();
+  // A wall's images move with a deforming box, one edge vector at the speeds below at most.
+  const double image_reach = contact_step.settings().theta * update->dt *
+                             (std::fabs(step_box.rate_x) + std::fabs(step_box.rate_y) + std::fabs(step_box.rate_xy));
+  from_margin += image_reach;
+  to_margin += image_reach;
   double** x = atom->x;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(atom->mask[i] & groupbit)) continue;
     const cd::Disk disk{x[i][0], x[i][1], atom->radius[i]};
     const double reach_i = reach.reach(1 + i);
     for (int w = 0; w < static_cast<int>(settings.walls.size()); w++) {
-      const auto touch = cd::wall_contact(settings.walls[w], 1 + i, disk, reach_i + to_margin, box);
+      const auto touch = cd::wall_contact(settings.walls[w], 1 + i, disk, reach_i + to_margin, step_box);
       if (!touch || !reach.wall_in_look(1 + i, touch->geometry.gap, from_margin)) continue;
       const cd::PairKey key{i, wall_partner(w, touch->part)};
       contacts.offer(touch->geometry, settings.walls[w].law, key, carried_impulse(key));
@@ -836,10 +925,18 @@ bool FixContactDynamics::RankExchange::on_any_rank(bool here)
   return any != 0;
 }
 
-int FixContactDynamics::pack_forward_comm(int n, int* list, double* buf, int, int*)
+int FixContactDynamics::pack_forward_comm(int n, int* list, double* buf, int pbc_flag, int* pbc)
 {
   if (forward_field == ForwardField::obstacle_travel) return obstacles.pack_travel(n, list, buf);
   int m = 0;
+  if (sending_image_shifts) {
+    const int across_x = pbc_flag ? pbc[0] : 0, across_y = pbc_flag ? pbc[1] : 0;
+    for (int k = 0; k < n; k++) {
+      buf[m++] = image_shift[list[k]].x + across_x;
+      buf[m++] = image_shift[list[k]].y + across_y;
+    }
+    return m;
+  }
   for (int k = 0; k < n; k++) {
     const cd::BodyVelocity& velocity = bodies.velocity[body_of_atom[list[k]]];
     buf[m++] = velocity.vx;
@@ -853,6 +950,11 @@ void FixContactDynamics::unpack_forward_comm(int n, int first, double* buf)
 {
   if (forward_field == ForwardField::obstacle_travel) return obstacles.unpack_travel(n, first, buf);
   int m = 0;
+  if (sending_image_shifts) {
+    for (int g = first; g < first + n; g++, m += 2)
+      image_shift[g] = {static_cast<int>(buf[m]), static_cast<int>(buf[m + 1])};
+    return;
+  }
   for (int g = first; g < first + n; g++, m += 3) {
     if (body_of_atom[g] != 1 + g) continue;  // an image: its body is updated elsewhere
     const cd::BodyVelocity velocity{buf[m], buf[m + 1], buf[m + 2]};
@@ -890,6 +992,55 @@ void FixContactDynamics::unpack_reverse_comm(int n, int* list, double* buf)
     velocity.vy += buf[m + 1];
     velocity.spin += buf[m + 2];
   }
+}
+
+// Every ghost's edge vectors from its owner (the sum of the periodic sides its copies crossed,
+// as LAMMPS shifts its position), refreshed every step: ghosts change at reneighbouring.
+void FixContactDynamics::share_image_shifts()
+{
+  image_shift.assign(atom->nlocal + atom->nghost, cd::PeriodicBox::Shift{});
+  sending_image_shifts = true;
+  comm->forward_comm_fix(this, 2);
+  sending_image_shifts = false;
+}
+
+// Velocity of an atom's image relative to its owner (m/s): zero unless the box deforms.
+void FixContactDynamics::image_velocity_of(int atom_index, double& vx, double& vy) const
+{
+  if (!domain_deforms || atom_index < atom->nlocal) {
+    vx = vy = 0.0;
+    return;
+  }
+  step_box.image_velocity(image_shift[atom_index], vx, vy);
+}
+
+// The contact part of the pressure tensor, (1 / (A dt)) sum over loaded grain pairs of the
+// branch vector (from b's centre to a's) times a's impulse, as LAMMPS's pair virial (compressive
+// positive; xy = sum l_x p_y). Into the output vector (xx, yy, xy, yx) and, summed per rank, the
+// fix's virial (energy units) for compute pressure.
+void FixContactDynamics::tally_contact_stress()
+{
+  double local[4] = {0.0, 0.0, 0.0, 0.0};  // sum of l p (m N s)
+  contact_step.contacts().for_each_loaded([&](const cd::PairKey&, const cd::Contact& c) {
+    if (c.body_b == cd::world_body) return;
+    const double branch = c.lever_a + c.lever_b + c.gap;
+    const double lx = branch * c.normal_x, ly = branch * c.normal_y;
+    const double px = c.impulse.n * c.normal_x - c.impulse.t * c.normal_y;
+    const double py = c.impulse.n * c.normal_y + c.impulse.t * c.normal_x;
+    local[0] += lx * px;
+    local[1] += ly * py;
+    local[2] += lx * py;
+    local[3] += ly * px;
+  });
+  const double dt = update->dt;
+  if (vflag_global) {
+    virial[0] += local[0] / dt;
+    virial[1] += local[1] / dt;
+    virial[3] += local[2] / dt;
+  }
+  MPI_Allreduce(local, contact_pressure, 4, MPI_DOUBLE, MPI_SUM, world);
+  const double area = domain->xprd * domain->yprd;
+  for (double& value : contact_pressure) value /= area * dt;
 }
 
 // One row per loaded contact, at the predicted configuration (before the corrector): atom IDs
@@ -939,6 +1090,10 @@ double FixContactDynamics::compute_vector(int n)
     case 9: return total_steps;
     case 10: return full_sweep_work;
     case 11: return last_report.solves;
+    case 12: return contact_pressure[0];
+    case 13: return contact_pressure[1];
+    case 14: return contact_pressure[2];
+    case 15: return contact_pressure[3];
   }
   return 0.0;
 }

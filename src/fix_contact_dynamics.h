@@ -34,6 +34,7 @@ class FixContactDynamics : public Fix {
   void setup(int) override;
   void initial_integrate(int) override;
   void pre_force(int) override;
+  void pre_exchange() override;
   void final_integrate() override;
   void end_of_step() override;
   void post_run() override;
@@ -99,8 +100,15 @@ class FixContactDynamics : public Fix {
   cd::BodySet bodies;                             // world, owned atoms, then ghosts owned elsewhere
   std::vector<int> body_of_atom;                  // body of every owned and ghost atom this step
   std::vector<cd::BodyVelocity> ghost_reference;  // ghost velocities at the last forward comm
-  bool distributed = false;                       // more than one rank: exchange every sweep
-  cd::MoreauJeanStep contact_step;                // the core's step: pairs, order, warm start, solve
+  // A deforming box (fix deform ... remap v): every ghost's edge vectors from its owner, and the
+  // box at the predicted configuration, whose images move with it.
+  bool domain_deforms = false;
+  bool sending_image_shifts = false;  // the forward comm carries image shifts, not velocities
+  std::vector<cd::PeriodicBox::Shift> image_shift;
+  cd::PeriodicBox step_box;
+  double contact_pressure[4] = {0.0, 0.0, 0.0, 0.0};  // xx, yy, xy, yx over all ranks (N/m in 2D SI)
+  bool distributed = false;                           // more than one rank: exchange every sweep
+  cd::MoreauJeanStep contact_step;                    // the core's step: pairs, order, warm start, solve
   cd::SolveReport last_report;
   // Outputs 5 and 6 (in mean diameters, over all ranks), measured when read (measure_overlaps).
   double max_overlap = 0.0, mean_overlap = 0.0;
@@ -147,6 +155,10 @@ class FixContactDynamics : public Fix {
   void place_obstacles();
   cd::Disk disk_at_solve(int i) const;
   cd::PeriodicBox periodic_box() const;
+  void check_deforming_box();
+  void share_image_shifts();
+  void image_velocity_of(int atom, double& vx, double& vy) const;
+  void tally_contact_stress();
   void map_bodies();
   void gather_bodies();
   cd::BodyVelocity velocity_change_of_ghost(int ghost) const;

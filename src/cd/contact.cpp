@@ -21,6 +21,8 @@ Contact contact_frame(const ContactGeometry& g)
   c.lever_a = g.lever_a;
   c.lever_b = g.lever_b;
   c.gap = g.gap;
+  c.image_velocity = {g.image_vx * g.normal_x + g.image_vy * g.normal_y,
+                      -g.image_vx * g.normal_y + g.image_vy * g.normal_x};
   return c;
 }
 

@@ -51,6 +51,7 @@ struct Contact {
   double mu = 0.0;
   double velocity_bias = 0.0;  // b (m/s): the normal law acts on u_n + b (prepare_mechanics)
   double gap = 0.0;            // at the predicted configuration (m)
+  Local2 image_velocity;       // of b's image relative to body b, local frame (ContactGeometry)
   Local2 impulse;              // accumulated over the step (N s)
   Local2 direction;            // its change in the last sweep (conjugate acceleration only)
 };
@@ -61,8 +62,8 @@ inline Local2 relative_velocity(const Contact& c, const BodyVelocity& a, const B
 {
   const double dvx = a.vx - b.vx;
   const double dvy = a.vy - b.vy;
-  return {dvx * c.normal_x + dvy * c.normal_y,
-          -dvx * c.normal_y + dvy * c.normal_x - c.lever_a * a.spin - c.lever_b * b.spin};
+  return {dvx * c.normal_x + dvy * c.normal_y - c.image_velocity.n,
+          -dvx * c.normal_y + dvy * c.normal_x - c.image_velocity.t - c.lever_a * a.spin - c.lever_b * b.spin};
 }
 
 // The frame of a candidate contact: bodies, normal, levers and gap; no mechanics yet.
@@ -94,7 +95,7 @@ inline double normal_velocity(const ContactGeometry& pair, const std::vector<Bod
 {
   const BodyVelocity& a = velocity[pair.body_a];
   const BodyVelocity& b = velocity[pair.body_b];
-  return (a.vx - b.vx) * pair.normal_x + (a.vy - b.vy) * pair.normal_y;
+  return (a.vx - b.vx - pair.image_vx) * pair.normal_x + (a.vy - b.vy - pair.image_vy) * pair.normal_y;
 }
 
 // Linearised gap at the end of the step: gap + theta dt u_n^+ (m).

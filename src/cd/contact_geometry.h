@@ -50,6 +50,10 @@ struct ContactGeometry {
   double lever_b = 0.0;  // same for b; 0 for a wall point
   double point_x = 0.0;  // contact point, midway across the gap (m)
   double point_y = 0.0;
+  // Velocity of b's periodic image relative to body b (m/s): zero but across the sides of a
+  // deforming box, whose images move with the box (Lees-Edwards shear).
+  double image_vx = 0.0;
+  double image_vy = 0.0;
 };
 
 // Geometry between disk a and disk b (b given at the periodic image nearest to a).

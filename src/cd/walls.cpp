@@ -5,10 +5,34 @@
 
 namespace cd {
 
-void PeriodicBox::minimum_image(double& dx, double& dy) const
+PeriodicBox::Shift PeriodicBox::minimum_image(double& dx, double& dy) const
 {
-  if (periodic_x) dx -= length_x * std::nearbyint(dx / length_x);
-  if (periodic_y) dy -= length_y * std::nearbyint(dy / length_y);
+  Shift shift;
+  if (periodic_y) {
+    shift.y = static_cast<int>(std::nearbyint(dy / length_y));
+    dx -= shift.y * tilt_xy;
+    dy -= shift.y * length_y;
+  }
+  if (periodic_x) {
+    shift.x = static_cast<int>(std::nearbyint(dx / length_x));
+    dx -= shift.x * length_x;
+  }
+  return shift;
+}
+
+void PeriodicBox::image_velocity(const Shift& shift, double& vx, double& vy) const
+{
+  vx = shift.x * rate_x + shift.y * rate_xy;
+  vy = shift.y * rate_y;
+}
+
+PeriodicBox PeriodicBox::advanced(double elapsed) const
+{
+  PeriodicBox later = *this;
+  later.length_x += elapsed * rate_x;
+  later.length_y += elapsed * rate_y;
+  later.tilt_xy += elapsed * rate_xy;
+  return later;
 }
 
 std::optional<WallContact> wall_contact(const Wall& wall, int body, const Disk& disk, double alert,
@@ -19,7 +43,7 @@ std::optional<WallContact> wall_contact(const Wall& wall, int body, const Disk& 
   const double length_sq = ex * ex + ey * ey;
   double rx = disk.x - wall.ax;
   double ry = disk.y - wall.ay;
-  box.minimum_image(rx, ry);
+  const PeriodicBox::Shift shift = box.minimum_image(rx, ry);
 
   // Parameter of the nearest point along the wall; a segment clamps it to its ends.
   double s = (rx * ex + ry * ey) / length_sq;
@@ -36,7 +60,10 @@ std::optional<WallContact> wall_contact(const Wall& wall, int body, const Disk& 
   const double length = std::sqrt(length_sq);
   const double left_nx = -ey / length;
   const double left_ny = ex / length;
-  return WallContact{disk_world_geometry(body, disk, dx, dy, left_nx, left_ny), part};
+  // The disk meets the wall's image `shift` edge vectors away.
+  ContactGeometry geometry = disk_world_geometry(body, disk, dx, dy, left_nx, left_ny);
+  box.image_velocity(shift, geometry.image_vx, geometry.image_vy);
+  return WallContact{geometry, part};
 }
 
 }  // namespace cd

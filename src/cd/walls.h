@@ -8,14 +8,33 @@
 
 namespace cd {
 
-// Minimum-image convention for the periodic directions of an orthogonal box.
+// Periodic images of a 2D box, orthogonal or tilted (LAMMPS's triclinic box: edge vectors
+// (length_x, 0) and (tilt_xy, length_y)), at one instant. A deforming box moves its images:
+// the image shifted by (i, j) edge vectors moves at i (rate_x, 0) + j (rate_xy, rate_y)
+// relative to the original (LAMMPS's h_rate; fix deform ... remap v).
 struct PeriodicBox {
   bool periodic_x = false;
   bool periodic_y = false;
-  double length_x = 0.0;
-  double length_y = 0.0;
+  double length_x = 0.0;  // m
+  double length_y = 0.0;  // m
+  double tilt_xy = 0.0;   // m
+  double rate_x = 0.0;    // d length_x / dt (m/s)
+  double rate_y = 0.0;    // d length_y / dt (m/s)
+  double rate_xy = 0.0;   // d tilt_xy / dt (m/s)
 
-  void minimum_image(double& dx, double& dy) const;
+  // Whole edge vectors along x and y.
+  struct Shift {
+    int x = 0;
+    int y = 0;
+  };
+
+  // Reduces (dx, dy) to its nearest image, y first then x (exact for |tilt_xy| <= length_x / 2,
+  // which LAMMPS keeps), and returns the edge vectors subtracted.
+  Shift minimum_image(double& dx, double& dy) const;
+  // Velocity of the image `shift` edge vectors away relative to the original (m/s).
+  void image_velocity(const Shift& shift, double& vx, double& vy) const;
+  // The box `elapsed` seconds later at its present rates.
+  PeriodicBox advanced(double elapsed) const;
 };
 
 // Part of a wall that a disk touches; ends of a segment are point contacts of their own.
@@ -36,7 +55,8 @@ struct WallContact {
 };
 
 // The contact between a disk and a wall if their gap is at most `alert` (m); the wall's
-// nearest point is taken at the periodic image nearest to the disk.
+// nearest point is taken at the periodic image nearest to the disk, which moves with the box
+// (ContactGeometry::image_vx, image_vy).
 std::optional<WallContact> wall_contact(const Wall& wall, int body, const Disk& disk, double alert,
                                         const PeriodicBox& box);
 

@@ -56,4 +56,47 @@ TEST(Walls, SegmentAtPeriodicBoundaryIsSeenFromBothSides)
   EXPECT_FALSE(cd::wall_contact(side, 1, {9.6, 1.0, 0.5}, 0.0, {}));
 }
 
+// A y-periodic box tilted by half its length: the image of a segment across the bottom
+// side lies half a length along x, under a disk the orthogonal image would miss.
+TEST(Walls, TiltedBoxImagesTheSegmentAlongTheTilt)
+{
+  cd::PeriodicBox box;
+  box.periodic_x = box.periodic_y = true;
+  box.length_x = box.length_y = 10.0;
+  box.tilt_xy = 5.0;
+  const cd::Wall ledge = segment(1.0, 9.5, 4.0, 9.5);  // near the top; image at y = -0.5
+  const auto under = cd::wall_contact(ledge, 1, {7.5, 0.4, 1.0}, 0.0, box);
+  ASSERT_TRUE(under);
+  EXPECT_EQ(under->part, cd::WallPart::interior);
+  EXPECT_NEAR(under->geometry.normal_y, 1.0, 1e-12);
+  EXPECT_NEAR(under->geometry.gap, -0.1, 1e-12);
+  EXPECT_NEAR(under->geometry.point_x, 7.5, 1e-12);
+  EXPECT_FALSE(cd::wall_contact(ledge, 1, {2.5, 0.4, 1.0}, 0.0, box));
+}
+
+// A box sheared at rate_xy: the segment's image across the bottom side moves at -rate_xy
+// along x (one edge vector down), the segment itself at rest.
+TEST(Walls, ImageOfADeformingBoxMovesWithIt)
+{
+  cd::PeriodicBox box;
+  box.periodic_x = box.periodic_y = true;
+  box.length_x = box.length_y = 10.0;
+  box.rate_xy = 0.3;
+  box.rate_x = 0.02;
+  const cd::Wall ledge = segment(1.0, 9.5, 4.0, 9.5);
+  const auto below = cd::wall_contact(ledge, 1, {2.5, 0.4, 1.0}, 0.0, box);
+  ASSERT_TRUE(below);
+  EXPECT_DOUBLE_EQ(below->geometry.image_vx, -0.3);
+  EXPECT_DOUBLE_EQ(below->geometry.image_vy, 0.0);
+  const auto across_x = cd::wall_contact(segment(9.9, 1.0, 9.9, 3.0), 1, {0.5, 2.0, 1.0}, 0.0, box);
+  ASSERT_TRUE(across_x);
+  EXPECT_DOUBLE_EQ(across_x->geometry.image_vx, -0.02);
+  const auto itself = cd::wall_contact(ledge, 1, {2.5, 8.6, 1.0}, 0.0, box);
+  ASSERT_TRUE(itself);
+  EXPECT_DOUBLE_EQ(itself->geometry.image_vx, 0.0);
+  const cd::PeriodicBox later = box.advanced(2.0);
+  EXPECT_DOUBLE_EQ(later.tilt_xy, 0.6);
+  EXPECT_DOUBLE_EQ(later.length_x, 10.04);
+}
+
 }  // namespace

@@ -36,6 +36,18 @@ std::string with_fix(const std::string& fix_arguments)
   return preamble + "fix cd all contact/dynamics " + fix_arguments + "\nrun 10\n";
 }
 
+// Two grains in a periodic box tilted along x, sheared by fix deform on `group`.
+std::string sheared_box(const std::string& remap, const std::string& group, const std::string& fix_extra)
+{
+  return "units si\ndimension 2\natom_style sphere\natom_modify map array\ncomm_modify vel yes\n"
+         "neigh_modify delay 0 every 1 check yes\nboundary p p p\n"
+         "region box prism 0 0.01 0 0.01 -0.001 0.001 0 0 0\ncreate_box 1 box\n"
+         "create_atoms 1 single 0.002 0.005 0\ncreate_atoms 1 single 0.006 0.005 0\n"
+         "set group all diameter 0.001 density/disc 2500\ngroup one id 1\nneighbor 2e-4 bin\ntimestep 1e-5\n"
+         "fix shear " +
+         group + " deform 1 xy erate 1 " + remap + "\nfix cd all contact/dynamics 0.5 0.5" + fix_extra + "\nrun 1\n";
+}
+
 const BadCase bad_cases[] = {
     {"negative_mu", with_fix("-0.1 0.5"), "mu must be >= 0, got -0.1"},
     {"restitution_above_one", with_fix("0.5 1.5"), "e must be in [0,1], got 1.5"},
@@ -126,11 +138,14 @@ const BadCase bad_cases[] = {
      "units si\natom_style sphere\nregion box block 0 1 0 1 0 1\ncreate_box 1 box\n"
      "fix cd all contact/dynamics 0.5 0.5\n",
      "requires dimension 2"},
-    {"triclinic_box",
-     "units si\ndimension 2\natom_style sphere\natom_modify map array\ncomm_modify vel yes\n"
-     "region box prism 0 0.01 0 0.01 -0.001 0.001 0.005 0 0\ncreate_box 1 box\n"
-     "fix cd all contact/dynamics 0.5 0.5\nrun 0\n",
-     "requires an orthogonal box: a triclinic (tilted) box is not supported"},
+    // A tilted box is followed (tests/lammps/test_sheared_cell.cpp); a deforming one only with remap v.
+    {"deform_remap_x", sheared_box("remap x", "all", ""),
+     "fix shear (deform) must use remap v: remap x moves grains through their contacts"},
+    {"deform_remap_none", sheared_box("remap none", "all", ""), "fix shear (deform) must use remap v"},
+    {"deform_of_a_group", sheared_box("remap v", "one", ""),
+     "fix shear (deform) must act on group all to remap every velocity"},
+    {"deform_with_adaptive_step", sheared_box("remap v", "all", " dt_max 1e-5"),
+     "fix shear (deform) counts steps, not time: it cannot follow dt_max"},
     {"atom_style_without_radius",
      "units si\ndimension 2\natom_style atomic\nregion box block 0 1 0 1 -0.1 0.1\ncreate_box 1 box\n"
      "fix cd all contact/dynamics 0.5 0.5\n",

@@ -1,12 +1,14 @@
 // The shipped examples of inputs/examples/ keep running: LAMMPS's 2D pour, rigid and soft, on
 // shortened runs in a scratch folder (no ERROR or WARNING, every batch poured, the grains in the
-// box, the rigid contacts' overlaps within what the full run met).
+// box, the rigid contacts' overlaps within what the full run met), and the plane shear of a
+// Lees-Edwards cell (its stress tensor against torque balance, its shear rate from the profile).
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -25,12 +27,12 @@ struct ExampleRun {
   std::filesystem::path folder;
 };
 
-ExampleRun run_example(const std::string& deck, const std::string& duration)
+ExampleRun run_example(const std::string& deck, const std::string& variables)
 {
   const auto folder = std::filesystem::temp_directory_path() / ("cd_example_" + deck + "_" + std::to_string(getpid()));
   std::filesystem::create_directories(folder);
   const std::string command = "cd " + folder.string() + " && " LMP_CD_EXECUTABLE " -log none -in " EXAMPLES_DIR "/" +
-                              deck + " -var duration " + duration + " 2>&1";
+                              deck + " " + variables + " 2>&1";
   ExampleRun run{0, "", folder};
   FILE* pipe = popen(command.c_str(), "r");
   std::array<char, 4096> buffer;
@@ -80,7 +82,7 @@ void expect_clean(const ExampleRun& run)
 TEST(PourExample, RigidPoursEveryBatchWithoutOverlap)
 {
   // 11 time units: batches of 224 at t = 0, 3, 6 and 9, the first ones landed (from t ~ 5).
-  const auto run = run_example("in.pour_rigid", "11");
+  const auto run = run_example("in.pour_rigid", "-var duration 11");
   expect_clean(run);
   EXPECT_EQ(pour_value(run.output, "grains"), 4 * 224);
   EXPECT_EQ(pour_value(run.output, "capped"), 0);
@@ -106,11 +108,66 @@ TEST(PourExample, RigidPoursEveryBatchWithoutOverlap)
 TEST(PourExample, SoftTwinRuns)
 {
   // One time unit (10 000 steps): the first batch poured and falling, Hertz contacts set up.
-  const auto run = run_example("in.pour_granular", "1");
+  const auto run = run_example("in.pour_granular", "-var duration 1");
   expect_clean(run);
   EXPECT_EQ(pour_value(run.output, "grains"), 224);
   EXPECT_GT(pour_value(run.output, "ke"), 0);
   expect_in_the_box(run.folder / "pour.final", 0.01);
+  std::filesystem::remove_all(run.folder);
+}
+
+// The value after `key` on the output's last line starting with `tag`.
+double tagged_value(const std::string& output, const std::string& tag, const std::string& key)
+{
+  const auto line = output.rfind("\n" + tag + " ");
+  if (line == std::string::npos) return std::nan("");
+  std::istringstream words(output.substr(line + 1, output.find('\n', line + 1) - line - 1));
+  std::string word;
+  double value = std::nan("");
+  while (words >> word)
+    if (word == key && words >> value) return value;
+  return std::nan("");
+}
+
+// Least-squares slope of <vx> against the reduced height of fix ave/chunk's profile file.
+double profile_slope(const std::filesystem::path& profile)
+{
+  std::ifstream in(profile);
+  std::string line;
+  double n = 0, sy = 0, sv = 0, syy = 0, syv = 0;
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    double chunk, height, count, vx;
+    if (line[0] == '#' || !(row >> chunk >> height >> count >> vx)) continue;
+    n += 1, sy += height, sv += vx, syy += height * height, syv += height * vx;
+  }
+  return (n * syv - sy * sv) / (n * syy - sy * sy);
+}
+
+// 256 grains at phi 0.72 sheared by 4 at 0.1 / time unit, averaged over strains 2 to 4.
+TEST(PlaneShearExample, StressIsSymmetricByTorqueBalanceAndTheRateIsRecovered)
+{
+  const auto run = run_example("in.plane_shear", "-var side 16 -var phi 0.72 -var strain 4 -var press_steps 2000");
+  expect_clean(run);
+  auto value = [&](const char* key) { return tagged_value(run.output, "SHEAR", key); };
+  const double rate = value("rate"), area = value("lx") * value("ly");
+  EXPECT_NEAR(value("phi"), 0.72, 1e-6);
+  // Compressive normal stresses, and a shear stress resisting the shear (vx grows with y).
+  EXPECT_GT(value("contact_xx"), 0.0);
+  EXPECT_GT(value("contact_yy"), 0.0);
+  EXPECT_LT(value("contact_xy"), 0.0);
+  EXPECT_GT(value("pyy"), value("contact_yy"));  // the kinetic part adds
+  EXPECT_LT(value("pxy"), 0.0);
+  // Torque balance: sum over contacts of l x p = sum (r_a + r_b + gap) p_t, and every contact
+  // turns its two grains by -r p_t / I: the antisymmetric part xy - yx is minus the rate of the
+  // grains' spin angular momentum per area, over the averaging window. Left: the gap's share of
+  // the lever (a few 1e-4 d), far below 1 % of the shear stress.
+  const double spin_rate = (value("spin_end") - value("spin_start")) / (area * value("time"));
+  EXPECT_NEAR(value("contact_xy") - value("contact_yx"), -spin_rate, 0.01 * std::fabs(value("contact_xy")));
+  // The imposed rate from the mean velocity profile (reduced height: divide by ly), within the
+  // scatter of 2 strains of 256 grains (a few %).
+  EXPECT_NEAR(profile_slope(run.folder / "profile.shear") / value("ly"), rate, 0.05 * rate);
+  EXPECT_EQ(value("capped"), 0);
   std::filesystem::remove_all(run.folder);
 }
 
