@@ -447,21 +447,25 @@ void FixContactDynamics::for_each_listed_pair(Visit&& visit) const
 }
 
 template <class Visit>
-void FixContactDynamics::for_each_grain_gap(Visit&& visit) const
+void FixContactDynamics::for_each_grain_overlap(Visit&& visit) const
 {
   double** x = atom->x;
   const double* radius = atom->radius;
   const int* mask = atom->mask;
+  // Most listed pairs are apart: the squared distance tells them without a square root.
   for_each_listed_pair([&](int i, int j) {
     if (!(mask[i] & groupbit) && !(mask[j] & groupbit)) return;
-    visit(cd::disk_disk_geometry(0, {x[i][0], x[i][1], radius[i]}, 0, {x[j][0], x[j][1], radius[j]}).gap);
+    const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1];
+    const double touching = radius[i] + radius[j];
+    const double distance_sq = dx * dx + dy * dy;
+    if (distance_sq < touching * touching) visit(touching - std::sqrt(distance_sq));
   });
   const cd::PeriodicBox box = periodic_box();
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     for (const cd::Wall& wall : settings.walls)
       if (const auto touch = cd::wall_contact(wall, 0, {x[i][0], x[i][1], radius[i]}, 0.0, box))
-        visit(touch->geometry.gap);
+        if (touch->geometry.gap < 0.0) visit(-touch->geometry.gap);
   }
 }
 
@@ -471,10 +475,10 @@ void FixContactDynamics::warn_initial_overlaps()
 {
   const double threshold = initial_overlap_warning * mean_diameter;
   double local[2] = {0.0, 0.0};  // count, deepest
-  for_each_grain_gap([&](double gap) {
-    if (-gap <= threshold) return;
+  for_each_grain_overlap([&](double depth) {
+    if (depth <= threshold) return;
     local[0] += 1.0;
-    local[1] = std::max(local[1], -gap);
+    local[1] = std::max(local[1], depth);
   });
   double global[2];
   MPI_Allreduce(&local[0], &global[0], 1, MPI_DOUBLE, MPI_SUM, world);
@@ -729,16 +733,23 @@ void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double 
   // meets it at the predicted configuration, and its look reaches as far as its speed.
   const double predictor = (1.0 - contact_step.settings().theta) * update->dt;
   const double advance = contact_step.settings().theta * update->dt;
+  // Positions as they are unless obstacles may have moved or the box deforms (no lookups).
+  const bool displaced = obstacles_present || domain_deforms;
+  double** x = atom->x;
+  const double* radius = atom->radius;
   for_each_listed_pair([&](int i, int j) {
     if (!(mask[i] & groupbit) && !(mask[j] & groupbit)) return;
     const int body_j = body_of_atom[j];
-    double image_vx = 0.0, image_vy = 0.0;
-    image_velocity_of(j, image_vx, image_vy);
-    const double image_reach = advance * std::sqrt(image_vx * image_vx + image_vy * image_vy);
-    const cd::Disk disk_i = disk_at_solve(i);
-    cd::Disk disk_j = disk_at_solve(j);
-    disk_j.x += predictor * image_vx;
-    disk_j.y += predictor * image_vy;
+    double image_vx = 0.0, image_vy = 0.0, image_reach = 0.0;
+    cd::Disk disk_i{x[i][0], x[i][1], radius[i]}, disk_j{x[j][0], x[j][1], radius[j]};
+    if (displaced) {
+      image_velocity_of(j, image_vx, image_vy);
+      image_reach = advance * std::sqrt(image_vx * image_vx + image_vy * image_vy);
+      disk_i = disk_at_solve(i);
+      disk_j = disk_at_solve(j);
+      disk_j.x += predictor * image_vx;
+      disk_j.y += predictor * image_vy;
+    }
     if (!reach.in_look(1 + i, disk_i, body_j, disk_j, from_margin + image_reach, to_margin + image_reach)) return;
     if (body_j == 1 + i)
       error->one(FLERR, "Fix contact/dynamics: atom {} touches its own periodic image; the cell is too short",
@@ -873,10 +884,9 @@ void FixContactDynamics::measure_overlaps()
 {
   comm->forward_comm();
   double local[2] = {0.0, 0.0};  // deepest, sum (m)
-  for_each_grain_gap([&](double gap) {
-    if (gap >= 0.0) return;
-    local[0] = std::max(local[0], -gap);
-    local[1] -= gap;
+  for_each_grain_overlap([&](double depth) {
+    local[0] = std::max(local[0], depth);
+    local[1] += depth;
   });
   double deepest = 0.0, total = 0.0;
   MPI_Allreduce(&local[0], &deepest, 1, MPI_DOUBLE, MPI_MAX, world);

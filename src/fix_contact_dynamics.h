@@ -147,9 +147,10 @@ class FixContactDynamics : public Fix {
   // Every pair of LAMMPS's neighbour list once, as visit(i, j) (definition in the .cpp).
   template <class Visit>
   void for_each_listed_pair(Visit&& visit) const;
-  // The gap of every listed pair with a grain and of every grain near a wall, at the positions now.
+  // The overlap depth (m, > 0) of every overlapping listed pair with a grain and of every grain
+  // overlapping a wall, at the positions now.
   template <class Visit>
-  void for_each_grain_gap(Visit&& visit) const;
+  void for_each_grain_overlap(Visit&& visit) const;
   void warn_initial_overlaps();
   void measure_overlaps();
   void place_obstacles();
