@@ -146,6 +146,13 @@ const BadCase bad_cases[] = {
      "fix shear (deform) must act on group all to remap every velocity"},
     {"deform_with_adaptive_step", sheared_box("remap v", "all", " dt_max 1e-5"),
      "fix shear (deform) counts steps, not time: it cannot follow dt_max"},
+    {"barostat",
+     "units si\ndimension 2\natom_style sphere\natom_modify map array\ncomm_modify vel yes\nboundary p p p\n"
+     "region box block 0 0.01 0 0.01 -0.001 0.001\ncreate_box 1 box\ncreate_atoms 1 single 0.002 0.005 0\n"
+     "set group all diameter 0.001 density/disc 2500\nfix baro all press/berendsen x 0 0 1 y 0 0 1\n"
+     "fix cd all contact/dynamics 0.5 0.5\nrun 1\n",
+     "fix baro (press/berendsen) changes the box and moves the grains with it: only fix deform with remap v is "
+     "followed"},
     {"atom_style_without_radius",
      "units si\ndimension 2\natom_style atomic\nregion box block 0 1 0 1 -0.1 0.1\ncreate_box 1 box\n"
      "fix cd all contact/dynamics 0.5 0.5\n",
