@@ -551,7 +551,11 @@ def section_where():
             "- `series/<analysis>/report.md`: every fit, residual, held fit and figure of one series "
             "([flow_rules](series/flow_rules/report.md), [layer_flow_rules](series/layer_flow_rules/report.md), "
             "[L_series](series/L_series/report.md), [readings](series/readings/report.md)).\n"
-            "- [soft/README.md](soft/README.md): rigid against soft-sphere runs of the same packing.\n")
+            "- [soft/README.md](soft/README.md): rigid against soft-sphere runs of the same packing.\n"
+            "- [bed/analysis/bed.md](bed/analysis/bed.md): the erodible bed against the solver's tolerance and its "
+            "floor at rest (doc/bed.md).\n"
+            "- `size_law/`: flows rained with diameters uniform in area, the size law's part of the packing law's "
+            "offset (doc/source.md, `scripts/size_law_offset.py`).\n")
 
 
 def page_header(title, command):
