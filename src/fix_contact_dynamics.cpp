@@ -202,7 +202,8 @@ void FixContactDynamics::check_alert()
 
 // A deforming box is followed when its images move at its rates (remap v, LAMMPS's Lees-Edwards
 // cell) and every atom's velocity is remapped as it crosses a side (group all). Other fixes that
-// change the box (press/berendsen, nph, box/relax) rescale the grains through their contacts. remap x moves
+// change the box's size or shape (press/berendsen, nph, box/relax; not fix balance, which moves
+// only the subdomains) rescale the grains through their contacts. remap x moves
 // grains affinely through their contacts at the end of the step; remap none leaves a grain that
 // crosses the sheared side at its old velocity. fix deform sets the box by step count, not time.
 void FixContactDynamics::check_deforming_box()
@@ -210,7 +211,8 @@ void FixContactDynamics::check_deforming_box()
   domain_deforms = false;
   for (int f = 0; f < modify->nfix; f++) {
     const Fix* other = modify->fix[f];
-    if (other != this && other->box_change && !utils::strmatch(other->style, "^deform"))
+    if (other != this && (other->box_change & (Fix::BOX_CHANGE_SIZE | Fix::BOX_CHANGE_SHAPE)) &&
+        !utils::strmatch(other->style, "^deform"))
       error->all(FLERR,
                  "Fix contact/dynamics: fix {} ({}) changes the box and moves the grains with it: only fix deform "
                  "with remap v is followed",
