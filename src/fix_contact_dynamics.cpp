@@ -1033,24 +1033,13 @@ void FixContactDynamics::image_velocity_of(int atom_index, double& vx, double& v
   step_box.image_velocity(image_shift[atom_index], vx, vy);
 }
 
-// The contact part of the pressure tensor, (1 / (A dt)) sum over loaded grain pairs of the
-// branch vector (from b's centre to a's) times a's impulse, as LAMMPS's pair virial (compressive
-// positive; xy = sum l_x p_y). Into the output vector (xx, yy, xy, yx) and, summed per rank, the
-// fix's virial (energy units) for compute pressure.
+// The contact part of the pressure tensor, (1 / (A dt)) cd::branch_impulse_sums, as LAMMPS's
+// pair virial: into the output vector (xx, yy, xy, yx) and, summed per rank, the fix's virial
+// (energy units) for compute pressure.
 void FixContactDynamics::tally_contact_stress()
 {
-  double local[4] = {0.0, 0.0, 0.0, 0.0};  // sum of l p (m N s)
-  contact_step.contacts().for_each_loaded([&](const cd::PairKey&, const cd::Contact& c) {
-    if (c.body_b == cd::world_body) return;
-    const double branch = c.lever_a + c.lever_b + c.gap;
-    const double lx = branch * c.normal_x, ly = branch * c.normal_y;
-    const double px = c.impulse.n * c.normal_x - c.impulse.t * c.normal_y;
-    const double py = c.impulse.n * c.normal_y + c.impulse.t * c.normal_x;
-    local[0] += lx * px;
-    local[1] += ly * py;
-    local[2] += lx * py;
-    local[3] += ly * px;
-  });
+  const cd::BranchImpulseSums sums = cd::branch_impulse_sums(contact_step.contacts().solved);
+  double local[4] = {sums.xx, sums.yy, sums.xy, sums.yx};  // m N s
   const double dt = update->dt;
   if (vflag_global) {
     virial[0] += local[0] / dt;

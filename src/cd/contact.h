@@ -66,6 +66,17 @@ inline Local2 relative_velocity(const Contact& c, const BodyVelocity& a, const B
           -dvx * c.normal_y + dvy * c.normal_x - c.image_velocity.t - c.lever_a * a.spin - c.lever_b * b.spin};
 }
 
+// An impulse of the contact's local frame (p_n along n, p_t along t = (-n_y, n_x)) in world
+// components: what it gives body a (body b gets the opposite).
+struct WorldImpulse {
+  double x = 0.0;  // N s
+  double y = 0.0;
+};
+inline WorldImpulse world_impulse(const Contact& c, Local2 p)
+{
+  return {p.n * c.normal_x - p.t * c.normal_y, p.n * c.normal_y + p.t * c.normal_x};
+}
+
 // The frame of a candidate contact: bodies, normal, levers and gap; no mechanics yet.
 Contact contact_frame(const ContactGeometry& geometry);
 

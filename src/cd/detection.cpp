@@ -105,4 +105,21 @@ OverlapSums measure_overlaps(const StepContacts& contacts, const std::vector<Bod
   return sums;
 }
 
+BranchImpulseSums branch_impulse_sums(const std::vector<Contact>& solved)
+{
+  BranchImpulseSums sums;
+  for (const Contact& c : solved) {
+    const bool finite = std::isfinite(c.impulse.n) && std::isfinite(c.impulse.t);
+    if (c.body_b == world_body || (finite && c.impulse.n <= 0.0)) continue;  // as for_each_loaded
+    const double branch = c.lever_a + c.lever_b + c.gap;
+    const double lx = branch * c.normal_x, ly = branch * c.normal_y;
+    const WorldImpulse p = world_impulse(c, c.impulse);
+    sums.xx += lx * p.x;
+    sums.yy += ly * p.y;
+    sums.xy += lx * p.y;
+    sums.yx += ly * p.x;
+  }
+  return sums;
+}
+
 }  // namespace cd

@@ -160,4 +160,15 @@ struct OverlapSums {
 OverlapSums measure_overlaps(const StepContacts& contacts, const std::vector<BodyVelocity>& velocity,
                              const StepParameters& step);
 
+// Sum over the loaded contacts (StepContacts::for_each_loaded) between two bodies (not walls) of the branch vector l (from b's
+// centre to a's, at the predicted configuration) times a's impulse p (N s m): the contact part
+// of the pressure tensor times area and step, compressive positive, xy = sum l_x p_y.
+struct BranchImpulseSums {
+  double xx = 0.0;
+  double yy = 0.0;
+  double xy = 0.0;
+  double yx = 0.0;
+};
+BranchImpulseSums branch_impulse_sums(const std::vector<Contact>& solved);
+
 }  // namespace cd

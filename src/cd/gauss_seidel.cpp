@@ -12,13 +12,12 @@ namespace {
 // the same way: its lever arms are -r_a n on a and +r_b n on b, with opposite forces.
 inline void apply_impulse(const Contact& c, Local2 dp, BodyVelocity& a, BodyVelocity& b)
 {
-  const double px = dp.n * c.normal_x - dp.t * c.normal_y;
-  const double py = dp.n * c.normal_y + dp.t * c.normal_x;
-  a.vx += c.inv_mass_a * px;
-  a.vy += c.inv_mass_a * py;
+  const WorldImpulse p = world_impulse(c, dp);
+  a.vx += c.inv_mass_a * p.x;
+  a.vy += c.inv_mass_a * p.y;
   a.spin -= c.spin_gain_a * dp.t;
-  b.vx -= c.inv_mass_b * px;
-  b.vy -= c.inv_mass_b * py;
+  b.vx -= c.inv_mass_b * p.x;
+  b.vy -= c.inv_mass_b * p.y;
   b.spin -= c.spin_gain_b * dp.t;
 }
 

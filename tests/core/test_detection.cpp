@@ -236,3 +236,33 @@ TEST(MeasureOverlaps, DeepestOverAllPairsAndTotalOverTheSolvedOnes)
 }
 
 }  // namespace
+
+namespace {
+
+// One loaded pair with n = (0.6, 0.8), levers 1 and 2 m and a gap of 0.5 m: l = 3.5 n; p = (3, 1)
+// in the local frame is (3 n + 1 t) = (1.0, 3.0) in the world (t = (-0.8, 0.6)). A wall contact
+// and an unloaded pair add nothing.
+TEST(BranchImpulseSums, AreTheBranchVectorTimesTheImpulseOfLoadedPairsOnly)
+{
+  cd::Contact pair;
+  pair.body_a = 1;
+  pair.body_b = 2;
+  pair.normal_x = 0.6;
+  pair.normal_y = 0.8;
+  pair.lever_a = 1.0;
+  pair.lever_b = 2.0;
+  pair.gap = 0.5;
+  pair.impulse = {3.0, 1.0};
+  cd::Contact wall = pair;
+  wall.body_b = cd::world_body;
+  cd::Contact unloaded = pair;
+  unloaded.impulse = {0.0, 0.0};
+  const cd::BranchImpulseSums sums = cd::branch_impulse_sums({pair, wall, unloaded});
+  const double lx = 3.5 * 0.6, ly = 3.5 * 0.8;
+  EXPECT_NEAR(sums.xx, lx * 1.0, 1e-14);
+  EXPECT_NEAR(sums.yy, ly * 3.0, 1e-14);
+  EXPECT_NEAR(sums.xy, lx * 3.0, 1e-14);
+  EXPECT_NEAR(sums.yx, ly * 1.0, 1e-14);
+}
+
+}  // namespace
