@@ -20,6 +20,13 @@ PeriodicBox::Shift PeriodicBox::minimum_image(double& dx, double& dy) const
   return shift;
 }
 
+PeriodicBox::Shift PeriodicBox::wrapping(double dx, double dy) const
+{
+  const double along_x = dx - tilt_xy * dy / length_y;
+  return {periodic_x ? -static_cast<int>(std::floor(along_x / length_x)) : 0,
+          periodic_y ? -static_cast<int>(std::floor(dy / length_y)) : 0};
+}
+
 void PeriodicBox::image_velocity(const Shift& shift, double& vx, double& vy) const
 {
   vx = shift.x * rate_x + shift.y * rate_xy;

@@ -31,6 +31,10 @@ struct PeriodicBox {
   // Reduces (dx, dy) to its nearest image, y first then x (exact for |tilt_xy| <= length_x / 2,
   // which LAMMPS keeps), and returns the edge vectors subtracted.
   Shift minimum_image(double& dx, double& dy) const;
+  // The edge vectors that carry a point (dx, dy) from the box's lower corner into the box, as
+  // LAMMPS wraps atoms that crossed a periodic side: whole cells along y, then along x measured
+  // parallel to the tilted side. Zero along a direction that is not periodic.
+  Shift wrapping(double dx, double dy) const;
   // Velocity of the image `shift` edge vectors away relative to the original (m/s).
   void image_velocity(const Shift& shift, double& vx, double& vy) const;
   // The box `elapsed` seconds later at its present rates.

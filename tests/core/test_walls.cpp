@@ -100,3 +100,23 @@ TEST(Walls, ImageOfADeformingBoxMovesWithIt)
 }
 
 }  // namespace
+
+// A tilted box 10 x 10 m, tilt 5 m: (3, 12) from the lower corner lies one cell up and, measured
+// along the tilted side (3 - 5 * 12/10 = -3), one cell left; the wrap adds (10, 0) - (5, 10),
+// which lands at (8, 2), inside the box (x from 1 to 11 at y = 2). Without periodicity along x
+// only the y cell is undone.
+TEST(PeriodicBox, WrappingUndoesTheCellsAlongTheTiltedSides)
+{
+  cd::PeriodicBox box;
+  box.periodic_x = box.periodic_y = true;
+  box.length_x = box.length_y = 10.0;
+  box.tilt_xy = 5.0;
+  const cd::PeriodicBox::Shift shift = box.wrapping(3.0, 12.0);
+  EXPECT_EQ(shift.x, 1);
+  EXPECT_EQ(shift.y, -1);
+  EXPECT_EQ(box.wrapping(4.0, 3.0).x, 0);
+  EXPECT_EQ(box.wrapping(4.0, 3.0).y, 0);
+  box.periodic_x = false;
+  EXPECT_EQ(box.wrapping(3.0, 12.0).x, 0);
+  EXPECT_EQ(box.wrapping(3.0, 12.0).y, -1);
+}
