@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -26,6 +27,7 @@
 #include "utils.h"
 
 #include "cd/impulse_row.h"
+#include "cd/problem_file.h"
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -74,6 +76,9 @@ FixContactDynamics::FixContactDynamics(LAMMPS* lmp, int narg, char** arg) : Fix(
       fix_keywords::parse_settings(narg, arg, atom->ntypes, domain->boxlo, domain->boxhi, error);
   settings = std::move(command.fix);
   contact_step = cd::MoreauJeanStep(command.step, settings.shuffle_seed);
+  contact_step.keep_problems(settings.save_problems_over >= 0);
+  if (settings.save_problems_over >= 0 && comm->nprocs > 1)
+    error->all(FLERR, "Fix contact/dynamics: save_problems needs one rank (a saved problem is one rank's contacts)");
 
   time_integrate = 1;
   vector_flag = 1;
@@ -330,6 +335,7 @@ void FixContactDynamics::setup(int)
   warn_initial_overlaps();
   obstacles.record_starts(*atom, groupbit);
   overlaps_measured_at = -1;
+  run_statistics.clear();
   if (settings.adaptive_step()) init_step_grid();
 }
 
@@ -558,17 +564,45 @@ void FixContactDynamics::final_integrate()
   reduce_step_outputs();
   if (obstacles_present) obstacles.record_starts(*atom, groupbit);
 
+  count_solve();
+  save_hard_problem();
+}
+
+// The running totals and the run's statistics; a warning on the 1st, 10th, 100th ...
+// unconverged step.
+void FixContactDynamics::count_solve()
+{
+  run_statistics.record(last_report);
   total_iterations += last_report.iterations;
   total_steps += 1.0;
-  if (!last_report.converged) {
-    total_unconverged_steps += 1.0;
-    const double count = total_unconverged_steps;
-    // Warn on the 1st, 10th, 100th ... unconverged step.
-    if (comm->me == 0 && std::fabs(std::log10(count) - std::round(std::log10(count))) < 1e-12)
-      error->warning(FLERR,
-                     "Fix contact/dynamics: iteration cap {} reached at step {} (residual {:.3g}); "
-                     "{} step(s) unconverged so far",
-                     contact_step.settings().solver.max_iterations, update->ntimestep, last_report.residual, count);
+  if (last_report.converged) return;
+  total_unconverged_steps += 1.0;
+  const double count = total_unconverged_steps;
+  if (comm->me == 0 && std::fabs(std::log10(count) - std::round(std::log10(count))) < 1e-12)
+    error->warning(FLERR,
+                   "Fix contact/dynamics: iteration cap {} reached at step {} (residual {:.3g}); "
+                   "{} step(s) unconverged so far",
+                   contact_step.settings().solver.max_iterations, update->ntimestep, last_report.residual, count);
+}
+
+// save_problems: the step's problem as the solver met it, with each body's height, if its solve
+// took more sweeps than asked or met the cap (one rank: a problem is one rank's contacts).
+void FixContactDynamics::save_hard_problem()
+{
+  if (settings.save_problems_over < 0) return;
+  if (last_report.converged && last_report.iterations <= settings.save_problems_over) return;
+  cd::ContactProblem problem = contact_step.kept_problem();
+  problem.height.assign(problem.free_velocity.size(), 0.0);
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->mask[i] & groupbit) problem.height[body_of_atom[i]] = atom->x[i][1];
+  problem.label =
+      fmt::format("step {} time {} dt {} sweeps {} converged {} final norm {}", update->ntimestep, current_time(),
+                  update->dt, last_report.iterations, last_report.converged ? 1 : 0, last_report.residual);
+  const std::string path = fmt::format("{}.{}.cdp", settings.save_problems_prefix, update->ntimestep);
+  try {
+    cd::write_problem(path, problem);
+  } catch (const std::runtime_error& failure) {
+    error->one(FLERR, "Fix contact/dynamics: save_problems: {}", failure.what());
   }
 }
 
@@ -850,6 +884,8 @@ void FixContactDynamics::measure_overlaps()
 void FixContactDynamics::post_run()
 {
   if (mean_diameter > 0.0 && overlaps_measured_at != update->ntimestep) measure_overlaps();
+  if (comm->me == 0)
+    utils::logmesg(lmp, "Fix contact/dynamics {} solver: {}\n", id, cd::describe(run_statistics.summary()));
 }
 
 /* ----------------------------------------------------------------------

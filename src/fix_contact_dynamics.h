@@ -16,6 +16,7 @@ FixStyle(contact/dynamics,FixContactDynamics);
 
 #include "cd/detection.h"
 #include "cd/gauss_seidel.h"
+#include "cd/solve_statistics.h"
 #include "cd/step.h"
 #include "cd/walls.h"
 #include "fix.h"
@@ -110,6 +111,7 @@ class FixContactDynamics : public Fix {
   bool distributed = false;                           // more than one rank: exchange every sweep
   cd::MoreauJeanStep contact_step;                    // the core's step: pairs, order, warm start, solve
   cd::SolveReport last_report;
+  cd::SolveStatistics run_statistics;  // this run's steps, reported at its end (post_run)
   // Outputs 5 and 6 (in mean diameters, over all ranks), measured when read (measure_overlaps).
   double max_overlap = 0.0, mean_overlap = 0.0;
   bigint overlaps_measured_at = -1;  // the step they were measured at; -1: not yet this run
@@ -178,6 +180,8 @@ class FixContactDynamics : public Fix {
   double current_time() const;  // LAMMPS's time now (s)
   void set_clock(double time);  // sets it
   void fill_local_output();
+  void count_solve();
+  void save_hard_problem();
 };
 
 }  // namespace LAMMPS_NS

@@ -35,6 +35,7 @@ class SettingsParser {
  private:
   void refuse_repeat(const std::string& keyword);
   int parse_order(int iarg);
+  int parse_save_problems(int iarg);
   int parse_wall(int iarg);
   void parse_type_law(const char* keyword, int iarg, bool friction);
   void parse_value(const std::string& keyword, const char* value);
@@ -73,6 +74,8 @@ void SettingsParser::parse_keywords()
       iarg += 4;
     } else if (keyword == "order") {
       iarg = parse_order(iarg);
+    } else if (keyword == "save_problems") {
+      iarg = parse_save_problems(iarg);
     } else {
       require_values(arg[iarg], iarg, 1, narg, error);
       parse_value(keyword, arg[iarg + 1]);
@@ -108,6 +111,17 @@ int SettingsParser::parse_order(int iarg)
   return iarg + 3;
 }
 
+// save_problems sweeps prefix
+int SettingsParser::parse_save_problems(int iarg)
+{
+  require_values("save_problems", iarg, 2, narg, error, "sweeps prefix");
+  settings.save_problems_over = integer_for("save_problems", arg[iarg + 1], error);
+  if (settings.save_problems_over < 0)
+    error->all(FLERR, "Fix contact/dynamics: save_problems sweeps must be >= 0, got {}", settings.save_problems_over);
+  settings.save_problems_prefix = arg[iarg + 2];
+  return iarg + 3;
+}
+
 // The keywords of one value. The step's settings are range-checked by the core (check_step).
 void SettingsParser::parse_value(const std::string& keyword, const char* value)
 {
@@ -129,6 +143,10 @@ void SettingsParser::parse_value(const std::string& keyword, const char* value)
     if (acceleration == "none") step.solver.acceleration = cd::Acceleration::none;
     else if (acceleration == "conjugate") step.solver.acceleration = cd::Acceleration::conjugate;
     else error->all(FLERR, "Fix contact/dynamics: acceleration must be none or conjugate, got '{}'", acceleration);
+  } else if (keyword == "stall_window") {
+    step.solver.stall_window = integer_for("stall_window", value, error);
+  } else if (keyword == "stall_relaxation") {
+    step.solver.stall_relaxation = number_for("stall_relaxation", value, error);
   } else if (keyword == "full_sweep_every") {
     step.solver.full_sweep_every = integer_for("full_sweep_every", value, error);
   } else if (keyword == "join") {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "cd/step.h"
@@ -35,6 +36,10 @@ struct FixSettings {
   cd::StepGrid step_grid;
   double dt_align = 0.0;         // s; 0: dt_max
   double travel_fraction = 0.4;  // largest travel of a grain in one step, in neighbour skins
+  // save_problems: every step whose solve takes more than this many sweeps, or meets the cap,
+  // written as <prefix>.<step>.cdp (cd/problem_file.h); -1: none.
+  int save_problems_over = -1;
+  std::string save_problems_prefix;
 
   bool adaptive_step() const { return step_grid.dt_max > 0.0; }
   const cd::ContactLaw& law(int itype, int jtype) const { return type_laws[itype * (law_types + 1) + jtype]; }

@@ -3,6 +3,10 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "cd/refusal.h"
 
 namespace cd {
 
@@ -71,8 +75,11 @@ inline double update_frictional(Contact& c, BodyVelocity* velocity, double relax
   const Local2 u = relative_velocity(c, a, b);
   const Local2 stick{c.impulse.n - c.delassus.inverse_nn * (u.n + c.velocity_bias),
                      c.impulse.t - c.delassus.inverse_tt * u.t};
-  const Local2 solved = relaxed(solve_coulomb_disk(stick, c.mu), c.impulse, relaxation);
-  const Local2 velocity_change = c.delassus.times({solved.n - c.impulse.n, solved.t - c.impulse.t});
+  const Local2 local = solve_coulomb_disk(stick, c.mu);
+  const Local2 solved = relaxed(local, c.impulse, relaxation);
+  // The norm takes the plain local solve's change, which relaxation would shrink by w: a relaxed
+  // solve then stops where a plain sweep would change no more than the tolerance allows.
+  const Local2 velocity_change = c.delassus.times({local.n - c.impulse.n, local.t - c.impulse.t});
   record_change<norm>(change, velocity_change, c.delassus.times(solved));
   const Local2 p = accelerated<conjugate>(c, solved, beta);
   const Local2 dp{p.n - c.impulse.n, p.t - c.impulse.t};
@@ -90,8 +97,9 @@ inline double update_frictionless(Contact& c, BodyVelocity* velocity, double rel
   BodyVelocity& a = velocity[c.body_a];
   BodyVelocity& b = velocity[c.body_b];
   const double stick_n = c.impulse.n - c.delassus.inverse_nn * (relative_velocity(c, a, b).n + c.velocity_bias);
-  const double solved_n = relaxed({std::max(stick_n, 0.0), 0.0}, c.impulse, relaxation).n;
-  const double velocity_change = c.delassus.nn * (solved_n - c.impulse.n);
+  const double local_n = std::max(stick_n, 0.0);
+  const double solved_n = relaxed({local_n, 0.0}, c.impulse, relaxation).n;
+  const double velocity_change = c.delassus.nn * (local_n - c.impulse.n);
   record_change<norm>(change, {velocity_change, 0.0}, {c.delassus.nn * solved_n, 0.0});
   const double p_n = accelerated<conjugate>(c, {solved_n, 0.0}, beta).n;
   const double dp_n = p_n - c.impulse.n;
@@ -239,118 +247,191 @@ bool count_sweep(SolveReport& report, const SweepChange& change, std::size_t upd
   return report.residual <= settings.tolerance;
 }
 
-// Every sweep over every contact (full_sweep_every 1).
-SolveReport solve_in_full_sweeps(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                                 const SolverSettings& settings, SweepExchange* exchange, JoiningContacts* joining)
-{
-  SolveReport report;
-  ConjugateBeta conjugate;
-  double beta = 0.0;
-  while (report.iterations < settings.max_iterations) {
-    SweepChange change = sweep(contacts, velocity, settings, beta);
-    if (exchange) exchange->after_sweep(change);
-    const bool converged = count_sweep(report, change, contacts.size(), settings);
-    const bool joined = joining && looks_for_joining(report.iterations, converged) && joining->join(converged);
-    if (converged && !joined) return report;
-    if (settings.acceleration == Acceleration::conjugate)
-      beta = conjugate.next(change.sum_change_sq, report.iterations, settings.max_iterations);
+// The stall test of SolverSettings::stall_window, fed the norm after every full sweep: a solve
+// has stalled when stall_window sweeps have passed since its norm last fell below stall_progress
+// times the value it had fallen to before. A solve that converges at any steady rate faster
+// than that never stalls; one that cycles among contact states (sticking, sliding, opening
+// from sweep to sweep at high friction) does, whatever its norm's level.
+class StallWatch {
+ public:
+  explicit StallWatch(const SolverSettings& settings)
+      : window_(settings.stall_window), progress_(settings.stall_progress)
+  {
   }
-  report.converged = false;
-  return report;
+  bool stalled(double residual, int iterations)
+  {
+    if (window_ == 0) return false;
+    if (residual < progress_ * mark_) {
+      mark_ = residual;
+      mark_at_ = iterations;
+    }
+    return iterations - mark_at_ >= window_;
+  }
+
+ private:
+  int window_;
+  double progress_;
+  double mark_ = std::numeric_limits<double>::infinity();
+  int mark_at_ = 0;
+};
+
+// The sweeps of a stalled solve: relaxed, unaccelerated (relaxation damps the cycle;
+// acceleration would push it on).
+SolverSettings rescue_settings(const SolverSettings& settings)
+{
+  SolverSettings rescue = settings;
+  rescue.relaxation = settings.stall_relaxation;
+  rescue.acceleration = Acceleration::none;
+  return rescue;
 }
 
 // The contacts a cycle's full sweep left changing, by their place in the contact list (in
 // sweep order). The quiet ones keep their impulses until the next full sweep, so their share of
 // the norm's scale is summed once.
-class ActiveContacts {
- public:
-  void select(const std::vector<Contact>& contacts, const std::vector<double>& change_sq, double quiet_sq)
-  {
-    listed_.clear();
-    quiet_ = SweepChange{};
-    for (std::size_t k = 0; k < contacts.size(); k++) {
-      if (change_sq[k] > quiet_sq) listed_.push_back(static_cast<int>(k));
-      else quiet_.add({0.0, 0.0}, contacts[k].delassus.times(contacts[k].impulse));
-    }
+void select_active(GaussSeidel::CycleWorkspace& work, const std::vector<Contact>& contacts, double quiet_sq)
+{
+  work.active.clear();
+  work.quiet = SweepChange{};
+  for (std::size_t k = 0; k < contacts.size(); k++) {
+    if (work.change_sq[k] > quiet_sq) work.active.push_back(static_cast<int>(k));
+    else work.quiet.add({0.0, 0.0}, contacts[k].delassus.times(contacts[k].impulse));
   }
+}
 
-  // A sweep over the active contacts, its sums completed by the quiet contacts' scale.
-  SweepChange sweep(std::vector<Contact>& contacts, BodyVelocity* velocity, const SolverSettings& settings,
-                    double beta) const
-  {
-    SweepChange change = sweep_listed(contacts.data(), listed_, velocity, settings, beta);
-    change.merge(quiet_);
-    return change;
-  }
-
-  std::size_t size() const { return listed_.size(); }
-
- private:
-  std::vector<int> listed_;
-  SweepChange quiet_;
-};
-
-// Reused from solve to solve: once the largest problem has been seen, a step allocates nothing.
-struct CycleWorkspace {
-  std::vector<double> change_sq;
-  ActiveContacts active;
-};
+// A sweep over the active contacts, its sums completed by the quiet contacts' scale.
+SweepChange sweep_active(const GaussSeidel::CycleWorkspace& work, std::vector<Contact>& contacts,
+                         BodyVelocity* velocity, const SolverSettings& settings, double beta)
+{
+  SweepChange change = sweep_listed(contacts.data(), work.active, velocity, settings, beta);
+  change.merge(work.quiet);
+  return change;
+}
 
 // A contact counts as quiet when its change in the full sweep is below this fraction of the
 // tolerance (SweepChange::quiet_change_sq). Measured on the 45 d chute (doc/benchmarks.md):
 // 0.25–1 cut the local solves alike; 3 left more for the full sweeps to find.
 constexpr double quiet_fraction = 0.5;
 
-// Cycles of one full sweep and up to full_sweep_every - 1 sweeps over the active contacts. The
-// full sweep runs plain (conjugate directions restart after it) and alone decides convergence.
-SolveReport solve_in_cycles(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                            const SolverSettings& settings, SweepExchange* exchange, JoiningContacts* joining)
+}  // namespace
+
+// Every sweep over every contact (full_sweep_every 1).
+SolveReport GaussSeidel::solve_in_full_sweeps(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                                              SweepExchange* exchange, JoiningContacts* joining)
 {
-  static thread_local CycleWorkspace work;
-  work.change_sq.resize(contacts.size());
-  // The full sweep records no conjugate direction: the first active sweep, unpushed, does.
-  SolverSettings full_sweep = settings;
-  full_sweep.acceleration = Acceleration::none;
   SolveReport report;
   ConjugateBeta conjugate;
-  double previous_full_residual = std::numeric_limits<double>::infinity();
-  for (int full_sweeps = 1; report.iterations < settings.max_iterations; full_sweeps++) {
-    SweepChange change = sweep_measuring(contacts.data(), contacts.data() + contacts.size(), velocity.data(),
-                                         full_sweep, 0.0, work.change_sq.data());
+  StallWatch watch(settings_);
+  bool rescuing = false;
+  SolverSettings sweeping = settings_;
+  double beta = 0.0;
+  while (report.iterations < settings_.max_iterations) {
+    SweepChange change = sweep(contacts, velocity, sweeping, beta);
     if (exchange) exchange->after_sweep(change);
-    const bool converged = count_sweep(report, change, contacts.size(), settings);
-    // Contacts that join are active in the cycle: they have not been swept yet.
-    if (joining && looks_for_joining(full_sweeps, converged) && joining->join(converged))
-      work.change_sq.resize(contacts.size(), std::numeric_limits<double>::infinity());
-    else if (converged) return report;
-    work.active.select(contacts, work.change_sq,
-                       change.quiet_change_sq(settings.norm, settings.tolerance, quiet_fraction));
-    conjugate.restart(report.residual < previous_full_residual);
-    previous_full_residual = report.residual;
-    double beta = 0.0;
-    for (int k = 1; k < settings.full_sweep_every && report.iterations < settings.max_iterations; k++) {
-      SweepChange active_change = work.active.sweep(contacts, velocity.data(), settings, beta);
-      if (exchange) exchange->after_sweep(active_change);
-      if (count_sweep(report, active_change, work.active.size(), settings)) break;
-      if (settings.acceleration == Acceleration::conjugate)
-        beta = conjugate.next(active_change.sum_change_sq, report.iterations, settings.max_iterations);
+    const bool converged = count_sweep(report, change, contacts.size(), settings_);
+    report.stalled_sweeps += rescuing;
+    const bool joined = joining && looks_for_joining(report.iterations, converged) && joining->join(converged);
+    if (converged && !joined) return report;
+    if (!rescuing && watch.stalled(report.residual, report.iterations)) {
+      rescuing = true;
+      sweeping = rescue_settings(settings_);
+      beta = 0.0;
+    } else if (sweeping.acceleration == Acceleration::conjugate) {
+      beta = conjugate.next(change.sum_change_sq, report.iterations, settings_.max_iterations);
     }
   }
   report.converged = false;
   return report;
 }
 
-}  // namespace
+// Cycles of one full sweep and up to full_sweep_every - 1 sweeps over the active contacts. The
+// full sweep runs plain (conjugate directions restart after it) and alone decides convergence.
+SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                                         SweepExchange* exchange, JoiningContacts* joining)
+{
+  CycleWorkspace& work = cycle_;
+  work.change_sq.resize(contacts.size());
+  SolverSettings sweeping = settings_;
+  // The full sweep records no conjugate direction: the first active sweep, unpushed, does.
+  SolverSettings full_sweep = settings_;
+  full_sweep.acceleration = Acceleration::none;
+  SolveReport report;
+  ConjugateBeta conjugate;
+  StallWatch watch(settings_);
+  bool rescuing = false;
+  double previous_full_residual = std::numeric_limits<double>::infinity();
+  for (int full_sweeps = 1; report.iterations < settings_.max_iterations; full_sweeps++) {
+    SweepChange change = sweep_measuring(contacts.data(), contacts.data() + contacts.size(), velocity.data(),
+                                         full_sweep, 0.0, work.change_sq.data());
+    if (exchange) exchange->after_sweep(change);
+    const bool converged = count_sweep(report, change, contacts.size(), settings_);
+    report.stalled_sweeps += rescuing;
+    // Contacts that join are active in the cycle: they have not been swept yet.
+    if (joining && looks_for_joining(full_sweeps, converged) && joining->join(converged))
+      work.change_sq.resize(contacts.size(), std::numeric_limits<double>::infinity());
+    else if (converged) return report;
+    if (!rescuing && watch.stalled(report.residual, report.iterations)) {
+      rescuing = true;
+      sweeping = rescue_settings(settings_);
+      full_sweep = sweeping;
+    }
+    select_active(work, contacts, change.quiet_change_sq(settings_.norm, settings_.tolerance, quiet_fraction));
+    conjugate.restart(report.residual < previous_full_residual);
+    previous_full_residual = report.residual;
+    double beta = 0.0;
+    for (int k = 1; k < settings_.full_sweep_every && report.iterations < settings_.max_iterations; k++) {
+      SweepChange active_change = sweep_active(work, contacts, velocity.data(), sweeping, beta);
+      if (exchange) exchange->after_sweep(active_change);
+      const bool active_converged = count_sweep(report, active_change, work.active.size(), settings_);
+      report.stalled_sweeps += rescuing;
+      if (active_converged) break;
+      if (sweeping.acceleration == Acceleration::conjugate)
+        beta = conjugate.next(active_change.sum_change_sq, report.iterations, settings_.max_iterations);
+    }
+  }
+  report.converged = false;
+  return report;
+}
 
-SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
-                               const SolverSettings& settings, SweepExchange* exchange, JoiningContacts* joining)
+// Written so that NaN fails every test. A tolerance of 1 or more is met by any first sweep (the
+// norm compares the sweep's change with the impulses' scale), one of 0 runs the cap's sweeps; relaxation above 1 is not offered
+// (over-relaxation gained nothing in time: doc/benchmarks.md).
+std::string check(const SolverSettings& settings)
+{
+  if (!(settings.tolerance >= 0.0 && settings.tolerance < 1.0))
+    return refusal("tolerance", "in [0,1)", settings.tolerance);
+  if (settings.max_iterations < 1) return refusal("max_iterations", ">= 1", settings.max_iterations);
+  if (!(settings.relaxation > 0.0 && settings.relaxation <= 1.0))
+    return refusal("relaxation", "in (0,1]", settings.relaxation);
+  if (settings.full_sweep_every < 1) return refusal("full_sweep_every", ">= 1", settings.full_sweep_every);
+  if (settings.stall_window < 0) return refusal("stall_window", ">= 0", settings.stall_window);
+  if (!(settings.stall_progress > 0.0 && settings.stall_progress < 1.0))
+    return refusal("stall_progress", "in (0,1)", settings.stall_progress);
+  if (!(settings.stall_relaxation > 0.0 && settings.stall_relaxation <= 1.0))
+    return refusal("stall_relaxation", "in (0,1]", settings.stall_relaxation);
+  return {};
+}
+
+GaussSeidel::GaussSeidel(const SolverSettings& settings) : settings_(settings)
+{
+  const std::string problem = check(settings_);
+  if (!problem.empty()) throw std::invalid_argument(problem);
+}
+
+SolveReport GaussSeidel::solve(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                               SweepExchange* exchange, JoiningContacts* joining)
 {
   // Without an exchange and without contacts there is nothing to do unless some join (a
   // problem without contacts has converged); with an exchange, every rank takes part in every
   // sweep's exchange, contacts or not.
   if (contacts.empty() && !exchange && !(joining && joining->join(true))) return {};
-  return settings.full_sweep_every > 1 ? solve_in_cycles(contacts, velocity, settings, exchange, joining)
-                                       : solve_in_full_sweeps(contacts, velocity, settings, exchange, joining);
+  return settings_.full_sweep_every > 1 ? solve_in_cycles(contacts, velocity, exchange, joining)
+                                        : solve_in_full_sweeps(contacts, velocity, exchange, joining);
+}
+
+SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                               const SolverSettings& settings, SweepExchange* exchange, JoiningContacts* joining)
+{
+  return GaussSeidel(settings).solve(contacts, velocity, exchange, joining);
 }
 
 }  // namespace cd

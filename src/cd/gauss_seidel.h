@@ -4,10 +4,12 @@
 // applied to the velocities before the first sweep (apply_impulses).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "cd/contact.h"
 #include "cd/convergence.h"
+#include "cd/solver.h"
 
 namespace cd {
 
@@ -39,29 +41,18 @@ struct SolverSettings {
   // Only a sweep over every contact ends a solve, so the answer meets the same norm as with
   // plain sweeps. Conjugate acceleration restarts with each cycle. 1: every sweep is full.
   int full_sweep_every = 1;
+  // The stall rescue (StallWatch): a solve whose full sweeps have not lowered the norm below
+  // stall_progress times its lowest value for stall_window sweeps goes on with relaxation
+  // stall_relaxation and plain sweeps until it converges or meets the cap. 0: no rescue.
+  int stall_window = 0;
+  double stall_progress = 0.5;
+  double stall_relaxation = 0.7;
 };
 
-struct SolveReport {
-  int iterations = 0;            // sweeps, over every contact or over the active ones
-  int solves = 1;                // Gauss-Seidel solves: 1, plus one each time closing pairs joined
-  double contact_updates = 0.0;  // local solves over all sweeps
-  double residual = 0.0;
-  bool converged = true;
-};
-
-// What a domain-decomposed run does between the sweeps of one rank: after every sweep it
-// exchanges ghost velocities and reduces `change` over ranks; between solves it tells whether
-// any rank wants another one. One rank needs nothing.
-class SweepExchange {
- public:
-  virtual ~SweepExchange() = default;
-  // Every rank's copy of every body's velocity made the same (each rank's changes to its
-  // copies of bodies owned elsewhere summed into the owner, then copied back): before the
-  // first sweep, once the warm start is applied.
-  virtual void share_velocities() = 0;
-  virtual void after_sweep(SweepChange& change) = 0;
-  virtual bool on_any_rank(bool here) = 0;
-};
+// Empty if the settings can run, else one line naming the setting as the fix's keyword and its
+// range, e.g. "relaxation must be in (0,1], got 1.5". Tolerance 0 (always the cap's sweeps) is
+// allowed here; a step refuses it (cd::check(StepSettings)).
+std::string check(const SolverSettings& settings);
 
 // One sweep over the contacts [first, last) in their stored order, accumulating what
 // `settings.norm` needs (of the local solves' changes). Frictionless contacts (mu = 0) take the
@@ -73,23 +64,36 @@ SweepChange sweep(Contact* first, Contact* last, BodyVelocity* velocity, const S
 SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const SolverSettings& settings,
                   double beta = 0.0);
 
-// Contacts that may join a solve while it runs (cd::solve_step: pairs the iterate drives shut).
-// The solve asks after each full sweep; one that converged ends only if none joined.
-class JoiningContacts {
+// Nonlinear Gauss–Seidel. Sweeps until the norm falls to the tolerance or the iteration cap is
+// reached, in cycles of SolverSettings::full_sweep_every. `joining` is asked after the 1st,
+// 2nd, 4th, 8th, ... full sweep (the step's collisions drive pairs shut in its first sweeps;
+// looking after every sweep would cost a twentieth of the step) and after every converged one.
+class GaussSeidel : public ContactSolver {
  public:
-  virtual ~JoiningContacts() = default;
-  // Appends to the contacts the solve runs on those that join at its current velocities, their
-  // impulses zero; true if any did. `converged`: the full sweep met the tolerance (every rank
-  // sees the same); the answer must then be the same on every rank: it decides whether the
-  // solve ends.
-  virtual bool join(bool converged) = 0;
+  // Throws std::invalid_argument with check's line if the settings cannot run.
+  explicit GaussSeidel(const SolverSettings& settings);
+  const SolverSettings& settings() const { return settings_; }
+  SolveReport solve(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                    SweepExchange* exchange = nullptr, JoiningContacts* joining = nullptr) override;
+
+  // Reused from solve to solve: once the largest problem has been seen, a solve allocates nothing.
+  struct CycleWorkspace {
+    std::vector<double> change_sq;  // each contact's |W dp|^2 in the cycle's full sweep
+    std::vector<int> active;        // the contacts that full sweep left changing, in sweep order
+    SweepChange quiet;              // the others' share of the norm's scale
+  };
+
+ private:
+  SolveReport solve_in_full_sweeps(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                                   SweepExchange* exchange, JoiningContacts* joining);
+  SolveReport solve_in_cycles(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
+                              SweepExchange* exchange, JoiningContacts* joining);
+
+  SolverSettings settings_;
+  CycleWorkspace cycle_;
 };
 
-// Sweeps until the norm falls to the tolerance or the iteration cap is reached, in cycles of
-// SolverSettings::full_sweep_every. The contacts' impulses must already be applied to
-// `velocity` (apply_impulses). `joining` (optional) is asked after the 1st, 2nd, 4th, 8th, ...
-// full sweep (the step's collisions drive pairs shut in its first sweeps; looking after every
-// sweep would cost a twentieth of the step) and after every converged one.
+// A one-off solve: GaussSeidel(settings).solve(...).
 SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
                                const SolverSettings& settings, SweepExchange* exchange = nullptr,
                                JoiningContacts* joining = nullptr);

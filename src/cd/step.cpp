@@ -3,9 +3,10 @@
 #include "cd/step.h"
 
 #include <algorithm>
-#include <charconv>
 #include <limits>
 #include <stdexcept>
+
+#include "cd/refusal.h"
 
 namespace cd {
 
@@ -36,13 +37,13 @@ class ClosingPairs : public JoiningContacts {
 // the host) if bodies gained more speed than the margin covers; at most settings.max_solves
 // solves. The impulses must already be applied to bodies.velocity. The report sums the sweeps
 // of every solve.
-SolveReport solve_step(StepContacts& contacts, BodySet& bodies, const StepParameters& step,
+SolveReport solve_step(ContactSolver& solver, StepContacts& contacts, BodySet& bodies, const StepParameters& step,
                        const StepSettings& settings, PairReach& reach, StepHost& host, SweepExchange* exchange)
 {
   contacts.watch_only();
   ClosingPairs closing(contacts, bodies, step, exchange);
   JoiningContacts* during = settings.joining == Joining::during_solve ? &closing : nullptr;
-  SolveReport report = solve_gauss_seidel(contacts.solved, bodies.velocity, settings.solver, exchange, during);
+  SolveReport report = solver.solve(contacts.solved, bodies.velocity, exchange, during);
   double needed = 0.0;
   for (int round = 1;; round++) {
     needed = std::max(needed, reach.needed_margin(bodies.velocity, step));
@@ -59,10 +60,11 @@ SolveReport solve_step(StepContacts& contacts, BodySet& bodies, const StepParame
     bool promoted = !checked && promote_closing_pairs(contacts, bodies, step);
     if (exchange) promoted = exchange->on_any_rank(promoted);
     if (!promoted) break;
-    const SolveReport more = solve_gauss_seidel(contacts.solved, bodies.velocity, settings.solver, exchange, during);
+    const SolveReport more = solver.solve(contacts.solved, bodies.velocity, exchange, during);
     report.iterations += more.iterations;
     report.solves += 1;
     report.contact_updates += more.contact_updates;
+    report.stalled_sweeps += more.stalled_sweeps;
     report.residual = more.residual;
     report.converged = more.converged;
   }
@@ -74,19 +76,6 @@ SolveReport solve_step(StepContacts& contacts, BodySet& bodies, const StepParame
 
 namespace {
 
-// A number as the fix's error lines write it: the shortest text that reads back the same.
-std::string text_of(double value)
-{
-  char text[32];
-  const auto written = std::to_chars(text, text + sizeof(text), value);
-  return std::string(text, written.ptr);
-}
-
-std::string refusal(const char* keyword, const char* range, double value)
-{
-  return std::string(keyword) + " must be " + range + ", got " + text_of(value);
-}
-
 void require_sound(const StepSettings& settings)
 {
   const std::string problem = check(settings);
@@ -95,27 +84,26 @@ void require_sound(const StepSettings& settings)
 
 }  // namespace
 
-// Written so that NaN fails every test. A tolerance of 1 or more is met by any first sweep (the
-// norm compares the sweep's change with the impulses' scale); relaxation above 1 is not offered
-// (over-relaxation gained nothing in time: doc/benchmarks.md).
+// Written so that NaN fails every test.
 std::string check(const StepSettings& settings)
 {
-  const SolverSettings& solver = settings.solver;
   if (!(settings.theta >= 0.5 && settings.theta <= 1.0)) return refusal("theta", "in [0.5,1]", settings.theta);
-  if (!(solver.tolerance > 0.0 && solver.tolerance < 1.0)) return refusal("tolerance", "in (0,1)", solver.tolerance);
-  if (solver.max_iterations < 1) return refusal("max_iterations", ">= 1", solver.max_iterations);
-  if (!(solver.relaxation > 0.0 && solver.relaxation <= 1.0))
-    return refusal("relaxation", "in (0,1]", solver.relaxation);
-  if (solver.full_sweep_every < 1) return refusal("full_sweep_every", ">= 1", solver.full_sweep_every);
+  // A step always asks for convergence: tolerance 0 (a fixed sweep count) is the solver's alone.
+  if (!(settings.solver.tolerance > 0.0 && settings.solver.tolerance < 1.0))
+    return refusal("tolerance", "in (0,1)", settings.solver.tolerance);
+  const std::string solver_problem = check(settings.solver);
+  if (!solver_problem.empty()) return solver_problem;
   if (!(settings.alert >= 0.0)) return refusal("alert", ">= 0", settings.alert);
   if (settings.max_solves < 1) return refusal("max_solves", ">= 1", settings.max_solves);
   return {};
 }
 
 MoreauJeanStep::MoreauJeanStep(const StepSettings& settings, std::uint64_t shuffle_seed)
-    : settings_(settings), reach_(settings.alert), shuffle_rng_(shuffle_seed)
+    : settings_((require_sound(settings), settings)),
+      solver_(std::make_unique<GaussSeidel>(settings.solver)),
+      reach_(settings.alert),
+      shuffle_rng_(shuffle_seed)
 {
-  require_sound(settings_);
 }
 
 void MoreauJeanStep::set_alert(double alert)
@@ -140,11 +128,15 @@ StepReport MoreauJeanStep::solve(BodySet& bodies, double dt, StepHost& host, Swe
 {
   const StepParameters step{dt, settings_.theta};
   prepare(bodies, dt, host);
+  if (keeping_problems_) {
+    kept_.contacts = contacts_.solved;
+    kept_.free_velocity = bodies.velocity;
+  }
   apply_impulses(contacts_.solved, bodies.velocity);
   if (exchange) exchange->share_velocities();
 
   StepReport report;
-  report.solve = solve_step(contacts_, bodies, step, settings_, reach_, host, exchange);
+  report.solve = solve_step(*solver_, contacts_, bodies, step, settings_, reach_, host, exchange);
   report.overlaps = measure_overlaps(contacts_, bodies.velocity, step);
   contacts_.for_each_loaded([&](const PairKey&, const Contact&) { ++report.loaded_contacts; });
   return report;

@@ -7,13 +7,14 @@
 //               candidates, watched otherwise, each with its key and the impulse it carried,
 //               which starts a solved one (the warm start)
 //   order       interleaved (cd::interleaved_order) or shuffled; keys travel with the contacts
-//   solve       Gauss–Seidel; watched pairs the solution would drive into overlap join and the
+//   solve       the solver (cd/solver.h: Gauss–Seidel); watched pairs the solution would drive into overlap join and the
 //               solve goes on (the solve loop, step.cpp)
 //   store       the host keeps every loaded contact's impulse, by key (StepContacts::for_each_loaded)
 //   corrector   x_{n+1} = x_m + theta dt v_{n+1}                       (host applies corrected_motion)
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -22,6 +23,8 @@
 #include "cd/detection.h"
 #include "cd/gauss_seidel.h"
 #include "cd/order.h"
+#include "cd/problem_file.h"
+#include "cd/solver.h"
 
 namespace cd {
 
@@ -125,6 +128,13 @@ class MoreauJeanStep {
   // after every sweep.
   StepReport solve(BodySet& bodies, double dt, StepHost& host, SweepExchange* exchange = nullptr);
 
+  // Keep a copy of each step's problem as the solver meets it (contacts and free velocities,
+  // cd/problem_file.h), for a host that saves the hard ones; off by default: it costs a copy.
+  void keep_problems(bool keep) { keeping_problems_ = keep; }
+  // The last solve's problem, if kept: its contacts as offered to the first solve and the free
+  // velocities (heights and label are the host's to fill).
+  const ContactProblem& kept_problem() const { return kept_; }
+
   // The step's contacts after solve: solved (in sweep order, with their keys) and watched. The
   // host stores the loaded ones' impulses from here (StepContacts::for_each_loaded).
   const StepContacts& contacts() const { return contacts_; }
@@ -133,10 +143,13 @@ class MoreauJeanStep {
   void reorder(int body_count);
 
   StepSettings settings_;
+  std::unique_ptr<ContactSolver> solver_;  // settings_.solver's method
   PairReach reach_;
   StepContacts contacts_;
   std::mt19937_64 shuffle_rng_;
   std::vector<int> permutation_;  // scratch of reorder
+  bool keeping_problems_ = false;
+  ContactProblem kept_;
 };
 
 }  // namespace cd

@@ -171,6 +171,11 @@ TEST(StepSettings, CheckNamesTheSettingOutOfRange)
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.max_iterations = 0; }), "max_iterations must be >= 1, got 0");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.full_sweep_every = 0; }),
             "full_sweep_every must be >= 1, got 0");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.stall_window = -1; }), "stall_window must be >= 0, got -1");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.stall_relaxation = 0.0; }),
+            "stall_relaxation must be in (0,1], got 0");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.stall_progress = 1.0; }),
+            "stall_progress must be in (0,1), got 1");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.alert = -1.0; }), "alert must be >= 0, got -1");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.max_solves = 0; }), "max_solves must be >= 1, got 0");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.alert = INFINITY; }), "") << "infinity: every pair solved";
