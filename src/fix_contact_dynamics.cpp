@@ -900,6 +900,11 @@ void FixContactDynamics::RankExchange::share_velocities()
   fix.comm->forward_comm_fix(&fix);
 }
 
+void FixContactDynamics::RankExchange::sum_over_ranks(double* values, int count)
+{
+  MPI_Allreduce(MPI_IN_PLACE, values, count, MPI_DOUBLE, MPI_SUM, fix.world);
+}
+
 void FixContactDynamics::RankExchange::after_sweep(cd::SweepChange& change)
 {
   share_velocities();

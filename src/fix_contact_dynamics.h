@@ -68,6 +68,7 @@ class FixContactDynamics : public Fix {
     void after_sweep(cd::SweepChange& change) override;
     bool on_any_rank(bool here) override;
     void share_velocities() override;
+    void sum_over_ranks(double* values, int count) override;
 
    private:
     FixContactDynamics& fix;

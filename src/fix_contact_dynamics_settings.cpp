@@ -145,6 +145,8 @@ void SettingsParser::parse_value(const std::string& keyword, const char* value)
     else error->all(FLERR, "Fix contact/dynamics: acceleration must be none or conjugate, got '{}'", acceleration);
   } else if (keyword == "stall_window") {
     step.solver.stall_window = integer_for("stall_window", value, error);
+  } else if (keyword == "stall_coherence") {
+    step.solver.stall_coherence = number_for("stall_coherence", value, error);
   } else if (keyword == "stall_relaxation") {
     step.solver.stall_relaxation = number_for("stall_relaxation", value, error);
   } else if (keyword == "full_sweep_every") {

@@ -2,6 +2,7 @@
 #include "cd/gauss_seidel.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -247,32 +248,69 @@ bool count_sweep(SolveReport& report, const SweepChange& change, std::size_t upd
   return report.residual <= settings.tolerance;
 }
 
-// The stall test of SolverSettings::stall_window, fed the norm after every full sweep: a solve
-// has stalled when stall_window sweeps have passed since its norm last fell below stall_progress
-// times the value it had fallen to before. A solve that converges at any steady rate faster
-// than that never stalls; one that cycles among contact states (sticking, sliding, opening
-// from sweep to sweep at high friction) does, whatever its norm's level.
+// The stall test of SolverSettings::stall_window. Gauss–Seidel at high friction can cycle: a
+// few contacts switch between sticking, sliding and opening from sweep to sweep, the norm sits
+// on a plateau and the impulses go back and forth. A slow drift (the bed's creep mode) also
+// holds the norm on a plateau, but its sweeps keep moving the impulses the same way, and
+// relaxation would only slow it. The test tells them apart by the path the impulses travel:
+// over a window of stall_window sweeps, the net change |W (p_end - p_start)| against the sum
+// of the sweeps' changes |W dp| (both over every contact of every rank). A drift's ratio is near
+// 1, a cycle's near 0: below stall_coherence the solve has stalled.
 class StallWatch {
  public:
-  explicit StallWatch(const SolverSettings& settings)
-      : window_(settings.stall_window), progress_(settings.stall_progress)
+  StallWatch(const SolverSettings& settings, GaussSeidel::StallWorkspace& work, SweepExchange* exchange)
+      : window_(settings.stall_window), coherence_(settings.stall_coherence), work_(work), exchange_(exchange)
   {
   }
-  bool stalled(double residual, int iterations)
+
+  // Starts a window at the current impulses.
+  void start(const std::vector<Contact>& contacts, int iterations)
   {
-    if (window_ == 0) return false;
-    if (residual < progress_ * mark_) {
-      mark_ = residual;
-      mark_at_ = iterations;
-    }
-    return iterations - mark_at_ >= window_;
+    if (window_ == 0) return;
+    work_.window_start.resize(contacts.size());
+    for (std::size_t k = 0; k < contacts.size(); k++) work_.window_start[k] = contacts[k].impulse;
+    start_ = iterations;
+    path_ = 0.0;
+  }
+
+  // Counts a sweep's change (summed over ranks).
+  void add_sweep(const SweepChange& change)
+  {
+    if (window_ > 0) path_ += std::sqrt(change.sum_change_sq);
+  }
+
+  // After a full sweep: true if the window just ended has stalled; else a new window starts
+  // when one has ended.
+  bool stalled(const std::vector<Contact>& contacts, int iterations)
+  {
+    if (window_ == 0 || iterations - start_ < window_) return false;
+    double sums[2] = {net_change_sq(contacts), path_};
+    if (exchange_) exchange_->sum_over_ranks(sums, 2);
+    if (std::sqrt(sums[0]) < coherence_ * sums[1]) return true;
+    start(contacts, iterations);
+    return false;
   }
 
  private:
+  // Contacts that joined during the window started from a zero impulse.
+  double net_change_sq(const std::vector<Contact>& contacts) const
+  {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < contacts.size(); k++) {
+      const Local2 before = k < work_.window_start.size() ? work_.window_start[k] : Local2{};
+      const Local2 moved =
+          contacts[k].delassus.times({contacts[k].impulse.n - before.n, contacts[k].impulse.t - before.t});
+      sum += moved.n * moved.n + moved.t * moved.t;
+    }
+    return sum;
+  }
+
   int window_;
-  double progress_;
-  double mark_ = std::numeric_limits<double>::infinity();
-  int mark_at_ = 0;
+  double coherence_;
+  GaussSeidel::StallWorkspace& work_;
+  SweepExchange* exchange_;
+  int start_ = 0;
+  double path_ = 0.0;
 };
 
 // The sweeps of a stalled solve: relaxed, unaccelerated (relaxation damps the cycle;
@@ -320,7 +358,8 @@ SolveReport GaussSeidel::solve_in_full_sweeps(std::vector<Contact>& contacts, st
 {
   SolveReport report;
   ConjugateBeta conjugate;
-  StallWatch watch(settings_);
+  StallWatch watch(settings_, stall_, exchange);
+  watch.start(contacts, 0);
   bool rescuing = false;
   SolverSettings sweeping = settings_;
   double beta = 0.0;
@@ -328,10 +367,12 @@ SolveReport GaussSeidel::solve_in_full_sweeps(std::vector<Contact>& contacts, st
     SweepChange change = sweep(contacts, velocity, sweeping, beta);
     if (exchange) exchange->after_sweep(change);
     const bool converged = count_sweep(report, change, contacts.size(), settings_);
+    watch.add_sweep(change);
     report.stalled_sweeps += rescuing;
+    if (observer_) observer_->after_full_sweep(report);
     const bool joined = joining && looks_for_joining(report.iterations, converged) && joining->join(converged);
     if (converged && !joined) return report;
-    if (!rescuing && watch.stalled(report.residual, report.iterations)) {
+    if (!rescuing && watch.stalled(contacts, report.iterations)) {
       rescuing = true;
       sweeping = rescue_settings(settings_);
       beta = 0.0;
@@ -356,7 +397,8 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
   full_sweep.acceleration = Acceleration::none;
   SolveReport report;
   ConjugateBeta conjugate;
-  StallWatch watch(settings_);
+  StallWatch watch(settings_, stall_, exchange);
+  watch.start(contacts, 0);
   bool rescuing = false;
   double previous_full_residual = std::numeric_limits<double>::infinity();
   for (int full_sweeps = 1; report.iterations < settings_.max_iterations; full_sweeps++) {
@@ -364,12 +406,14 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
                                          full_sweep, 0.0, work.change_sq.data());
     if (exchange) exchange->after_sweep(change);
     const bool converged = count_sweep(report, change, contacts.size(), settings_);
+    watch.add_sweep(change);
     report.stalled_sweeps += rescuing;
+    if (observer_) observer_->after_full_sweep(report);
     // Contacts that join are active in the cycle: they have not been swept yet.
     if (joining && looks_for_joining(full_sweeps, converged) && joining->join(converged))
       work.change_sq.resize(contacts.size(), std::numeric_limits<double>::infinity());
     else if (converged) return report;
-    if (!rescuing && watch.stalled(report.residual, report.iterations)) {
+    if (!rescuing && watch.stalled(contacts, report.iterations)) {
       rescuing = true;
       sweeping = rescue_settings(settings_);
       full_sweep = sweeping;
@@ -382,6 +426,7 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
       SweepChange active_change = sweep_active(work, contacts, velocity.data(), sweeping, beta);
       if (exchange) exchange->after_sweep(active_change);
       const bool active_converged = count_sweep(report, active_change, work.active.size(), settings_);
+      watch.add_sweep(active_change);
       report.stalled_sweeps += rescuing;
       if (active_converged) break;
       if (sweeping.acceleration == Acceleration::conjugate)
@@ -404,8 +449,8 @@ std::string check(const SolverSettings& settings)
     return refusal("relaxation", "in (0,1]", settings.relaxation);
   if (settings.full_sweep_every < 1) return refusal("full_sweep_every", ">= 1", settings.full_sweep_every);
   if (settings.stall_window < 0) return refusal("stall_window", ">= 0", settings.stall_window);
-  if (!(settings.stall_progress > 0.0 && settings.stall_progress < 1.0))
-    return refusal("stall_progress", "in (0,1)", settings.stall_progress);
+  if (!(settings.stall_coherence > 0.0 && settings.stall_coherence < 1.0))
+    return refusal("stall_coherence", "in (0,1)", settings.stall_coherence);
   if (!(settings.stall_relaxation > 0.0 && settings.stall_relaxation <= 1.0))
     return refusal("stall_relaxation", "in (0,1]", settings.stall_relaxation);
   return {};

@@ -41,11 +41,12 @@ struct SolverSettings {
   // Only a sweep over every contact ends a solve, so the answer meets the same norm as with
   // plain sweeps. Conjugate acceleration restarts with each cycle. 1: every sweep is full.
   int full_sweep_every = 1;
-  // The stall rescue (StallWatch): a solve whose full sweeps have not lowered the norm below
-  // stall_progress times its lowest value for stall_window sweeps goes on with relaxation
-  // stall_relaxation and plain sweeps until it converges or meets the cap. 0: no rescue.
+  // The stall rescue (StallWatch): a solve whose impulses moved, over stall_window sweeps, by
+  // less than stall_coherence times the sum of the sweeps' changes (they went back and forth: a
+  // cycle, not a slow drift) goes on with relaxation stall_relaxation and plain sweeps until it
+  // converges or meets the cap. 0: no rescue.
   int stall_window = 0;
-  double stall_progress = 0.5;
+  double stall_coherence = 0.1;
   double stall_relaxation = 0.7;
 };
 
@@ -64,6 +65,14 @@ SweepChange sweep(Contact* first, Contact* last, BodyVelocity* velocity, const S
 SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const SolverSettings& settings,
                   double beta = 0.0);
 
+// Watches a solve sweep by sweep: a study's hook (bench/solver_corpus), called after every full
+// sweep with the report so far while the contacts and velocities hold the iterate.
+class SweepObserver {
+ public:
+  virtual ~SweepObserver() = default;
+  virtual void after_full_sweep(const SolveReport& so_far) = 0;
+};
+
 // Nonlinear Gauss–Seidel. Sweeps until the norm falls to the tolerance or the iteration cap is
 // reached, in cycles of SolverSettings::full_sweep_every. `joining` is asked after the 1st,
 // 2nd, 4th, 8th, ... full sweep (the step's collisions drive pairs shut in its first sweeps;
@@ -73,6 +82,7 @@ class GaussSeidel : public ContactSolver {
   // Throws std::invalid_argument with check's line if the settings cannot run.
   explicit GaussSeidel(const SolverSettings& settings);
   const SolverSettings& settings() const { return settings_; }
+  void observe(SweepObserver* observer) { observer_ = observer; }
   SolveReport solve(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
                     SweepExchange* exchange = nullptr, JoiningContacts* joining = nullptr) override;
 
@@ -81,6 +91,10 @@ class GaussSeidel : public ContactSolver {
     std::vector<double> change_sq;  // each contact's |W dp|^2 in the cycle's full sweep
     std::vector<int> active;        // the contacts that full sweep left changing, in sweep order
     SweepChange quiet;              // the others' share of the norm's scale
+  };
+  // The stall test's record: the impulses at the start of its window.
+  struct StallWorkspace {
+    std::vector<Local2> window_start;
   };
 
  private:
@@ -91,6 +105,8 @@ class GaussSeidel : public ContactSolver {
 
   SolverSettings settings_;
   CycleWorkspace cycle_;
+  StallWorkspace stall_;
+  SweepObserver* observer_ = nullptr;
 };
 
 // A one-off solve: GaussSeidel(settings).solve(...).

@@ -32,6 +32,8 @@ class SweepExchange {
   virtual void share_velocities() = 0;
   virtual void after_sweep(SweepChange& change) = 0;
   virtual bool on_any_rank(bool here) = 0;
+  // Sums `count` values over the ranks, in place (rarely: a solve's stall test).
+  virtual void sum_over_ranks(double* values, int count) = 0;
 };
 
 // Contacts that may join a solve while it runs (cd::solve_step: pairs the iterate drives shut).

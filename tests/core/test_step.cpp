@@ -174,8 +174,8 @@ TEST(StepSettings, CheckNamesTheSettingOutOfRange)
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.stall_window = -1; }), "stall_window must be >= 0, got -1");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.stall_relaxation = 0.0; }),
             "stall_relaxation must be in (0,1], got 0");
-  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.stall_progress = 1.0; }),
-            "stall_progress must be in (0,1), got 1");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.stall_coherence = 1.0; }),
+            "stall_coherence must be in (0,1), got 1");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.alert = -1.0; }), "alert must be >= 0, got -1");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.max_solves = 0; }), "max_solves must be >= 1, got 0");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.alert = INFINITY; }), "") << "infinity: every pair solved";

@@ -1,0 +1,216 @@
+// The solver seam's parts: the stopping norm under relaxation (analytic), the stall rescue's
+// mechanics (a forced stall equals a plain solve continued relaxed, to the bit), the rescue
+// untouched where no stall occurs, problem files read back exactly or refused in one line, and
+// the run statistics' counts and quantiles.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+#include "cd/gauss_seidel.h"
+#include "cd/problem_file.h"
+#include "cd/solve_statistics.h"
+#include "pile.h"
+
+namespace {
+
+// One disk of unit inverse mass resting on the floor, pressed down at 1 m/s: one contact whose
+// solution stops it (e = 0).
+struct Landing {
+  std::vector<cd::Contact> contacts;
+  std::vector<cd::BodyVelocity> velocity;
+};
+
+Landing make_landing()
+{
+  Landing landing;
+  cd::BodySet bodies;
+  bodies.reset(2);
+  bodies.inertia[1] = {1.0, 2.0};
+  bodies.start_velocity[1] = {0.0, -1.0, 0.0};
+  bodies.velocity = bodies.start_velocity;
+  cd::Contact c = cd::contact_frame(cd::disk_world_geometry(1, cd::Disk{0.0, 0.5, 0.5}, 0.0, 0.0, 0.0, 1.0));
+  cd::prepare_mechanics(c, {0.5, 0.0}, bodies, step);
+  landing.contacts = {c};
+  landing.velocity = bodies.velocity;
+  return landing;
+}
+
+// Relaxation w leaves p_k = p* (1 - (1-w)^k) after k sweeps of one contact. The norm takes the
+// plain local solve's change, |p* - p_(k-1)| / |p_k| = (1-w)^(k-1) / (1 - (1-w)^k): at w = 0.5 and
+// tolerance 1e-3 that first holds at k = 11 (k = 10 gives 1.95e-3). A norm of the relaxed change
+// would have stopped at k = 10.
+TEST(RelaxedNorm, StopsWhereThePlainSweepWouldChangeNoMoreThanTheTolerance)
+{
+  Landing landing = make_landing();
+  cd::SolverSettings settings;
+  settings.relaxation = 0.5;
+  settings.tolerance = 1e-3;
+  const cd::SolveReport report = cd::solve_gauss_seidel(landing.contacts, landing.velocity, settings);
+  EXPECT_TRUE(report.converged);
+  EXPECT_EQ(report.iterations, 11);
+  EXPECT_NEAR(report.residual, std::pow(0.5, 10) / (1.0 - std::pow(0.5, 11)), 1e-12);
+  EXPECT_NEAR(landing.velocity[1].vy, -std::pow(0.5, 11), 1e-12);
+}
+
+cd::SolverSettings pile_settings()
+{
+  cd::SolverSettings settings;
+  settings.tolerance = 1e-10;
+  settings.max_iterations = 5000;
+  return settings;
+}
+
+cd::SolverSettings capped_settings(int sweeps)
+{
+  cd::SolverSettings settings;
+  settings.tolerance = 0.0;
+  settings.max_iterations = sweeps;
+  return settings;
+}
+
+// A stall forced at the end of a window of 5 sweeps (a coherence no plain solve reaches unless
+// its sweeps change nothing: its net change is at most the sum of its sweeps' changes) makes the
+// same 40 sweeps as the plain sweeps before it continued by relaxed ones, bit for bit; the
+// sweeps after the stall are counted. (Tolerance 0: every solve runs to its cap.)
+TEST(StallRescue, AForcedStallContinuesAsARelaxedSolve)
+{
+  Pile rescued = make_pile(2.0, 2.0);
+  Pile by_hand = rescued;
+  cd::apply_impulses(rescued.contacts, rescued.bodies.velocity);
+  cd::apply_impulses(by_hand.contacts, by_hand.bodies.velocity);
+
+  cd::SolverSettings settings = capped_settings(40);
+  settings.stall_window = 5;
+  settings.stall_coherence = 1.0 - 1e-15;
+  settings.stall_relaxation = 0.6;
+  const cd::SolveReport report = cd::solve_gauss_seidel(rescued.contacts, rescued.bodies.velocity, settings);
+  const int plain_sweeps = report.iterations - report.stalled_sweeps;
+  EXPECT_EQ(report.iterations, 40);
+  EXPECT_GT(report.stalled_sweeps, 0);
+  EXPECT_EQ(plain_sweeps % 5, 0) << "a stall is found where a window ends";
+
+  cd::solve_gauss_seidel(by_hand.contacts, by_hand.bodies.velocity, capped_settings(plain_sweeps));
+  cd::SolverSettings relaxed = capped_settings(report.stalled_sweeps);
+  relaxed.relaxation = 0.6;
+  const cd::SolveReport rest = cd::solve_gauss_seidel(by_hand.contacts, by_hand.bodies.velocity, relaxed);
+  EXPECT_EQ(report.residual, rest.residual);
+  for (std::size_t k = 0; k < rescued.contacts.size(); k++) {
+    EXPECT_EQ(rescued.contacts[k].impulse.n, by_hand.contacts[k].impulse.n);
+    EXPECT_EQ(rescued.contacts[k].impulse.t, by_hand.contacts[k].impulse.t);
+  }
+}
+
+// Windows of one sweep: its net change is its change, a coherence of 1, never a stall. The
+// test runs at every sweep and the solve is the one without it, to the bit.
+TEST(StallRescue, ASolveWhoseSweepsKeepTheirDirectionIsUntouched)
+{
+  Pile with = make_pile(2.0, 2.0);
+  Pile without = with;
+  cd::apply_impulses(with.contacts, with.bodies.velocity);
+  cd::apply_impulses(without.contacts, without.bodies.velocity);
+  cd::SolverSettings settings = pile_settings();
+  const cd::SolveReport plain = cd::solve_gauss_seidel(without.contacts, without.bodies.velocity, settings);
+  settings.stall_window = 1;
+  settings.stall_coherence = 0.9;
+  const cd::SolveReport watched = cd::solve_gauss_seidel(with.contacts, with.bodies.velocity, settings);
+  EXPECT_EQ(watched.iterations, plain.iterations);
+  EXPECT_EQ(watched.stalled_sweeps, 0);
+  for (std::size_t b = 0; b < with.bodies.velocity.size(); b++) {
+    EXPECT_EQ(with.bodies.velocity[b].vx, without.bodies.velocity[b].vx);
+    EXPECT_EQ(with.bodies.velocity[b].spin, without.bodies.velocity[b].spin);
+  }
+}
+
+std::string temporary_path(const char* name)
+{
+  return ::testing::TempDir() + name;
+}
+
+TEST(ProblemFile, ReadsBackWhatWasWritten)
+{
+  const Pile pile = make_pile(0.5, 0.5);
+  cd::ContactProblem problem{pile.contacts, pile.bodies.velocity, {}, "pile of the core tests"};
+  problem.height.assign(problem.free_velocity.size(), 0.25);
+  const std::string path = temporary_path("pile.cdp");
+  cd::write_problem(path, problem);
+  const cd::ContactProblem read = cd::read_problem(path);
+  EXPECT_EQ(read.label, problem.label);
+  ASSERT_EQ(read.contacts.size(), problem.contacts.size());
+  ASSERT_EQ(read.free_velocity.size(), problem.free_velocity.size());
+  for (std::size_t k = 0; k < read.contacts.size(); k++) {
+    EXPECT_EQ(read.contacts[k].body_a, problem.contacts[k].body_a);
+    EXPECT_EQ(read.contacts[k].delassus.inverse_tt, problem.contacts[k].delassus.inverse_tt);
+    EXPECT_EQ(read.contacts[k].velocity_bias, problem.contacts[k].velocity_bias);
+  }
+  EXPECT_EQ(read.free_velocity.back().vy, problem.free_velocity.back().vy);
+  EXPECT_EQ(read.height, problem.height);
+  std::remove(path.c_str());
+}
+
+std::string refusal_reading(const std::string& path)
+{
+  try {
+    cd::read_problem(path);
+  } catch (const std::runtime_error& failure) {
+    return failure.what();
+  }
+  return "";
+}
+
+TEST(ProblemFile, RefusesWhatIsNotAWholeProblemInOneLine)
+{
+  const Pile pile = make_pile(0.5, 0.5);
+  cd::ContactProblem problem{pile.contacts, pile.bodies.velocity, {}, "pile"};
+  problem.height.assign(problem.free_velocity.size(), 0.0);
+  const std::string path = temporary_path("whole.cdp");
+  cd::write_problem(path, problem);
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+
+  const std::string truncated = temporary_path("truncated.cdp");
+  std::ofstream(truncated, std::ios::binary) << bytes.substr(0, bytes.size() - 8);
+  EXPECT_EQ(refusal_reading(truncated), "contact problem " + truncated + ": truncated in its heights");
+
+  const std::string longer = temporary_path("longer.cdp");
+  std::ofstream(longer, std::ios::binary) << bytes << "x";
+  EXPECT_EQ(refusal_reading(longer), "contact problem " + longer + ": longer than its header says");
+
+  const std::string text = temporary_path("text.cdp");
+  std::ofstream(text) << "ITEM: TIMESTEP\n0\n";
+  EXPECT_EQ(refusal_reading(text), "contact problem " + text + ": not a contact problem file");
+
+  EXPECT_EQ(refusal_reading(temporary_path("missing.cdp")),
+            "contact problem " + temporary_path("missing.cdp") + ": cannot be opened");
+  for (const std::string& p : {path, truncated, longer, text}) std::remove(p.c_str());
+}
+
+TEST(SolveStatistics, CountsAndNearestRankQuantiles)
+{
+  cd::SolveStatistics statistics;
+  for (int sweeps = 1; sweeps <= 200; sweeps++) {
+    cd::SolveReport step;
+    step.iterations = sweeps;
+    step.residual = sweeps == 200 ? 3e-3 : 1e-3 * sweeps / 200.0;
+    step.converged = sweeps != 200;
+    step.stalled_sweeps = sweeps > 190 ? 5 : 0;
+    statistics.record(step);
+  }
+  const cd::SolveSummary s = statistics.summary();
+  EXPECT_EQ(s.steps, 200);
+  EXPECT_EQ(s.unconverged, 1);
+  EXPECT_EQ(s.rescued, 10);
+  EXPECT_DOUBLE_EQ(s.largest_final_norm, 3e-3);
+  EXPECT_EQ(s.median_sweeps, 100);  // the 100th of 200
+  EXPECT_EQ(s.p99_sweeps, 198);     // the 198th of 200
+  EXPECT_EQ(s.max_sweeps, 200);
+  EXPECT_EQ(cd::describe(s),
+            "200 steps, 1 unconverged (0.5 %), largest final norm 0.003, sweeps per step median 100, 99th "
+            "percentile 198, max 200, 10 rescued from a stall");
+  statistics.clear();
+  EXPECT_EQ(statistics.summary().steps, 0);
+}
+
+}  // namespace
