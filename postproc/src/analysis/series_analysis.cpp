@@ -315,7 +315,8 @@ struct SeriesFitter {
       record_residuals(prefix + "phi_U", "", "phi", fit.raw, fit.residuals);
       fits.phi_of_u = fit;
     });
-    for (double mu : friction_values(points))
+    const auto mus = friction_values(points);
+    for (double mu : mus.size() > 1 ? mus : std::vector<double>{})  // one friction: the common fit is its own
       attempt(scope(fits) + "phi = phi_c - k U/sqrt(g d) at mu = " + mu_label(mu) + " alone", [&] {
         const auto of_mu = points_with_mu(points, mu);
         const auto fit = fit_phi_velocity(of_mu);
