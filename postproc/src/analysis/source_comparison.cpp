@@ -119,10 +119,10 @@ struct Comparer {
   const ResultRow* fit(const std::string& name) const { return series.fits.find(name); }
 
   // Each run at friction mu against the source's rule at the run's own I (read as `definition`):
-  // the angle offset. `target`: compared, else shown with the verdict given.
+  // the angle offset, compared with the tolerance unless `fixed` gives the verdict.
   void rule_as_curve(double mu, const std::string& key, const std::string& rule,
                      double (*angle)(const SourceNumbers&, double, double), const InertialDefinition& definition,
-                     Verdict unless_compared, bool target)
+                     std::optional<Verdict> fixed)
   {
     Spread offset, ratio;
     const bool stated = definition.result == "I";
@@ -140,7 +140,7 @@ struct Comparer {
     if (!ratio.empty()) ours += "; U/U_source(theta, h): " + ratio.text();
     rows.push_back({key + (stated ? "" : "_" + definition.result) + friction_suffix(mu),
                     rule + " as a curve, " + mu_text(mu) + (stated ? "" : ", I read as " + definition.name), "0 deg",
-                    accepted_text(v) + " at every run", ours, target ? verdict_of(offset.within(v)) : unless_compared});
+                    accepted_text(v) + " at every run", ours, fixed.value_or(verdict_of(offset.within(v)))});
   }
 
   // Pouliquen's rule is stated in U and h, so its curve is compared under the stated I only; the
@@ -154,14 +154,15 @@ struct Comparer {
     for (const auto& definition : kInertialDefinitions)
       for (double mu : frictions())
         if (source_has(mu))
-          rule_as_curve(mu, "pouliquen_curve_angle", pouliquen, pouliquen_angle, definition, Verdict::Shown,
-                        definition.result == "I");
+          rule_as_curve(mu, "pouliquen_curve_angle", pouliquen, pouliquen_angle, definition,
+                        definition.result == "I" ? std::nullopt : std::optional<Verdict>(Verdict::Shown));
     for (const auto& definition : kInertialDefinitions) {
       const auto consistent = rules_consistent(checks, definition.result);
+      const auto fixed = !consistent   ? std::optional<Verdict>(Verdict::Shown)
+                         : *consistent ? std::nullopt
+                                       : std::optional<Verdict>(Verdict::NotATarget);
       for (double mu : frictions())
-        if (source_has(mu))
-          rule_as_curve(mu, "muI_curve_angle", "the mu(I) rule", mu_of_i_angle, definition,
-                        consistent ? Verdict::NotATarget : Verdict::Shown, consistent.value_or(false));
+        if (source_has(mu)) rule_as_curve(mu, "muI_curve_angle", "the mu(I) rule", mu_of_i_angle, definition, fixed);
     }
   }
 
@@ -588,7 +589,7 @@ void source_section(MarkdownReport& report, const std::vector<LabelledSeries>& s
       "peak's error, beyond two of their errors. The flow rules are drawn against each reading of a run's I (" +
       definitions_text() +
       "). Quantities compared with a tolerance and signs are counted apart, and a row the runs were made to match "
-      "(the layer reading's h) is not compared. Agreeing: " +
+      "(h, when every run's deck chose its grain count for it) is not compared. Agreeing: " +
       tallies + ".");
   std::vector<std::string> header{"quantity", "source"};
   for (const auto& s : series) header.push_back(s.label);
@@ -662,9 +663,8 @@ void inertial_readings_section(MarkdownReport& report, const SeriesAnalysis& ser
   report.paragraph(
       "Each run's tilt minus the tilt each of the source's rules gives at the run's I, the I read three ways (" +
       definitions_text() +
-      "; fit/inertial_number.h). The source's rules agree with each other under the stated I only within a factor 3 "
-      "and under GDR MiDi's I of a Bagnold layer within 10 % (the table at the end of *Against the source*). Per "
-      "run: inertial_readings.csv; figure flow_rules_by_I.");
+      "; fit/inertial_number.h). Whether the source's own two rules agree under each reading: the table at the end "
+      "of *Against the source*. Per run: inertial_readings.csv; figure flow_rules_by_I.");
   std::vector<std::vector<std::string>> rows;
   for (const auto& o : offsets)
     rows.push_back({o.run->entry.name, number(o.run->entry.mu), number(o.run->entry.theta_deg), o.definition->result,
