@@ -139,6 +139,17 @@ TEST(LayerMeasures, PublishedRunsEstimatePhiFromTheirCounts)
   EXPECT_NEAR(run.results.find("phi_bulk")->value, layer.phi_bulk, 1e-4);  // counts written to 6 decimals
   EXPECT_NEAR(run.results.find("h_packing")->value, layer.top, 0.01);
   EXPECT_NEAR(run.results.find("I_packing")->value, 20 / std::pow(run.results.find("h_packing")->value, 1.5), 1e-12);
+  // The profiles a series reads (the local inertial number): u(z) and phi(z) per bin.
+  ASSERT_TRUE(run.profile);
+  ASSERT_EQ(run.profile->phi.size(), run.profile->z_d.size());
+  for (size_t i = 0; i < run.profile->z_d.size(); ++i)
+    EXPECT_NEAR(run.profile->phi[i], layer.phi(run.profile->z_d[i]), 1e-4) << run.profile->z_d[i];
+  EXPECT_EQ(run.profile->bin_width_d, 1);
+  EXPECT_EQ(recorded_deck_variable(dir.string(), "reading"), std::nullopt);
+  testing::write_file(dir / "params.json",
+                      "{\n  \"vars\": {\n    \"L\": \"45\",\n    \"dispersity\": \"0.4\",\n    \"reading\": "
+                      "\"layer\"\n  }\n}\n");
+  EXPECT_EQ(recorded_deck_variable(dir.string(), "reading"), "layer");
   // A params.json without L fails naming the file.
   testing::write_file(dir / "params.json", "{\"vars\": {\"dispersity\": \"0.4\"}}\n");
   try {

@@ -1,7 +1,8 @@
 // The comparison with a source study (analysis/source_comparison.h) on synthetic series of
-// published runs built from the source's own laws (results/source.csv): every verdict agrees;
-// with phi_c offset at one friction, or f following the opposite trend, exactly the rows that
-// read those fail.
+// published runs built from the source's own laws (results/source.csv): every verdict agrees,
+// the mu(I) rule's under GDR MiDi's I of a Bagnold layer; with phi_c offset at one friction, or f
+// following the opposite trend, exactly the rows that read those fail; runs whose deck set h show
+// it as set by construction.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,11 +24,13 @@ const double kRateHz = std::sqrt(9.81 / 5e-4);  // sqrt(g/d): f_scale = kRateHz 
 struct Departure {  // what the synthetic series changes of the source's laws
   double phi_c_offset_mu05 = 0;
   bool f_rises_with_u = false;
+  bool layer_reading = false;  // the deck set the grain count for the source's h (params.json)
 };
 
-// A published run (results.csv and layers.csv, as `cdpost run` writes them) at (mu, theta):
-// U from the source's Pouliquen rule at h, phi from its phi(U) law, f ~ f_scale, A growing
-// with U and mu, the amplitude at f decaying with depth over 10 d, creep length 2.5 d.
+// A published run (results.csv, layers.csv and profile.csv, as `cdpost run` writes them) at
+// (mu, theta): U from the source's Pouliquen rule at h, phi from its phi(U) law, f ~ f_scale, A
+// growing with U and mu, the amplitude at f decaying with depth over 10 d; u(z) a Bagnold layer
+// of mean U over phi uniform, and below the wall tops a creep decaying over 2.5 d.
 void write_run(const std::filesystem::path& dir, const SourceNumbers& source, double mu, double theta, int index,
                const Departure& departure)
 {
@@ -44,14 +47,23 @@ void write_run(const std::filesystem::path& dir, const SourceNumbers& source, do
   r.add("I", Estimate{inertial, 0.01 * inertial}, "", "");
   r.add("f_scale", f_scale, "Hz", "");
   r.add("shear_rate", u / h * kRateHz, "1/s", "");
-  r.add("f", (departure.f_rises_with_u ? 6 * std::sqrt(u) : 0.75 * f_scale) * jitter, "Hz", "");
+  const double f = (departure.f_rises_with_u ? 6 * std::sqrt(u) : 0.75 * f_scale) * jitter;
+  r.add("f", Estimate{f, 0.1 * f}, "Hz", "");
   r.add("A", a * jitter, "sqrt(g d)", "");
+  r.add("spectrum_segments", 10, "", "");
   r.add("A_mean", 0.002, "sqrt(g d)", "");
   r.add("creep_lambda", 2.5 + 0.2 * std::sin(index), "d", "");
   r.write_csv((dir / "results.csv").string());
   std::ofstream layers(dir / "layers.csv");
   layers << "z_d,f_peak_Hz,f_error_Hz,A_peak_sqrt_gd,A_at_f_sqrt_gd\n";
   for (double z = 2; z < h - 2; z += 4) layers << z << ",20,1," << a << ',' << a * std::exp((z - h) / 10) << '\n';
+  std::ofstream profile(dir / "profile.csv");
+  profile << "z_d,u_sqrt_gd,count,phi\n";
+  const double amplitude = u / (0.6 * std::pow(h, 1.5)), phi = phi_c - source.value("phi_k") * u;
+  for (double z = -29.5; z < h; z += 1)
+    profile << z << ',' << (z < 0 ? std::exp(z / 2.5) : amplitude * (std::pow(h, 1.5) - std::pow(h - z, 1.5))) << ",40,"
+            << phi << '\n';
+  if (departure.layer_reading) std::ofstream(dir / "params.json") << "{\"vars\": {\"reading\": \"layer\"}}\n";
 }
 
 SeriesAnalysis synthetic_series(const std::string& name, const Departure& departure)
@@ -95,20 +107,43 @@ TEST(SourceComparison, TheSourcesOwnLawsPassEveryVerdict)
                           "sign_f_vs_scale", "sign_f_vs_shear_rate", "sign_f_vs_mu", "sign_A_vs_U", "sign_A_vs_mu",
                           "sign_A_vs_phi", "sign_A_vs_depth", "creep_length", "h"})
     EXPECT_TRUE(agree.count(key)) << key;
-  // The source's mu(I) fit gives 3x the I of its Pouliquen fit: its curve is not a target.
+  // The source's mu(I) fit gives 3x the I of its Pouliquen fit under the stated I: not a target
+  // there; under GDR MiDi's I of a Bagnold layer the two agree, and the curve is compared.
   EXPECT_EQ(keys_with(rows, Verdict::NotATarget),
             (std::set<std::string>{"muI_curve_angle_mu0.05", "muI_curve_angle_mu0.5", "muI_curve_angle_mu2"}));
+  for (const char* key :
+       {"muI_curve_angle_I_bagnold_mu0.05", "muI_curve_angle_I_bagnold_mu0.5", "muI_curve_angle_I_bagnold_mu2"})
+    EXPECT_TRUE(agree.count(key)) << key;
+  // Shown: Pouliquen's rule under other readings of I, mu(I) under the local one, phi_c with its
+  // own k, the creep fitted down to the floor, the angles.
+  for (const char* key : {"pouliquen_curve_angle_I_local_mu0.5", "muI_curve_angle_I_local_mu0.5", "phi_c_own_k_mu0.5",
+                          "creep_length_creep_lambda", "angles_mu0.5"})
+    EXPECT_TRUE(keys_with(rows, Verdict::Shown).count(key)) << key;
+}
+
+TEST(SourceComparison, SignsFollowTheQuantitiesAndTheLayerReadingsThicknessIsNotCompared)
+{
+  const auto rows = compare_with_source(synthetic_series("layer_reading", {0, false, true}));
+  EXPECT_EQ(keys_with(rows, Verdict::ByConstruction), std::set<std::string>{"h"});
+  bool signs_begun = false;
+  for (const auto& r : rows) {
+    if (r.kind == RowKind::Sign) signs_begun = true;
+    else if (r.verdict != Verdict::ByConstruction && r.key.rfind("angles", 0) != 0)
+      EXPECT_FALSE(signs_begun) << r.key << " after the signs";
+    if (r.key == "sign_f_vs_scale") EXPECT_EQ(verdict_text(r), "sign agrees");
+    if (r.key == "h") EXPECT_EQ(verdict_text(r), "set by construction");
+  }
 }
 
 TEST(SourceComparison, AnOffsetPhiCFailsItsFrictionsPackingRowsOnly)
 {
-  const auto rows = compare_with_source(synthetic_series("phi_offset", {0.03, false}));
+  const auto rows = compare_with_source(synthetic_series("phi_offset", {0.03, false, false}));
   EXPECT_EQ(keys_with(rows, Verdict::Outside), (std::set<std::string>{"phi_c_mu0.5", "phi_law_mu0.5"}));
 }
 
 TEST(SourceComparison, AFrequencyRisingWithUFailsBothFrequencySigns)
 {
-  const auto rows = compare_with_source(synthetic_series("f_flipped", {0, true}));
+  const auto rows = compare_with_source(synthetic_series("f_flipped", {0, true, false}));
   EXPECT_EQ(keys_with(rows, Verdict::Outside), (std::set<std::string>{"sign_f_vs_scale", "sign_f_vs_shear_rate"}));
 }
 
@@ -128,7 +163,18 @@ TEST(SourceComparison, TheSourcesRulesGiveInertialNumbersThreeTimesApart)
     }
     EXPECT_GT(c.mu_of_i / c.pouliquen, 2.0) << c.mu << " " << c.theta_deg;
   }
-  EXPECT_FALSE(rules_consistent(checks));
+  EXPECT_EQ(rules_consistent(checks), false);
+  // Read as GDR MiDi's I of a Bagnold layer, Pouliquen's I is 2.5/sqrt(phi cos theta) times larger:
+  // at mu 0.5, 22 deg, U = 0.0356 x 44.5^1.5 = 10.58, phi = 0.826 - 0.00315 x 10.58 = 0.7927, the
+  // factor 2.5/sqrt(0.7927 x 0.9272) = 2.916, I 0.1039 against mu(I)'s 0.1062.
+  for (const auto& c : checks)
+    if (c.mu == 0.5 && c.theta_deg == 22) {
+      EXPECT_NEAR(c.bagnold_factor, 2.916, 0.002);
+      EXPECT_NEAR(*pouliquen_inertial_as(c, "I_bagnold"), 0.1039, 0.0005);
+    }
+  EXPECT_EQ(rules_consistent(checks, "I_bagnold"), true);
+  EXPECT_EQ(rules_consistent(checks, "I_local"), std::nullopt);  // the source's numbers cannot give it
+  EXPECT_NEAR(reconciling_i0(source, checks, "I_bagnold") / source.value("muI_I0"), 1 / 1.03, 0.01);
   // With the reconciling I0 the mu(I) rule's I follows Pouliquen's in the geometric mean.
   const double i0 = reconciling_i0(source, checks);
   EXPECT_NEAR(i0, 0.11, 0.01);

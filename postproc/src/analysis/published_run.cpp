@@ -95,9 +95,9 @@ std::vector<LayerSpectrum> read_layers_csv(const std::string& path)
   return layers;
 }
 
-// The value of "key" in params.json (the campaign's record of a run's deck variables, flat
-// "key": "value" pairs).
-double json_number(const std::string& path, const std::string& key)
+// The text of "key" in params.json (the campaign's record of a run's deck variables, flat
+// "key": "value" pairs); none when it has no such key.
+std::optional<std::string> json_text(const std::string& path, const std::string& key)
 {
   std::ifstream in(path);
   if (!in) throw InputError(path, 0, "cannot open");
@@ -105,10 +105,16 @@ double json_number(const std::string& path, const std::string& key)
   text << in.rdbuf();
   const std::string content = text.str();
   std::smatch match;
-  if (!std::regex_search(content, match, std::regex("\"" + key + "\"\\s*:\\s*\"?([^\",}\\s]+)")))
-    throw InputError(path, 0, "no value for \"" + key + "\"");
+  if (!std::regex_search(content, match, std::regex("\"" + key + "\"\\s*:\\s*\"?([^\",}\\s]+)"))) return std::nullopt;
+  return match[1].str();
+}
+
+double json_number(const std::string& path, const std::string& key)
+{
+  const auto text = json_text(path, key);
+  if (!text) throw InputError(path, 0, "no value for \"" + key + "\"");
   LineSource source(path);  // names the file in a malformed number's error
-  return parse_number(match[1].str(), source, key);
+  return parse_number(*text, source, key);
 }
 
 // Narrowest spacing of the bins (profile.csv leaves out the empty bins above the surface).
@@ -119,29 +125,34 @@ double bin_width(const std::vector<double>& z_d)
   return width;
 }
 
-// phi(z) from profile.csv (its phi column, else its counts with L and the dispersity of
-// params.json), then phi_bulk, h_packing and I_packing.
-void add_published_geometry(const std::filesystem::path& folder, RunAnalysis& run)
+// u(z) and phi(z) from profile.csv (its phi column, else its counts with L and the dispersity of
+// params.json: phi left empty, with a warning, without them), then, when results.csv lacks them,
+// phi_bulk, h_packing and I_packing.
+void add_published_profile(const std::filesystem::path& folder, RunAnalysis& run)
 {
   const auto profile_path = (folder / "profile.csv").string(), params_path = (folder / "params.json").string();
-  const auto profile = read_published_profile(profile_path);
-  PackingProfile packing{profile.z_d, profile.phi};
+  const auto published = read_published_profile(profile_path);
+  VelocityProfile profile{published.z_d, published.u, published.count, published.phi, bin_width(published.z_d)};
   std::string source = "profile.csv, phi";
-  if (packing.phi.empty()) {
+  if (profile.phi.empty()) {
     if (!std::filesystem::exists(params_path)) {
       run.warnings.push_back(profile_path + " has no phi and " + params_path +
-                             " is missing (L, dispersity): phi_bulk and h_packing not estimated from the counts");
+                             " is missing (L, dispersity): phi(z), phi_bulk and h_packing not estimated from the "
+                             "counts");
+      run.profile = profile;
       return;
     }
     const double length = json_number(params_path, "L"), dispersity = json_number(params_path, "dispersity");
     try {
-      packing.phi = packing_from_counts(profile.count, length, bin_width(profile.z_d), dispersity);
+      profile.phi = packing_from_counts(profile.count, length, profile.bin_width_d, dispersity);
     } catch (const AnalysisError& e) {
       throw InputError(params_path, 0, e.what());
     }
     source = "profile.csv, count x mean grain area / (L d), L and dispersity from params.json";
   }
-  if (auto problem = add_layer_geometry(run.results, packing, source))
+  run.profile = profile;
+  if (run.results.find("phi_bulk")) return;
+  if (auto problem = add_layer_geometry(run.results, PackingProfile{profile.z_d, profile.phi}, source))
     run.warnings.push_back(profile_path + ": " + *problem);
 }
 
@@ -222,6 +233,13 @@ void update_published_creep(const std::string& directory, const CreepMeasure& cr
   results.write_json(json, warnings);
 }
 
+std::optional<std::string> recorded_deck_variable(const std::string& directory, const std::string& name)
+{
+  const auto path = std::filesystem::path(directory) / "params.json";
+  if (!std::filesystem::exists(path)) return std::nullopt;
+  return json_text(path.string(), name);
+}
+
 bool is_published_run(const std::string& directory)
 {
   return std::filesystem::is_regular_file(std::filesystem::path(directory) / "results.csv");
@@ -234,8 +252,7 @@ RunAnalysis read_published_run(const std::string& directory)
   run.settings.directory = directory;
   run.results = read_results_csv((folder / "results.csv").string());
   if (std::filesystem::exists(folder / "layers.csv")) run.layers = read_layers_csv((folder / "layers.csv").string());
-  if (!run.results.find("phi_bulk") && std::filesystem::exists(folder / "profile.csv"))
-    add_published_geometry(folder, run);
+  if (std::filesystem::exists(folder / "profile.csv")) add_published_profile(folder, run);
   return run;
 }
 

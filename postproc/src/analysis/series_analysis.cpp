@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "analysis/published_run.h"
+#include "fit/inertial_number.h"
 #include "io/ave_time.h"
 #include "io/line_source.h"
 #include "io/progress.h"
@@ -314,6 +315,21 @@ struct SeriesFitter {
       record_residuals(prefix + "phi_U", "", "phi", fit.raw, fit.residuals);
       fits.phi_of_u = fit;
     });
+    const auto mus = friction_values(points);
+    for (double mu : mus.size() > 1 ? mus : std::vector<double>{})  // one friction: the common fit is its own
+      attempt(scope(fits) + "phi = phi_c - k U/sqrt(g d) at mu = " + mu_label(mu) + " alone", [&] {
+        const auto of_mu = points_with_mu(points, mu);
+        const auto fit = fit_phi_velocity(of_mu);
+        const std::string suffix = "_mu" + mu_label(mu),
+                          what =
+                              " of phi = phi_c - k U/sqrt(g d) fitted to mu = " + mu_label(mu) + " alone (its own k)";
+        series.fits.add(prefix + "phi_c_own_k" + suffix, fit.phi_c.front().second, "", "phi_c" + what + of(fits));
+        series.fits.add(prefix + "phi_k_own" + suffix, fit.k, "", "k" + what + of(fits));
+        double slowest = INFINITY;
+        for (const auto& p : of_mu) slowest = std::min(slowest, p.velocity);
+        series.fits.add(prefix + "phi_slowest_U" + suffix, slowest, "sqrt(g d)",
+                        "smallest U of the runs at mu = " + mu_label(mu) + ": phi_c extrapolates from it to U = 0");
+      });
     attempt(scope(fits) + "phi = phi_c(mu) - k_I I", [&] {
       auto fit = fit_phi_inertial(points);
       series.fits.add(prefix + "phiI_k", fit.k, "", "k_I of phi = phi_c(mu) - k_I I, shared by every mu" + of(fits));
@@ -484,6 +500,59 @@ void depth_decay(SeriesAnalysis& series)
   }
 }
 
+// The run's inertial number read as GDR MiDi's (fit/inertial_number.h): I_bagnold from U, h and
+// phi, I_local at mid-layer from its profiles u(z) and phi(z), each added to its results.
+void add_inertial_numbers(SeriesRun& run, std::vector<std::string>& warnings)
+{
+  const auto velocity = run.estimate("U"), thickness = run.estimate("h"), phi = run.estimate("phi");
+  if (!velocity || !thickness || !phi) return;
+  const double theta = run.entry.theta_deg;
+  const double bagnold = bagnold_inertial_number(velocity->value, thickness->value, phi->value, theta);
+  auto& results = run.analysis.results;
+  std::optional<double> bagnold_error;
+  if (velocity->error) bagnold_error = bagnold * *velocity->error / velocity->value;
+  results.add("I_bagnold", Estimate{bagnold, bagnold_error}, "",
+              "GDR MiDi's inertial number with the Bagnold shear rate 5U/(2h) and the basal pressure phi rho g h cos "
+              "theta: 2.5 U/(h^1.5 sqrt(phi cos theta)); error from U alone");
+  const auto& profile = run.analysis.profile;
+  if (!profile || profile->phi.empty()) {
+    warnings.push_back(run.entry.directory + ": no u(z) and phi(z), no local inertial number");
+    return;
+  }
+  try {
+    const auto local =
+        local_inertial_number(profile->z_d, profile->u_reduced, profile->phi, kLocalHeightFraction * thickness->value,
+                              kLocalBandFraction * thickness->value, theta);
+    const std::string where = " at mid-layer, z = h/2 (shear rate fitted over h/2 +- h/10)";
+    results.add("I_local", local.inertial, "",
+                "GDR MiDi's inertial number gamma_dot d/sqrt(P/rho)" + where +
+                    "; P the weight of the grains above; error from the shear rate's");
+    results.add("shear_rate_local", local.shear_rate, "sqrt(g/d)", "du/dz" + where);
+    results.add("pressure_local", local.pressure, "rho g d",
+                "weight of the grains above z = h/2: cos theta x integral of phi");
+    results.add("phi_local", local.phi, "", "mean phi of the bins" + where);
+  } catch (const AnalysisError& e) {
+    warnings.push_back(run.entry.directory + ": no local inertial number: " + e.what());
+  }
+}
+
+// The creep length a guide line on the source's semi-log inset follows (fit/creep.h), from the
+// run's u(z), added to its results.
+void add_first_decade_decay(SeriesRun& run, std::vector<std::string>& warnings)
+{
+  const auto& profile = run.analysis.profile;
+  if (!profile) return;
+  if (auto decay = first_decade_decay(profile->z_d, profile->u_reduced))
+    run.analysis.results.add("creep_lambda_first_decade", decay->lambda, "d",
+                             "decay length of u0 exp(z/lambda) over the first decade of u below the wall tops (" +
+                                 std::to_string(decay->points) + " bins, to " +
+                                 format_estimate(decay->depth_bottom_d, std::nullopt) + " d below)");
+  else
+    warnings.push_back(run.entry.directory +
+                       ": u does not decay over a first decade of 3 bins or more below the "
+                       "wall tops: no creep_lambda_first_decade");
+}
+
 }  // namespace
 
 SeriesAnalysis analyse_series(const SeriesSettings& settings)
@@ -507,7 +576,7 @@ SeriesAnalysis analyse_series(const SeriesSettings& settings)
       if (!published && settings.complete_run) settings.complete_run(run_settings);
       series.runs.push_back({entries[i],
                              published ? read_published_run(run_settings.directory) : analyse_run(run_settings),
-                             std::nullopt});
+                             std::nullopt, recorded_deck_variable(run_settings.directory, "reading") == "layer"});
     } catch (const std::exception& e) {
       throw InputError(settings.manifest, entries[i].line, std::string("run failed: ") + e.what());
     }
@@ -516,6 +585,10 @@ SeriesAnalysis analyse_series(const SeriesSettings& settings)
   }
   if (series.runs.empty())
     throw InputError(settings.manifest, 0, "every run listed has stopped: nothing flows to analyse");
+  for (auto& run : series.runs) {
+    add_inertial_numbers(run, series.warnings);
+    add_first_decade_decay(run, series.warnings);
+  }
   SeriesFitter fitter{series};
   fitter.flow_rules();
   fitter.scalings();

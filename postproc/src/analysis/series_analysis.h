@@ -55,6 +55,9 @@ struct SeriesRun {
   double value(const std::string& name) const;  // a result every run has (U, f, A, ...)
   std::optional<Estimate> estimate(const std::string& name) const;
   std::optional<DepthDecay> depth_decay;  // of the amplitude at f over the layers
+  // The deck set the grain count for the source's layer thickness (its `reading layer`,
+  // doc/chute.md), so the run's h is not a measurement to compare.
+  bool thickness_set_by_deck = false;
 };
 
 // One residual of one flow-rule fit.

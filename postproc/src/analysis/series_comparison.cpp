@@ -267,10 +267,37 @@ Figure amplitude_figure(const SeriesComparison& comparison, const Styles& styles
               panels, panels.size());
 }
 
+// theta against each reading of a run's I, a panel each, both series with the source's two rules.
+Figure inertial_readings_figure(const SeriesComparison& comparison, const Styles& styles)
+{
+  std::vector<Panel> panels;
+  const auto& source = comparison.series[0].source;
+  for (const auto& definition : kInertialDefinitions) {
+    auto panel = overlaid(comparison, styles, definition.result, "theta",
+                          [](size_t, double, double) { return std::vector<FrictionCurve>{}; });
+    if (panel.curves.empty() || !source) continue;
+    auto [i0, i1] = x_extent(panel.curves);
+    for (auto& rule : source_rule_curves(*source, 0.8 * i0, 1.2 * i1)) {
+      rule.curve.line_type = styles.line_type(rule.mu);
+      panel.curves.push_back(std::move(rule.curve));
+    }
+    panel =
+        titled(panel, "theta against " + definition.result, definition.result + ": " + definition.name, "theta (deg)");
+    panel.key = "bottom right";
+    panels.push_back(panel);
+  }
+  return grid("flow_rules_by_I",
+              "Each run's tilt against its I read three ways, with the source's Pouliquen (dashed) and mu(I) (solid) "
+              "rules; " +
+                  styles.legend(false),
+              panels, panels.size());
+}
+
 std::vector<Figure> comparison_figures(const SeriesComparison& comparison)
 {
   const Styles styles(comparison);
   return {flow_rule_figure(comparison, styles),
+          inertial_readings_figure(comparison, styles),
           phi_figure(comparison, styles, true),
           phi_figure(comparison, styles, false),
           power_law_figure(comparison, styles, "f_vs_scale", "f_scale", "(sqrt(g d)/U g/d)^(1/2) (Hz)",

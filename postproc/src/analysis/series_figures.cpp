@@ -177,6 +177,41 @@ Figure flow_rule_figure(const SeriesAnalysis& series)
       panels);
 }
 
+// theta against each reading of a run's I (analysis/source_numbers.h), one panel each, with both
+// of the source's rules over the runs' range of I.
+std::optional<Figure> inertial_readings_figure(const SeriesAnalysis& series)
+{
+  if (!series.source) return std::nullopt;
+  std::vector<Panel> panels;
+  for (const auto& definition : kInertialDefinitions) {
+    auto points = points_by_friction(series, definition.result, "theta");
+    if (points.empty()) continue;
+    std::vector<Curve> curves;
+    auto colour = [&](double mu) {  // a friction's points and the source's rules at it: one colour
+      auto found = std::find_if(points.begin(), points.end(), [&](const FrictionCurve& c) { return c.mu == mu; });
+      return 1 + static_cast<int>(found - points.begin());
+    };
+    for (auto& p : points) {
+      p.curve.line_type = colour(p.mu);
+      curves.push_back(p.curve);
+    }
+    auto [i0, i1] = x_extent(curves);
+    for (auto& rule : source_rule_curves(*series.source, 0.8 * i0, 1.2 * i1)) {
+      rule.curve.line_type = colour(rule.mu);
+      curves.push_back(std::move(rule.curve));
+    }
+    auto p =
+        panel("theta against " + definition.result, definition.result + ": " + definition.name, "theta (deg)", curves);
+    p.key = "bottom right";
+    panels.push_back(p);
+  }
+  if (panels.empty()) return std::nullopt;
+  return definitions_figure("flow_rules_by_I",
+                            "Each run's tilt against its I read three ways, with the source's Pouliquen (dashed) and "
+                            "mu(I) (solid) rules",
+                            panels);
+}
+
 std::optional<Figure> length_figure(const SeriesAnalysis& series)
 {
   std::vector<std::pair<std::string, std::string>> quantities = {
@@ -297,6 +332,7 @@ std::vector<Figure> series_figures(const SeriesAnalysis& series)
        {panel("A against phi", "phi", "A / sqrt(g d)", by_friction(series, "phi", "A"))}},
       flow_rule_figure(series)};
   for (auto& figure : phi_figures(series)) figures.push_back(figure);
+  if (auto readings = inertial_readings_figure(series)) figures.push_back(*readings);
   if (auto lengths = length_figure(series)) figures.push_back(*lengths);
   if (auto depth = depth_figure(series)) figures.push_back(*depth);
   if (auto beta = beta_free_figure(series)) figures.push_back(*beta);
@@ -305,10 +341,29 @@ std::vector<Figure> series_figures(const SeriesAnalysis& series)
 
 void write_runs_table(const SeriesAnalysis& series, const std::string& path)
 {
-  const std::vector<std::string> names = {
-      "U",           "phi",          "h",          "I", "phi_bulk", "h_packing",    "I_packing",
-      "shear_rate",  "f_scale",      "f",          "A", "A_mean",   "creep_lambda", "creep_z_high",
-      "creep_z_low", "creep_points", "creep_floor"};
+  const std::vector<std::string> names = {"U",
+                                          "phi",
+                                          "h",
+                                          "I",
+                                          "I_bagnold",
+                                          "I_local",
+                                          "shear_rate_local",
+                                          "pressure_local",
+                                          "phi_local",
+                                          "phi_bulk",
+                                          "h_packing",
+                                          "I_packing",
+                                          "shear_rate",
+                                          "f_scale",
+                                          "f",
+                                          "A",
+                                          "A_mean",
+                                          "creep_lambda",
+                                          "creep_lambda_first_decade",
+                                          "creep_z_high",
+                                          "creep_z_low",
+                                          "creep_points",
+                                          "creep_floor"};
   auto out = open_output(path);
   out.precision(10);
   out << "run,mu,theta_deg,L_d";
@@ -489,9 +544,11 @@ std::vector<FrictionCurve> points_by_friction(const SeriesAnalysis& series, cons
     Curve curve;
     curve.title = "mu = " + label(mu);
     curve.style = CurveStyle::ErrorBars;
+    auto value = [](const SeriesRun& run, const std::string& name) {
+      return name == "theta" ? std::optional<Estimate>(Estimate{run.entry.theta_deg, {}}) : run.estimate(name);
+    };
     for (const auto& run : series.runs) {
-      auto xv = x == "theta" ? std::optional<Estimate>(Estimate{run.entry.theta_deg, {}}) : run.estimate(x);
-      auto yv = run.estimate(y);
+      auto xv = value(run, x), yv = value(run, y);
       if (run.entry.mu != mu || !xv || !yv) continue;
       curve.x.push_back(xv->value);
       curve.y.push_back(yv->value);
@@ -630,6 +687,7 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
   creep_table(report, series);
   along_cell_section(series, report, out_dir);
   source_section(report, {{"ours", &series}});
+  inertial_readings_section(report, series);
   report.heading("Figures");
   for (const auto& figure : series_figures(series)) {
     if (auto problem = render_figure(figure, figures_dir)) series.warnings.push_back(*problem);
@@ -642,6 +700,7 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
   write_layer_amplitudes(series, out_dir + "/layer_amplitudes.csv");
   write_depth_decay(series, out_dir + "/depth_decay.csv");
   write_source_comparison({{"ours", &series}}, out_dir + "/source_comparison.csv");
+  write_inertial_readings(series, out_dir + "/inertial_readings.csv");
   series.fits.write_csv(out_dir + "/fits.csv");
   series.fits.write_json(out_dir + "/fits.json", series.warnings);
   report.write(out_dir + "/report.md");

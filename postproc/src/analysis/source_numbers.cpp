@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "fit/inertial_number.h"
 #include "io/ave_time.h"
 #include "io/line_source.h"
 #include "io/tokens.h"
@@ -145,30 +146,51 @@ std::optional<double> mu_of_i_inertial(const SourceNumbers& source, double mu, d
   return r.scale * (t - r.tan1) / (r.tan2 - t);
 }
 
+const std::vector<InertialDefinition> kInertialDefinitions{
+    {"I", "the stated I = d U/(sqrt(g) h^1.5)"},
+    {"I_bagnold", "GDR MiDi's I, Bagnold shear rate 5U/(2h), basal pressure"},
+    {"I_local", "GDR MiDi's I at mid-layer, measured du/dz and weight above"}};
+
 std::vector<InertialCheck> source_inertial_numbers(const SourceNumbers& source)
 {
   std::vector<InertialCheck> checks;
+  const auto& thickness = source.at("h");
+  const double h = 0.5 * (thickness.low + thickness.high);
   for (double mu : source.frictions) {
     const auto& angles = source.at("angles" + friction_suffix(mu));
+    const double phi_c = source.value("phi_c" + friction_suffix(mu)), k = source.value("phi_k");
     for (double theta = std::ceil(angles.low); theta <= angles.high; theta += 1) {
       auto p = pouliquen_inertial(source, mu, theta), m = mu_of_i_inertial(source, mu, theta);
-      if (p && m) checks.push_back({mu, theta, *p, *m});
+      if (!p || !m) continue;
+      const double velocity = *p * std::pow(h, 1.5);
+      checks.push_back({mu, theta, *p, *m, bagnold_inertial_number(velocity, h, phi_c - k * velocity, theta) / *p});
     }
   }
   return checks;
 }
 
-double reconciling_i0(const SourceNumbers& source, const std::vector<InertialCheck>& checks)
+std::optional<double> pouliquen_inertial_as(const InertialCheck& check, const std::string& result)
+{
+  if (result == "I") return check.pouliquen;
+  if (result == "I_bagnold") return check.pouliquen * check.bagnold_factor;
+  return std::nullopt;
+}
+
+double reconciling_i0(const SourceNumbers& source, const std::vector<InertialCheck>& checks, const std::string& result)
 {
   double log_sum = 0;
-  for (const auto& c : checks) log_sum += std::log(c.pouliquen / c.mu_of_i);
+  for (const auto& c : checks) log_sum += std::log(pouliquen_inertial_as(c, result).value_or(NAN) / c.mu_of_i);
   return source.value("muI_I0") * std::exp(log_sum / static_cast<double>(checks.size()));
 }
 
-bool rules_consistent(const std::vector<InertialCheck>& checks, double tolerance)
+std::optional<bool> rules_consistent(const std::vector<InertialCheck>& checks, const std::string& result,
+                                     double tolerance)
 {
-  for (const auto& c : checks)
-    if (c.pouliquen > tolerance * c.mu_of_i || c.mu_of_i > tolerance * c.pouliquen) return false;
+  for (const auto& c : checks) {
+    const auto pouliquen = pouliquen_inertial_as(c, result);
+    if (!pouliquen) return std::nullopt;
+    if (*pouliquen > tolerance * c.mu_of_i || c.mu_of_i > tolerance * *pouliquen) return false;
+  }
   return true;
 }
 

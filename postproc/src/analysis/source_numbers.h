@@ -54,17 +54,33 @@ std::optional<double> pouliquen_inertial(const SourceNumbers& source, double mu,
 double mu_of_i_angle(const SourceNumbers& source, double mu, double inertial);
 std::optional<double> mu_of_i_inertial(const SourceNumbers& source, double mu, double theta_deg);
 
+// The inertial numbers a run's I can be read as (fit/inertial_number.h), each a result of the run.
+struct InertialDefinition {
+  std::string result;  // I (the source's stated one), I_bagnold, I_local
+  std::string name;    // in tables and figures
+};
+extern const std::vector<InertialDefinition> kInertialDefinitions;
+
 // The source's two flow rules at one of its angles: the inertial number each gives.
 struct InertialCheck {
   double mu = 0, theta_deg = 0;
   double pouliquen = 0, mu_of_i = 0;  // I
+  // 2.5/sqrt(phi cos theta), GDR MiDi's I over the stated one in a Bagnold layer, with phi from
+  // the source's phi(U) law at the Pouliquen rule's U = I h^1.5, h the middle of its range of h.
+  double bagnold_factor = 0;
 };
 // At every whole degree of each friction's angles_mu<mu> range.
 std::vector<InertialCheck> source_inertial_numbers(const SourceNumbers& source);
-// The I0 with which the mu(I) rule gives the Pouliquen rule's I in the geometric mean over
-// `checks`: its I is proportional to I0, so I0 times the geometric mean of pouliquen/mu_of_i.
-double reconciling_i0(const SourceNumbers& source, const std::vector<InertialCheck>& checks);
-// Whether the two rules give the same I within a factor `tolerance` at every angle checked.
-bool rules_consistent(const std::vector<InertialCheck>& checks, double tolerance = 1.5);
+// The Pouliquen rule's I of `check` read as the definition whose result is `result` (I or
+// I_bagnold); none for one the source's numbers cannot give (I_local needs profiles).
+std::optional<double> pouliquen_inertial_as(const InertialCheck& check, const std::string& result);
+// The I0 with which the mu(I) rule gives the Pouliquen rule's I (read as `result`) in the geometric
+// mean over `checks`: its I is proportional to I0, so I0 times the geometric mean of pouliquen/mu_of_i.
+double reconciling_i0(const SourceNumbers& source, const std::vector<InertialCheck>& checks,
+                      const std::string& result = "I");
+// Whether the two rules give the same I within a factor `tolerance` at every angle checked, the
+// Pouliquen rule's I read as `result`; none when the source's numbers cannot give it so.
+std::optional<bool> rules_consistent(const std::vector<InertialCheck>& checks, const std::string& result = "I",
+                                     double tolerance = 1.5);
 
 }  // namespace cdpost

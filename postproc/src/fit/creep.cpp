@@ -110,6 +110,22 @@ void fit_range(const BedBins& bed, CreepMeasure& creep)
 
 }  // namespace
 
+std::optional<CreepBand> first_decade_decay(const std::vector<double>& z, const std::vector<double>& u, double depth_d)
+{
+  const auto bed = bed_bins(z, u, depth_d);
+  const size_t decaying = end_of_decay(bed);
+  if (decaying == 0) return std::nullopt;
+  const double decade_end = bed.u.front() / 10;
+  size_t points = 0;
+  while (points < decaying && bed.u[points] >= decade_end) ++points;
+  if (static_cast<int>(points) < kMinBandPoints) return std::nullopt;
+  const std::vector<double> band_z(bed.z.begin(), bed.z.begin() + static_cast<long>(points)),
+      band_u(bed.u.begin(), bed.u.begin() + static_cast<long>(points));
+  const auto fit = fit_exponential(band_z, band_u);
+  if (!(fit.inverse_length.value > 0)) return std::nullopt;
+  return CreepBand{0, -band_z.back(), decay_length(fit.inverse_length), fit.raw.points};
+}
+
 std::string CreepFloor::source() const
 {
   if (bins == 0) return "given (--creep-floor)";

@@ -61,6 +61,15 @@ struct CreepMeasure {
 // z ascending or not, one entry per profile bin. Throws AnalysisError only on a bad setting.
 CreepMeasure measure_creep(const std::vector<double>& z, const std::vector<double>& u, const CreepSettings& settings);
 
+// The decay a guide line drawn by eye on a semi-log plot of u below the wall tops follows: the
+// first decade of u, where the points stand far above any floor and span the plot's visible
+// slope. u0 exp(z/lambda) fitted over the bins from the highest below z = 0 down to the last
+// before u first falls below a tenth of that bin's u or stops decaying (at least kMinBandPoints
+// bins, within -depth_d <= z < 0); none otherwise. depth_top_d 0, depth_bottom_d the deepest
+// bin's depth.
+std::optional<CreepBand> first_decade_decay(const std::vector<double>& z, const std::vector<double>& u,
+                                            double depth_d = CreepSettings{}.depth_d);
+
 // The rows creep_floor, creep_points, creep_z_high, creep_z_low, creep_lambda, creep_u0 and
 // creep_lambda_band_<top>_<bottom> (what the measure has) added to `results`.
 void add_creep_results(ResultTable& results, const CreepMeasure& creep);

@@ -142,4 +142,27 @@ PowerLaw fit_power_law(const std::vector<double>& x, const std::vector<double>& 
   return law;
 }
 
+WeightedSlope fit_weighted_slope(const std::vector<double>& x, const std::vector<double>& y,
+                                 const std::vector<double>& sigma)
+{
+  const size_t n = x.size();
+  if (n < 3 || y.size() != n || sigma.size() != n) throw AnalysisError("a weighted slope needs 3 points or more");
+  double s = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (!(sigma[i] > 0)) throw AnalysisError("a weighted slope needs positive errors");
+    const double w = 1 / (sigma[i] * sigma[i]);
+    s += w, sx += w * x[i], sy += w * y[i], sxx += w * x[i] * x[i], sxy += w * x[i] * y[i];
+  }
+  const double determinant = s * sxx - sx * sx;
+  if (!(determinant > 1e-12 * s * sxx)) throw AnalysisError("a weighted slope needs x that are not all equal");
+  const double slope = (s * sxy - sx * sy) / determinant, intercept = (sxx * sy - sx * sxy) / determinant;
+  double chi2 = 0;
+  for (size_t i = 0; i < n; ++i) chi2 += std::pow((y[i] - intercept - slope * x[i]) / sigma[i], 2);
+  WeightedSlope fit;
+  fit.points = static_cast<int>(n);
+  fit.reduced_chi2 = chi2 / static_cast<double>(n - 2);
+  fit.slope = {slope, std::sqrt(s / determinant) * std::max(1.0, std::sqrt(fit.reduced_chi2))};
+  return fit;
+}
+
 }  // namespace cdpost

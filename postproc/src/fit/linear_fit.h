@@ -60,4 +60,17 @@ struct PowerLaw {
 };
 PowerLaw fit_power_law(const std::vector<double>& x, const std::vector<double>& y);
 
+// y = intercept + slope x weighted by the points' own one-sigma errors (w = 1/sigma^2). The
+// slope's error is that of the stated errors, scaled by sqrt(chi2/dof) when the points scatter
+// more than their errors say (chi2/dof > 1), never shrunk below it: a sign read from it rests on
+// whichever is larger, the errors or the scatter.
+struct WeightedSlope {
+  Estimate slope;
+  double reduced_chi2 = 0;  // chi2/dof of the weighted residuals
+  int points = 0;
+};
+// At least 3 points, every sigma positive, x not all equal.
+WeightedSlope fit_weighted_slope(const std::vector<double>& x, const std::vector<double>& y,
+                                 const std::vector<double>& sigma);
+
 }  // namespace cdpost
