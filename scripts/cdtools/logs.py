@@ -130,3 +130,58 @@ def read_progress(path, tags=("CHUTE", "DEPOSITION")):
     except OSError:
         pass
     return progress
+
+
+# The fix's end-of-run line (cd::describe of its run statistics).
+SOLVER_LINE = re.compile(
+    r"Fix contact/dynamics \S+ solver: (?P<steps>\d+) steps, (?P<unconverged>\d+) unconverged \([^)]*\), "
+    r"largest final norm (?P<largest_final_norm>[^,]+), sweeps per step median (?P<sweeps_median>\d+), "
+    r"99th percentile (?P<sweeps_p99>\d+), max (?P<sweeps_max>\d+), (?P<rescued>\d+) rescued from a stall")
+
+
+def solver_health(path):
+    """The last end-of-run solver line of a log as numbers, or None if it has none (a leg killed
+    before its end, or a log of a build before the line existed)."""
+    found = None
+    try:
+        with open(path) as src:
+            for line in src:
+                match = SOLVER_LINE.search(line)
+                if match:
+                    found = match
+    except OSError:
+        return None
+    if found is None:
+        return None
+    health = {key: float(value) if key == "largest_final_norm" else int(value)
+              for key, value in found.groupdict().items()}
+    return with_fraction(health)
+
+
+def with_fraction(health):
+    health["unconverged_fraction"] = health["unconverged"] / health["steps"] if health["steps"] else 0.0
+    return health
+
+
+def merged_solver_health(healths):
+    """One run's solver health from its legs' (None where a leg recorded none). Counts add and the
+    largest values are the largest; the sweep quantiles of several legs are their step-weighted
+    median and largest 99th percentile, marked by 'legs' > 1. None if no leg recorded any."""
+    recorded = [h for h in healths if h]
+    if not recorded:
+        return None
+    if len(recorded) == 1:
+        return dict(recorded[0], legs=1, legs_unrecorded=len(healths) - 1)
+    merged = {key: sum(h[key] for h in recorded) for key in ("steps", "unconverged", "rescued")}
+    merged["largest_final_norm"] = max(h["largest_final_norm"] for h in recorded)
+    merged["sweeps_max"] = max(h["sweeps_max"] for h in recorded)
+    merged["sweeps_p99"] = max(h["sweeps_p99"] for h in recorded)
+    by_median = sorted(recorded, key=lambda h: h["sweeps_median"])
+    half, seen = merged["steps"] / 2.0, 0
+    for h in by_median:
+        seen += h["steps"]
+        if seen >= half:
+            merged["sweeps_median"] = h["sweeps_median"]
+            break
+    merged.update(legs=len(recorded), legs_unrecorded=len(healths) - len(recorded))
+    return with_fraction(merged)

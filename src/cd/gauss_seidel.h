@@ -44,9 +44,10 @@ struct SolverSettings {
   // The stall rescue (StallWatch): a solve whose impulses moved, over stall_window sweeps, by
   // less than stall_coherence times the sum of the sweeps' changes (they went back and forth: a
   // cycle, not a slow drift) goes on with relaxation stall_relaxation and plain sweeps until it
-  // converges or meets the cap. 0: no rescue.
-  int stall_window = 0;
-  double stall_coherence = 0.1;
+  // converges or meets the cap. 0: no rescue. The defaults were chosen on the corpus of hard
+  // steps (doc/solver_stalls.md): every mu 2 stall rescued, no mu 0.5 step touched.
+  int stall_window = 100;
+  double stall_coherence = 0.3;
   double stall_relaxation = 0.7;
 };
 

@@ -26,7 +26,7 @@ import json
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "scripts"))
 
 from cdtools import lammps_files, logs, run, stats, text
-from cdtools.campaign import plan
+from cdtools.campaign import plan, report
 
 
 def check(condition, message):
@@ -220,8 +220,34 @@ def check_readings():
           "a changed word")
 
 
+def check_solver_health(work):
+    line = ("Fix contact/dynamics cd solver: 2000 steps, 3 unconverged (0.15 %), largest final norm 0.00247, "
+            "sweeps per step median 138, 99th percentile 900, max 1000, 4 rescued from a stall\n")
+    first = logs.solver_health(write(work, "first.log", "Step Time\n" + line.replace("2000 steps", "10 steps")
+                                     + line))
+    check(first == dict(steps=2000, unconverged=3, unconverged_fraction=0.0015, largest_final_norm=0.00247,
+                        sweeps_median=138, sweeps_p99=900, sweeps_max=1000, rescued=4), f"the last line: {first}")
+    check(logs.solver_health(write(work, "none.log", "Step Time\n")) is None, "a log without the line")
+    second = dict(first, steps=6000, unconverged=0, unconverged_fraction=0.0, sweeps_median=200, sweeps_p99=300,
+                  largest_final_norm=0.001, rescued=0)
+    merged = logs.merged_solver_health([first, None, second])
+    check((merged["steps"], merged["unconverged"], merged["unconverged_fraction"], merged["largest_final_norm"],
+           merged["sweeps_median"], merged["sweeps_p99"], merged["legs"], merged["legs_unrecorded"])
+          == (8000, 3, 3 / 8000, 0.00247, 200, 900, 2, 1), f"merged legs: {merged}")
+    check(logs.merged_solver_health([None, None]) is None, "no leg recorded the line")
+    record = argparse.Namespace(name="mu2_theta28", cost=dict(solver=first))
+    refusal = report.publication_refusal(record, argparse.Namespace(publish_unconverged=False))
+    check(refusal == "not publishing mu2_theta28: 0.15 % of its steps ended unconverged (more than 0.1 %); "
+          "--publish-unconverged publishes it anyway, flagged", f"refusal: {refusal}")
+    check(report.publication_refusal(record, argparse.Namespace(publish_unconverged=True)) is None, "told")
+    check(report.publication_refusal(argparse.Namespace(name="old", cost={}), argparse.Namespace()) is None,
+          "a run without a record is published (and shown as not recorded)")
+    check(report.solver_cells(dict(solver=first)) == ["3 (0.15 %) ⚠", "138 / 900"], "the runs table's cells")
+
+
 def main():
     with tempfile.TemporaryDirectory() as work:
+        check_solver_health(work)
         check_runs_older_than_a_variable(work)
         check_time_files(work)
         check_chunk_files(work)
@@ -231,7 +257,7 @@ def main():
     check_text()
     check_arguments()
     check_readings()
-    print("cdtools: ave/time, ave/chunk and dump readers (cut files included), logs, statistics, text, "
+    print("cdtools: ave/time, ave/chunk and dump readers (cut files included), logs, solver health, statistics, text, "
           "-var arguments, runs older than a deck variable, the two readings' names")
 
 

@@ -7,7 +7,7 @@ import shutil
 
 from ..cdpost import RUN_RECORD
 from ..lammps_files import read_chunk_records, read_dump_records, read_time_file, read_time_records, time_span
-from ..logs import parse_summary, read_outputs, error_line, read_progress
+from ..logs import error_line, merged_solver_health, parse_summary, read_outputs, read_progress, solver_health
 from .jobs import write_json
 
 # Output files of one leg: (name, kind). Kind "time" is a fix ave/time file, "chunk" a fix
@@ -119,4 +119,5 @@ def run_cost(job, legs):
                 cpu_seconds=cpu, cpu_per_physical_second=cpu / physical if physical > 0 else None,
                 seconds_per_grain_step=wall / (steps * job.grains()) if steps else None,
                 mean_sweeps_per_step=mean_solver_column(job.folder, "f_cd[1]"),
-                mean_solves_per_step=mean_solver_column(job.folder, "f_cd[12]"), legs=len(legs))
+                mean_solves_per_step=mean_solver_column(job.folder, "f_cd[12]"), legs=len(legs),
+                solver=merged_solver_health([solver_health(os.path.join(leg, "log.lammps")) for leg in legs]))

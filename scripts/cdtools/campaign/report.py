@@ -157,6 +157,37 @@ def read_published(path):
     return read_results(path) if os.path.exists(path) else {}
 
 
+# A run with more of its steps unconverged than this is not published unless told
+# (--publish-unconverged), and the rows that rest on it are flagged.
+UNCONVERGED_LIMIT = 0.001
+
+
+def unconverged_share(cost):
+    """The fraction of a run's steps that ended unconverged, or None if the run did not record it."""
+    solver = (cost or {}).get("solver")
+    return solver.get("unconverged_fraction") if solver else None
+
+
+def publication_refusal(record, args):
+    """One line saying why a run is not published, or None."""
+    share = unconverged_share(record.cost)
+    if share is None or share <= UNCONVERGED_LIMIT or getattr(args, "publish_unconverged", False):
+        return None
+    return (f"not publishing {record.name}: {100 * share:.3g} % of its steps ended unconverged (more than "
+            f"{100 * UNCONVERGED_LIMIT:g} %); --publish-unconverged publishes it anyway, flagged")
+
+
+def add_solver_health(results_json, cost):
+    """The run's solver health (cost.json's) beside cdpost's results in results.json."""
+    if not os.path.exists(results_json) or not cost.get("solver"):
+        return
+    with open(results_json) as src:
+        results = json.load(src)
+    results["solver"] = cost["solver"]
+    with open(results_json, "w") as out:
+        json.dump(results, out, indent=2, sort_keys=True)
+
+
 def write_run(record, destination, changes):
     """results/runs/<name>/: cdpost's results, the cost and every command that made them; what it
     changes of an earlier publication of the run goes to `changes` (file -> [(name, old, new)])."""
@@ -165,6 +196,7 @@ def write_run(record, destination, changes):
     published = os.path.join(folder, "results.csv")
     before = read_published(published)
     copy_matching(record.source, RUN_FILES, folder)
+    add_solver_health(os.path.join(folder, "results.json"), record.cost)
     if changed_numbers(before, read_published(published)):
         changes[os.path.relpath(published, destination)] = changed_numbers(before, read_published(published))
     with open(os.path.join(folder, "cost.json"), "w") as out:
@@ -206,17 +238,32 @@ def replica_scatter(pairs):
     return scatter
 
 
+def solver_cells(cost):
+    """The runs table's solver columns: unconverged steps (count, %, flagged above the limit), and
+    sweeps per step (median / 99th percentile); '–' for runs that did not record them."""
+    solver = (cost or {}).get("solver")
+    if not solver:
+        return ["not recorded", "–"]
+    share = solver["unconverged_fraction"]
+    flag = " ⚠" if share > UNCONVERGED_LIMIT else ""
+    return [f"{solver['unconverged']} ({100 * share:.3g} %){flag}",
+            f"{solver['sweeps_median']} / {solver['sweeps_p99']}"]
+
+
 def section_runs(records):
     rows = []
     for r in records:
         cost = r.cost.get("cpu_per_physical_second")
         rows.append([r.name, r.vars["mu"], r.vars["theta"], r.vars["L"], r.vars["seed"], r.vars["duration"],
-                     r.window_text(), number(cost, 3) if cost else "–", r.state])
+                     r.window_text(), number(cost, 3) if cost else "–"] + solver_cells(r.cost) + [r.state])
     return ("## The runs\n\nEach run rains its packing (seed), tilts gravity and flows for the chute time "
             "given; cdpost finds the stationary window of each. CPU s per physical s from LAMMPS's own "
-            "timers over the chute time the runs covered.\n\n"
+            "timers over the chute time the runs covered. Unconverged: the steps whose solve met the "
+            f"iteration cap (the fix's end-of-run line), ⚠ above {100 * UNCONVERGED_LIMIT:g} % of the run's "
+            "steps; runs made before the fix printed that line show 'not recorded'. Sweeps: per step, "
+            "median / 99th percentile.\n\n"
             + markdown_table(["run", "mu", "θ (°)", "L (d)", "seed", "chute time (s)", "window (s)",
-                              "CPU s / phys s", "state"], rows))
+                              "CPU s / phys s", "unconverged steps", "sweeps", "state"], rows))
 
 
 def section_quantities(title, text, records, columns):
@@ -634,7 +681,11 @@ def write_results(args):
     records = [RunRecord(job, args.report) for job in jobs if job.kind == "run"]
     changes = {}
     for r in records:
-        if r.local:
+        refusal = publication_refusal(r, args) if r.local else None
+        if refusal:
+            print(refusal, flush=True)
+            r.source, r.results, r.state = None, None, refusal
+        elif r.local:
             write_run(r, args.report, changes)
     series = publish_series(records, cdpost, args, changes)
     readings = publish_readings(series, cdpost, args)
