@@ -378,6 +378,42 @@ TEST(Cli, SnapshotOfAnyDumpTakesItsDiameterAndPeriodicityFromIt)
             "cdpost: cdpost snapshot: --periodic takes x, y, xy or none, not 'z' (see cdpost --help)\n");
 }
 
+// A dump that no chute.params describes gives no g: the snapshot, whose colours are u_x / sqrt(g d),
+// asks for it (an LJ pour coloured with 9.81 m/s^2 would read 3x off) and takes it when given.
+TEST(Cli, SnapshotOfANonChuteDumpAsksForGravity)
+{
+  const auto dir = testing::scratch_dir();
+  const auto dump = testing::write_file(
+      dir / "dump.pour",
+      testing::dump_frame_text(25000, 100, 50, {{1, 10, 0.4, 0, 0, 0.25}, {2, 90, 0.5, 0, 0, 0.5}}, "ff fm pp"));
+  auto outcome = cdpost("snapshot " + dump);
+  EXPECT_EQ(outcome.status, 1);
+  EXPECT_EQ(outcome.err, "cdpost: error: " + dump +
+                             ": no chute.params beside it to take g and the units from: give --g, gravity in the "
+                             "dump's units (the colours are u_x / sqrt(g d)), or --units reduced\n");
+  outcome = cdpost("snapshot " + dump + " --g 1");
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "snapshot.png"));
+}
+
+// A window given backwards is named as such, and one that misses the run says where the run is.
+TEST(Cli, WindowEndingBeforeItStartsIsNamed)
+{
+  testing::SyntheticRun truth;
+  auto dir = run_with_wall_tops("backwards", truth);
+  auto outcome = cdpost("run " + dir.string() + " --t-start 3 --t-end 2");
+  EXPECT_EQ(outcome.status, 2);
+  EXPECT_EQ(outcome.err,
+            "cdpost: cdpost run: --t-end 2 is not after --t-start 3: the window ends before it starts (see cdpost "
+            "--help)\n");
+  outcome = cdpost("run " + dir.string() + " --t-start 7 --t-end 9");
+  EXPECT_EQ(outcome.status, 1);
+  EXPECT_NE(outcome.err.find("the window from t = 7 s to 9 s holds fewer than 2 samples (the run's "),
+            std::string::npos)
+      << outcome.err;
+  EXPECT_NE(outcome.err.find(" samples span 0"), std::string::npos) << outcome.err;
+}
+
 TEST(Cli, BinaryDumpIsRefusedInOneShortLine)
 {
   // 15 KB of a binary dump's bytes: the error names the file and says what it is, nothing more.
