@@ -316,12 +316,15 @@ TEST(Cli, ForcedWindowThatDriftsIsLabelledEverywhere)
   EXPECT_NE(report.find("## Warnings\n\n- the window t = 0.001 to "), std::string::npos);
   EXPECT_EQ(report.find("stationary window"), std::string::npos);
   EXPECT_NE(slurp(dir / "post/figures/u_t.gp").find("shaded: window (not stationary)"), std::string::npos);
+  // The spectrum's own panel, which a reader may see without the report, says it too.
+  EXPECT_NE(slurp(dir / "post/figures/spectrum.gp").find("set title 'NOT STATIONARY (U drifts by "), std::string::npos);
   EXPECT_NE(slurp(dir / "post/results.csv").find("start of the given window (not stationary)"), std::string::npos);
 
   outcome = cdpost("run " + dir.string() + " --t-start 2.5 --out " + (dir / "late").string());
   ASSERT_EQ(outcome.status, 0) << outcome.err;
   EXPECT_EQ(outcome.err.find("not stationary"), std::string::npos) << outcome.err;
   EXPECT_LT(csv_value(dir / "late/results.csv", "stationary_drift"), 0.02);
+  EXPECT_EQ(slurp(dir / "late/figures/spectrum.gp").find("NOT STATIONARY"), std::string::npos);
   EXPECT_NE(slurp(dir / "late/report.md").find("Stationary window given on the command line, U drifts by"),
             std::string::npos);
   EXPECT_NE(slurp(dir / "late/figures/u_t.gp").find("shaded: stationary window"), std::string::npos);
@@ -376,6 +379,18 @@ TEST(Cli, SnapshotOfAnyDumpTakesItsDiameterAndPeriodicityFromIt)
       << outcome.out;
   EXPECT_EQ(cdpost("snapshot " + dump + " --periodic z").err,
             "cdpost: cdpost snapshot: --periodic takes x, y, xy or none, not 'z' (see cdpost --help)\n");
+}
+
+// Bins above the measured h (the dilute surface) are drawn apart from the fitted layer and named.
+TEST(Cli, ProfileNamesTheBinsAboveTheLayer)
+{
+  testing::SyntheticRun truth;
+  truth.occupied_above_h = 3;
+  auto dir = run_with_wall_tops("surface", truth);
+  ASSERT_EQ(cdpost("run " + dir.string() + " --t-start 2.5").status, 0);
+  const auto script = slurp(dir / "post/figures/profile.gp");
+  EXPECT_NE(script.find("title 'u(z) above h: dilute surface, few grains, not fitted'"), std::string::npos) << script;
+  EXPECT_NE(script.find("pt 6 ps 1 lt 1 title 'u(z) above h"), std::string::npos);  // open circles
 }
 
 // A dump that no chute.params describes gives no g: the snapshot, whose colours are u_x / sqrt(g d),
