@@ -651,8 +651,20 @@ def case_bad_var(args):
         errors = [line for line in output.splitlines() if line.startswith("ERROR")]
         if status == 0 or len(errors) != 1 or expected not in errors[0] or "Setting up" in output:
             problems.append(f"-var {name} {value}: status {status}, errors {errors}")
+    # The default scene includes in.chute: the names of both decks are known (its own `inputs`
+    # passes, and the stage check after it speaks), a name of neither is refused.
+    scene = os.path.join(TOP, "inputs", "in.default_scene")
+    inputs = os.path.join(TOP, "inputs")
+    for variables, expected in (({"inputs": inputs, "stage": "chute"}, "-var stage chute: must be"),
+                                ({"inputs": inputs, "thta": "30"}, "-var thta: the deck has no such variable "
+                                 "(the nearest is theta)")):
+        result = subprocess.run(lmp_command(args.lmp, scene, variables, log="none"), cwd=folder, capture_output=True,
+                                text=True)
+        errors = [line for line in (result.stdout + result.stderr).splitlines() if line.startswith("ERROR")]
+        if result.returncode == 0 or len(errors) != 1 or expected not in errors[0]:
+            problems.append(f"in.default_scene {variables}: status {result.returncode}, errors {errors}")
     check(not problems, "; ".join(problems))
-    print(f"bad -var: {len(BAD_VARS)} values stopped with one ERROR line naming the variable")
+    print(f"bad -var: {len(BAD_VARS) + 2} values stopped with one ERROR line naming the variable")
 
 
 def case_restart_between_samples(args):
