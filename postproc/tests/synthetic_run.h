@@ -38,6 +38,7 @@ struct SyntheticRun {
   unsigned seed = 1;
   double y_top = 0;  // m: height of the wall tops, z = y - y_top
   bool with_chunks_and_dump = true;
+  double occupied_above_h = 0;              // d: profile bins above h holding grains (a dilute surface), u as at h
   bool with_record = true;                  // chute.params, as inputs/in.chute writes it
   std::optional<double> recorded_length_d;  // L_d of chute.params (none: not recorded)
   // columns.chunk: v of `columns` x-columns tiling the cell, each the layer's oscillation plus
@@ -96,7 +97,7 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const Syntheti
   write_file(dir / "profile.chunk",
              ave_chunk_text({"Coord1", "Ncount", "vx"}, profile_steps, bins, [&](size_t, size_t bin, size_t column) {
                const double z = z_of(bin);
-               const bool occupied = z < run.h;
+               const bool occupied = z < run.h + run.occupied_above_h;
                if (column == 0) return z * run.d + run.y_top;
                if (column == 1) return occupied ? 20.0 : 0.0;
                if (!occupied) return 0.0;

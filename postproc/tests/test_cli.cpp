@@ -316,12 +316,15 @@ TEST(Cli, ForcedWindowThatDriftsIsLabelledEverywhere)
   EXPECT_NE(report.find("## Warnings\n\n- the window t = 0.001 to "), std::string::npos);
   EXPECT_EQ(report.find("stationary window"), std::string::npos);
   EXPECT_NE(slurp(dir / "post/figures/u_t.gp").find("shaded: window (not stationary)"), std::string::npos);
+  // The spectrum's own panel, which a reader may see without the report, says it too.
+  EXPECT_NE(slurp(dir / "post/figures/spectrum.gp").find("set title 'NOT STATIONARY (U drifts by "), std::string::npos);
   EXPECT_NE(slurp(dir / "post/results.csv").find("start of the given window (not stationary)"), std::string::npos);
 
   outcome = cdpost("run " + dir.string() + " --t-start 2.5 --out " + (dir / "late").string());
   ASSERT_EQ(outcome.status, 0) << outcome.err;
   EXPECT_EQ(outcome.err.find("not stationary"), std::string::npos) << outcome.err;
   EXPECT_LT(csv_value(dir / "late/results.csv", "stationary_drift"), 0.02);
+  EXPECT_EQ(slurp(dir / "late/figures/spectrum.gp").find("NOT STATIONARY"), std::string::npos);
   EXPECT_NE(slurp(dir / "late/report.md").find("Stationary window given on the command line, U drifts by"),
             std::string::npos);
   EXPECT_NE(slurp(dir / "late/figures/u_t.gp").find("shaded: stationary window"), std::string::npos);
@@ -376,6 +379,54 @@ TEST(Cli, SnapshotOfAnyDumpTakesItsDiameterAndPeriodicityFromIt)
       << outcome.out;
   EXPECT_EQ(cdpost("snapshot " + dump + " --periodic z").err,
             "cdpost: cdpost snapshot: --periodic takes x, y, xy or none, not 'z' (see cdpost --help)\n");
+}
+
+// Bins above the measured h (the dilute surface) are drawn apart from the fitted layer and named.
+TEST(Cli, ProfileNamesTheBinsAboveTheLayer)
+{
+  testing::SyntheticRun truth;
+  truth.occupied_above_h = 3;
+  auto dir = run_with_wall_tops("surface", truth);
+  ASSERT_EQ(cdpost("run " + dir.string() + " --t-start 2.5").status, 0);
+  const auto script = slurp(dir / "post/figures/profile.gp");
+  EXPECT_NE(script.find("title 'u(z) above h: dilute surface, few grains, not fitted'"), std::string::npos) << script;
+  EXPECT_NE(script.find("pt 6 ps 1 lt 1 title 'u(z) above h"), std::string::npos);  // open circles
+}
+
+// A dump that no chute.params describes gives no g: the snapshot, whose colours are u_x / sqrt(g d),
+// asks for it (an LJ pour coloured with 9.81 m/s^2 would read 3x off) and takes it when given.
+TEST(Cli, SnapshotOfANonChuteDumpAsksForGravity)
+{
+  const auto dir = testing::scratch_dir();
+  const auto dump = testing::write_file(
+      dir / "dump.pour",
+      testing::dump_frame_text(25000, 100, 50, {{1, 10, 0.4, 0, 0, 0.25}, {2, 90, 0.5, 0, 0, 0.5}}, "ff fm pp"));
+  auto outcome = cdpost("snapshot " + dump);
+  EXPECT_EQ(outcome.status, 1);
+  EXPECT_EQ(outcome.err, "cdpost: error: " + dump +
+                             ": no chute.params beside it to take g and the units from: give --g, gravity in the "
+                             "dump's units (the colours are u_x / sqrt(g d)), or --units reduced\n");
+  outcome = cdpost("snapshot " + dump + " --g 1");
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "snapshot.png"));
+}
+
+// A window given backwards is named as such, and one that misses the run says where the run is.
+TEST(Cli, WindowEndingBeforeItStartsIsNamed)
+{
+  testing::SyntheticRun truth;
+  auto dir = run_with_wall_tops("backwards", truth);
+  auto outcome = cdpost("run " + dir.string() + " --t-start 3 --t-end 2");
+  EXPECT_EQ(outcome.status, 2);
+  EXPECT_EQ(outcome.err,
+            "cdpost: cdpost run: --t-end 2 is not after --t-start 3: the window ends before it starts (see cdpost "
+            "--help)\n");
+  outcome = cdpost("run " + dir.string() + " --t-start 7 --t-end 9");
+  EXPECT_EQ(outcome.status, 1);
+  EXPECT_NE(outcome.err.find("the window from t = 7 s to 9 s holds fewer than 2 samples (the run's "),
+            std::string::npos)
+      << outcome.err;
+  EXPECT_NE(outcome.err.find(" samples span 0"), std::string::npos) << outcome.err;
 }
 
 TEST(Cli, BinaryDumpIsRefusedInOneShortLine)

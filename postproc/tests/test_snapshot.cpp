@@ -173,5 +173,30 @@ TEST(Snapshot, PeriodicityGivenWinsAndNoFlagsAsksForIt)
   EXPECT_NE(curve_named(snapshot_figure(bare, unit_d()).figure, "periodic images"), nullptr);
 }
 
+// The canvas takes the cell's shape: a tall cell a tall picture, a flat pile a wide one; tick
+// labels are far enough apart to be read (x: 70 px, y: 30 px at the plot's scale).
+TEST(Snapshot, CanvasFollowsTheCellAndTicksStayApart)
+{
+  auto tall = cell_dump();  // 20 d wide (plus images), 30 d high, walls to 8 d: taller than wide
+  tall.periodic = std::array<bool, 2>{true, true};
+  const auto tall_figure = snapshot_figure(tall, unit_d()).figure;
+  EXPECT_GT(tall_figure.height_px, tall_figure.width_px);
+
+  const std::vector<testing::DumpAtom> pile = {{1, 1, 0.5, 0, 0, 0.5}, {2, 99, 0.5, 0, 0, 0.5}};
+  SnapshotRequest flat;
+  flat.dump_path = (testing::scratch_dir() / "dump.pile").string();
+  testing::write_file(flat.dump_path, testing::dump_frame_text(100, 100, 50, pile, "ff fm pp"));
+  const auto flat_figure = snapshot_figure(flat, unit_d()).figure;
+  EXPECT_GT(flat_figure.width_px, 3 * flat_figure.height_px);
+  const auto& panel = flat_figure.panels.at(0);
+  // The box of a shrink-wrapped top stays where the pour started: the picture ends above the pile.
+  ASSERT_TRUE(panel.y_range.has_value());
+  EXPECT_DOUBLE_EQ(panel.y_range->second, 2.0);  // the grains' top (1 d) plus a diameter
+  const double plot_width = 900;                 // the long side of the plot area
+  ASSERT_TRUE(panel.x_tick_step.has_value());
+  EXPECT_GE(*panel.x_tick_step / 100 * plot_width, 70);
+  EXPECT_LT(*panel.x_tick_step / 100 * plot_width, 3 * 70);  // not so sparse that one tick is left
+}
+
 }  // namespace
 }  // namespace cdpost

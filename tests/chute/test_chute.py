@@ -608,13 +608,13 @@ def case_start_mismatch(args):
 
 BAD_VARS = [
     ("mu", "-0.1", "-var mu -0.1"),
-    ("mu", "abc", "mu_is_not_a_number"),
+    ("mu", "abc", "-var mu abc: not a number"),
     ("theta", "95", "-var theta 95"),
     ("L", "2", "-var L 2"),
     ("dt", "0", "-var dt 0"),
     ("e", "1.5", "-var e 1.5"),
     ("grains", "10.5", "-var grains 10.5"),
-    ("tolerance", "0.1x", "tolerance_is_not_a_number"),
+    ("tolerance", "0.1x", "-var tolerance 0.1x: not a number"),
     ("sample_rate", "3000", "-var sample_rate 3000"),
     ("stage", "chute", "-var stage chute"),
     ("adapt_dt", "maybe", "-var adapt_dt maybe"),
@@ -632,7 +632,11 @@ BAD_VARS = [
     ("column_width", "0", "-var column_width 0"),
     ("frozen_depth", "31", "-var frozen_depth 31: must be in [0, wall_height]"),
     ("size_law", "volume", "-var size_law volume: must be diameter or area"),
-    ("frozen_depth", "deep", "frozen_depth_is_not_a_number"),
+    ("frozen_depth", "deep", "-var frozen_depth deep: not a number"),
+    ("frozen_depth", "abc", "-var frozen_depth abc: not a number"),
+    ("mu_wall", "1e-x", "-var mu_wall 1e-x: not a number"),
+    ("thta", "30", "-var thta: the deck has no such variable (the nearest is theta)"),
+    ("frozen_dept", "2", "-var frozen_dept: the deck has no such variable (the nearest is frozen_depth)"),
     ("grains", "100", "-var grains 100: too few to cover the wall tops (at least 1425"),
 ]
 
@@ -647,8 +651,20 @@ def case_bad_var(args):
         errors = [line for line in output.splitlines() if line.startswith("ERROR")]
         if status == 0 or len(errors) != 1 or expected not in errors[0] or "Setting up" in output:
             problems.append(f"-var {name} {value}: status {status}, errors {errors}")
+    # The default scene includes in.chute: the names of both decks are known (its own `inputs`
+    # passes, and the stage check after it speaks), a name of neither is refused.
+    scene = os.path.join(TOP, "inputs", "in.default_scene")
+    inputs = os.path.join(TOP, "inputs")
+    for variables, expected in (({"inputs": inputs, "stage": "chute"}, "-var stage chute: must be"),
+                                ({"inputs": inputs, "thta": "30"}, "-var thta: the deck has no such variable "
+                                 "(the nearest is theta)")):
+        result = subprocess.run(lmp_command(args.lmp, scene, variables, log="none"), cwd=folder, capture_output=True,
+                                text=True)
+        errors = [line for line in (result.stdout + result.stderr).splitlines() if line.startswith("ERROR")]
+        if result.returncode == 0 or len(errors) != 1 or expected not in errors[0]:
+            problems.append(f"in.default_scene {variables}: status {result.returncode}, errors {errors}")
     check(not problems, "; ".join(problems))
-    print(f"bad -var: {len(BAD_VARS)} values stopped with one ERROR line naming the variable")
+    print(f"bad -var: {len(BAD_VARS) + 2} values stopped with one ERROR line naming the variable")
 
 
 def case_restart_between_samples(args):

@@ -4,8 +4,8 @@
     test_docs.py CASE --lmp build/lmp_cd --cdpost build/postproc/cdpost --work DIR
     test_docs.py pages|costs|page_rules
 
-The cases `pages` (lengths: README.md, every page under doc/, the newcomer pages together; no
-study log's sections or phrases),
+The cases `pages` (lengths: README.md, every page under doc/, the newcomer pages' words together;
+no study log's sections or phrases),
 `costs` (each deck's cost stated once) and `page_rules` (those rules tried on synthetic pages)
 run no program: page_rules.py says what they check.
 
@@ -403,11 +403,11 @@ def report(problems, passed):
 
 def case_pages(args):
     pages = tree_files(REFERENCE_PAGES + RESULTS_PAGES)
-    total = sum(page_rules.line_count(pages[path]) for path in page_rules.NEWCOMER_PAGES if path in pages)
+    total = sum(page_rules.word_count(pages[path]) for path in page_rules.NEWCOMER_PAGES if path in pages)
     links = page_rules.link_problems(pages, lambda path: os.path.exists(os.path.join(TOP, path)))
     report(page_rules.length_problems(pages) + page_rules.history_problems(pages) + links,
-           f"{len(pages)} pages within their lengths, their links resolved; the newcomer pages {total} lines "
-           "together")
+           f"{len(pages)} pages within their lengths, their links resolved; the newcomer pages {total} words "
+           f"together (at most {page_rules.NEWCOMER_WORD_LIMIT})")
 
 
 def case_costs(args):

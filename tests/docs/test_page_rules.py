@@ -10,6 +10,10 @@ def lines(n, word="text"):
     return "".join(f"{word} {k}\n" for k in range(n))
 
 
+def words(n, per_line=20):
+    return "".join(" ".join("word" for _ in range(min(per_line, n - k))) + "\n" for k in range(0, n, per_line))
+
+
 def newcomer_pages(readme=10, each=10):
     pages = {path: lines(each) for path in page_rules.NEWCOMER_PAGES}
     pages["README.md"] = lines(readme)
@@ -71,11 +75,17 @@ class Lengths(unittest.TestCase):
         self.assertIn("doc/notes/accuracy.md: a note is named", found[0])
 
     def test_the_newcomer_pages_together(self):
-        # 100 + 4 x 275 = 1200 passes; 100 + 4 x 276 = 1204 fails though every page is short.
-        self.assertEqual(page_rules.length_problems(newcomer_pages(readme=100, each=275)), [])
-        found = page_rules.length_problems(newcomer_pages(readme=100, each=276))
+        # Seven pages: 600 + 6 x 900 = 6000 words passes; 600 + 6 x 901 = 6006 fails though every
+        # page is within its lines.
+        pages = {path: words(900) for path in page_rules.NEWCOMER_PAGES}
+        pages["README.md"] = words(600)
+        self.assertEqual(page_rules.length_problems(pages), [])
+        pages = {path: words(901) for path in page_rules.NEWCOMER_PAGES}
+        pages["README.md"] = words(600)
+        found = page_rules.length_problems(pages)
         self.assertEqual(len(found), 1)
-        self.assertIn("1204 lines together, more than 1200", found[0])
+        self.assertIn("6006 words together, more than 6000", found[0])
+        self.assertIn("doc/plane_shear.md 901", found[0])
 
     def test_a_missing_newcomer_page_is_named(self):
         pages = newcomer_pages()

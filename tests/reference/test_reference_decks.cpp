@@ -83,7 +83,7 @@ fs::path ReferenceDecks::root;
   } while (0)
 std::map<std::string, int> ReferenceDecks::status;
 
-// The files of doc/postproc.md, with sane contents: every grain kept, wall grains unmoved,
+// The files of doc/postproc_method.md, with sane contents: every grain kept, wall grains unmoved,
 // the flowing layer moving downhill.
 void check_chute_outputs(const fs::path& dir, const std::string& code)
 {

@@ -67,6 +67,9 @@ Figure spectrum_figure(const RunAnalysis& run)
   panel.x_label = "f (Hz)";
   panel.y_label = "A / sqrt(g d)";
   panel.key = "top right";
+  // A spectrum of a changing flow reads like any other: the panel says so where it is seen.
+  if (!run.window_stationary)
+    panel.title = "NOT STATIONARY (" + run.window_drift.substr(0, run.window_drift.find(',')) + "): " + panel.title;
   panel.curves.push_back(line_curve("A(f)", CurveStyle::Lines, run.spectrum.frequency_hz, run.spectrum.amplitude));
   Curve peak = line_curve("peak f = " + format_estimate(run.peak.frequency_hz, run.peak.frequency_error_hz) + " Hz",
                           CurveStyle::Points, {run.peak.frequency_hz}, {run.peak.amplitude});
@@ -133,19 +136,39 @@ Figure profile_figure(const RunAnalysis& run)
   main.title = "Velocity profile u(z)";
   main.x_label = "u / sqrt(g d)";
   main.y_label = "z / d";
-  main.curves.push_back(line_curve("u(z)", CurveStyle::Points, p.u_reduced, p.z_d));
+  // Bins above the measured h hold the few grains of the dilute surface, outside the fit: drawn
+  // open and named, so that they do not read as a failure of the Bagnold shape.
+  std::vector<double> u_layer, z_layer, u_above, z_above;
+  for (size_t i = 0; i < p.z_d.size(); ++i) {
+    const bool above = run.bagnold && p.z_d[i] > run.bagnold->h;
+    (above ? u_above : u_layer).push_back(p.u_reduced[i]);
+    (above ? z_above : z_layer).push_back(p.z_d[i]);
+  }
+  Curve layer = line_curve("u(z)", CurveStyle::Points, u_layer, z_layer);
+  layer.line_type = 1;
+  main.curves.push_back(layer);
+  if (!u_above.empty()) {
+    Curve surface =
+        line_curve("u(z) above h: dilute surface, few grains, not fitted", CurveStyle::Points, u_above, z_above);
+    surface.line_type = 1;
+    surface.point_type = 6;  // open circles
+    main.curves.push_back(surface);
+  }
   if (run.bagnold) {
     std::vector<double> z, u;
     for (double zi = 0; zi <= run.bagnold->h; zi += run.bagnold->h / 100) {
       z.push_back(zi);
       u.push_back(bagnold_velocity(*run.bagnold, zi));
     }
-    main.curves.push_back(line_curve("Bagnold fit, h = " + format_estimate(run.bagnold->h, std::nullopt) + " d",
-                                     CurveStyle::Lines, u, z));
+    Curve fit =
+        line_curve("Bagnold fit, h = " + format_estimate(run.bagnold->h, std::nullopt) + " d", CurveStyle::Lines, u, z);
+    fit.line_type = 2;
+    main.curves.push_back(fit);
   }
   Figure figure{"profile",
-                "u(z) with the Bagnold fit; inset: creep below z = 0 (semi-log): filled, the bins of the creep fit "
-                "range with its fit; dashed, the floor and 10 x the floor",
+                "u(z) with the Bagnold fit over 0 <= z <= h (open: the bins above h, the dilute surface); inset: creep "
+                "below z = 0 (semi-log): filled, the bins of the creep fit range with its fit; dashed, the floor and "
+                "10 x the floor",
                 {main}};
   if (auto inset = creep_inset(p, run.creep)) figure.panels.push_back(*inset);
   return figure;

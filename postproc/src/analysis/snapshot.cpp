@@ -1,5 +1,7 @@
 #include "analysis/snapshot.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -63,6 +65,37 @@ std::string describe(const Units& used, bool d_from_dump, std::array<bool, 2> pe
   return text.str();
 }
 
+// The canvas and ticks of a picture with equal axes: the plot area takes the shape of the cell,
+// its longer side kPlotLongSidePx, so that a tall chute and a flat pour both fill their canvas;
+// the margins hold the tick labels, the axis labels, the title and the colour bar.
+constexpr double kPlotLongSidePx = 900, kPlotShortSideMinPx = 120;
+constexpr double kMarginsWidthPx = 260, kMarginsHeightPx = 130;
+// Tick labels at least this far apart: along x a label's width ("-10" and "0" of a 45 d cell
+// drawn 300 px wide must not touch), along y and the colour bar a line's height.
+constexpr double kTickSpacingAlongXPx = 70, kTickSpacingAlongYPx = 30;
+
+// The smallest step of 1, 2 or 5 times a power of ten that puts ticks `spacing` pixels apart or more.
+double tick_step(double span, double pixels, double spacing)
+{
+  const double least = span * spacing / pixels;
+  const double decade = std::pow(10.0, std::floor(std::log10(least)));
+  for (double factor : {1.0, 2.0, 5.0, 10.0})
+    if (factor * decade >= least) return factor * decade;
+  return 10 * decade;
+}
+
+void fit_canvas(Figure& figure, Panel& panel, double width, double height, double colour_span)
+{
+  const double aspect = width / height;
+  const double plot_width = aspect >= 1 ? kPlotLongSidePx : kPlotLongSidePx * aspect;
+  const double plot_height = aspect >= 1 ? kPlotLongSidePx / aspect : kPlotLongSidePx;
+  figure.width_px = static_cast<int>(std::lround(plot_width + kMarginsWidthPx));
+  figure.height_px = static_cast<int>(std::lround(std::max(plot_height, kPlotShortSideMinPx) + kMarginsHeightPx));
+  panel.x_tick_step = tick_step(width, plot_width, kTickSpacingAlongXPx);
+  panel.y_tick_step = tick_step(height, plot_height, kTickSpacingAlongYPx);
+  if (colour_span > 0) panel.colour_tick_step = tick_step(colour_span, plot_height, kTickSpacingAlongYPx);
+}
+
 }  // namespace
 
 Snapshot snapshot_figure(const SnapshotRequest& request, const Units& units)
@@ -117,7 +150,12 @@ Snapshot snapshot_figure(const SnapshotRequest& request, const Units& units)
   panel.key = "off";
   const double pad_x = periodic[0] ? margin_x : 0.0, pad_z = periodic[1] ? margin_z : 0.0;
   panel.x_range = std::make_pair(xlo - pad_x, xhi + pad_x);
-  if (periodic[1]) panel.y_range = std::make_pair(zlo - pad_z, zhi + pad_z);
+  // A shrink-wrapped top with a minimum (boundary fm) stays where the rain started: above the
+  // highest grain there is only empty box, so the picture ends a diameter above it.
+  double grains_top = zlo;
+  for (size_t i = 0; i < grains.y.size(); ++i) grains_top = std::max(grains_top, grains.y[i] + grains.radius[i]);
+  const double shown_top = periodic[1] || grains.y.empty() ? zhi + pad_z : std::min(zhi, grains_top + 1.0);
+  panel.y_range = std::make_pair(zlo - pad_z, shown_top);
   panel.curves = {grains};
   if (!images.x.empty()) panel.curves.push_back(images);
   std::string caption = "Snapshot of the cell, grains coloured by x-velocity";
@@ -128,8 +166,12 @@ Snapshot snapshot_figure(const SnapshotRequest& request, const Units& units)
         Curve{"walls", CurveStyle::Walls, {xlo, xlo, nan, xhi, xhi}, {zlo, 0.0, nan, zlo, 0.0}, {}, {}, {}});
     caption += " above the wall tops (z = 0), where grains cross the periodic boundary; the walls in black";
   }
-  return {Figure{"snapshot", caption, {panel}, 1400, 700},
-          describe(used, request.diameter_from_dump, periodic, request.periodic.has_value())};
+  Figure figure{"snapshot", caption, {}};
+  const auto [slowest, fastest] = std::minmax_element(grains.colour.begin(), grains.colour.end());
+  const double colour_span = grains.colour.empty() ? 0.0 : *fastest - *slowest;
+  fit_canvas(figure, panel, length + 2 * pad_x, shown_top - (zlo - pad_z), colour_span);
+  figure.panels = {panel};
+  return {figure, describe(used, request.diameter_from_dump, periodic, request.periodic.has_value())};
 }
 
 }  // namespace cdpost

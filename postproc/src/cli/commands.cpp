@@ -151,6 +151,9 @@ RunSettings settings_from(const ParsedOptions& options, const std::string& comma
     if (auto name = options.text(c.name)) s.columns.*c.member = *name;
   if (s.averaging_blocks < 2) throw UsageError(command + ": --blocks must be at least 2");
   if (!(s.spectrum.segment_duration_s > 0)) throw UsageError(command + ": --segment must be positive");
+  if (s.t_start && s.t_end && !(*s.t_end > *s.t_start))
+    throw UsageError(command + ": --t-end " + *options.text("t-end") + " is not after --t-start " +
+                     *options.text("t-start") + ": the window ends before it starts");
   return s;
 }
 
@@ -334,6 +337,13 @@ int command_snapshot(const std::vector<std::string>& arguments)
   request.diameter_from_dump = !recorded.d_given;
   request.wall_tops = recorded.z0;
   auto snapshot = snapshot_figure(request, recorded.units);
+  // The colours are u_x / sqrt(g d): a dump that no chute.params describes (a deck in other units)
+  // gives no g, and 9.81 m/s^2 would colour an LJ run several times off. Asked after reading the
+  // dump, so that a dump cdpost cannot read is named first.
+  if (!recorded.recorded && !options->text("g") && options->text("units").value_or("si") != "reduced")
+    throw InputError(request.dump_path, 0,
+                     "no chute.params beside it to take g and the units from: give --g, gravity in the dump's "
+                     "units (the colours are u_x / sqrt(g d)), or --units reduced");
   std::cout << "snapshot: " << snapshot.parameters << '\n';
   std::filesystem::create_directories(out);
   if (auto problem = render_figure(snapshot.figure, out)) throw std::runtime_error(*problem);

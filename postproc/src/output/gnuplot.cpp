@@ -89,6 +89,9 @@ void write_panel(std::ostream& out, const Panel& panel, size_t index, bool multi
     out << "set palette rgb 33,13,10\nset cblabel " << quoted(panel.colour_label) << "\n";
   write_range(out, "x", panel.x_range);
   write_range(out, "y", panel.y_range);
+  if (panel.x_tick_step) out << "set xtics " << *panel.x_tick_step << "\n";
+  if (panel.y_tick_step) out << "set ytics " << *panel.y_tick_step << "\n";
+  if (panel.colour_tick_step) out << "set cbtics " << *panel.colour_tick_step << "\n";
   if (panel.x_band)
     out << "set object 1 rect from " << panel.x_band->first << ", graph 0 to " << panel.x_band->second
         << ", graph 1 behind fc rgb '#e4e4f0' fs solid noborder\n";

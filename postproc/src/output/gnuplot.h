@@ -34,6 +34,8 @@ struct Panel {
   std::string colour_label;  // for Circles: the colour bar's label
   std::optional<std::pair<double, double>> x_range, y_range;
   std::optional<std::pair<double, double>> x_band;  // shaded interval, e.g. the stationary window
+  std::optional<double> x_tick_step, y_tick_step;   // distance between ticks; gnuplot's choice if not set
+  std::optional<double> colour_tick_step;           // the same on the colour bar
   std::string key = "top left";
   std::vector<Curve> curves;
   // Placement in the canvas (fractions); the default fills it.

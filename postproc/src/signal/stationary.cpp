@@ -49,7 +49,13 @@ Window window_between(const std::vector<double>& time, double t_start, double t_
   Window window;
   window.begin = static_cast<size_t>(std::lower_bound(time.begin(), time.end(), t_start) - time.begin());
   window.end = static_cast<size_t>(std::upper_bound(time.begin(), time.end(), t_end) - time.begin());
-  if (window.end <= window.begin + 1) throw AnalysisError("the chosen time window holds fewer than 2 samples");
+  if (window.end <= window.begin + 1) {
+    std::ostringstream message;
+    message << "the window from t = " << t_start << " s to " << t_end << " s holds fewer than 2 samples (the run's "
+            << time.size() << " samples span " << (time.empty() ? 0.0 : time.front()) << " s to "
+            << (time.empty() ? 0.0 : time.back()) << " s)";
+    throw AnalysisError(message.str());
+  }
   return window;
 }
 
