@@ -556,6 +556,7 @@ void FixContactDynamics::final_integrate()
   LammpsHost host(*this);
   const cd::StepReport report = contact_step.solve(bodies, update->dt, host, distributed ? &exchange : nullptr);
   last_report = report.solve;
+  save_hard_problem();  // heights at x_m, before the corrector moves the atoms
   loaded_contacts = report.loaded_contacts;
   store_impulses();
   tally_contact_stress();
@@ -565,7 +566,6 @@ void FixContactDynamics::final_integrate()
   if (obstacles_present) obstacles.record_starts(*atom, groupbit);
 
   count_solve();
-  save_hard_problem();
 }
 
 // The running totals and the run's statistics; a warning on the 1st, 10th, 100th ...

@@ -169,6 +169,14 @@ TEST_F(SeveralRanks, CyclesOfActiveSweepsGiveTheSameVelocities)
   expect_one_rank_velocities("acceleration conjugate full_sweep_every 8");
 }
 
+// The stall rescue made to act at the end of the first window of two sweeps (a coherence that
+// only sweeps changing nothing would pass): each rank decides on the net change and path summed
+// over all ranks, and the relaxed solve reaches the 1-rank solution.
+TEST_F(SeveralRanks, AStallRescueReachesTheOneRankSolution)
+{
+  expect_one_rank_velocities("stall_window 2 stall_coherence 0.999999");
+}
+
 // Over 100 steps of landing grains, collisions amplify the solver differences by a few
 // orders; a wrong interface impulse would show at ~1e-3 d. The solve is tight (tight_solve) because
 // the impact test of the normal law is a switch: at 1e-10 one pair (step 97 of the balance
