@@ -7,7 +7,8 @@
 //                 --setting NAME "key=value ..." [--setting ...] PROBLEM.cdp ...
 //
 // Keys of a setting (cd::SolverSettings): tolerance, max_iterations, relaxation, acceleration
-// (none|conjugate), full_sweep_every, stall_window, stall_coherence, stall_relaxation.
+// (none|conjugate), full_sweep_every, stall_window, stall_coherence, stall_relaxation; and
+// cold (yes|no): start from zero impulses instead of the step's warm start.
 //
 // Error measures, each over the mobile bodies or contacts of the problem:
 //   natural_map   sqrt(sum |W_nn (p - proj_K(p - u_hat / W_nn))|^2 / sum |W p|^2): the Coulomb law's
@@ -37,6 +38,7 @@ namespace {
 struct NamedSetting {
   std::string name;
   cd::SolverSettings settings;
+  bool cold = false;  // start from zero impulses instead of the saved warm start
 };
 
 struct Options {
@@ -65,7 +67,7 @@ double number(const std::string& key, const std::string& text)
   return value;
 }
 
-cd::SolverSettings parse_setting(const std::string& text, cd::SolverSettings settings)
+cd::SolverSettings parse_setting(const std::string& text, cd::SolverSettings settings, bool* cold = nullptr)
 {
   std::istringstream items(text);
   std::string item;
@@ -80,6 +82,7 @@ cd::SolverSettings parse_setting(const std::string& text, cd::SolverSettings set
     else if (key == "stall_window") settings.stall_window = static_cast<int>(number(key, value));
     else if (key == "stall_coherence") settings.stall_coherence = number(key, value);
     else if (key == "stall_relaxation") settings.stall_relaxation = number(key, value);
+    else if (key == "cold" && cold && (value == "yes" || value == "no")) *cold = value == "yes";
     else if (key == "acceleration" && (value == "none" || value == "conjugate"))
       settings.acceleration = value == "none" ? cd::Acceleration::none : cd::Acceleration::conjugate;
     else refuse("unknown setting '" + item + "'");
@@ -109,8 +112,9 @@ Options parse_options(int argc, char** argv)
     else if (arg == "--reference-cap") o.reference_cap = static_cast<int>(number(arg, value()));
     else if (arg == "--reference") reference_text = value();
     else if (arg == "--setting") {
-      const std::string name = value();
-      o.settings.push_back({name, parse_setting(value(), {})});
+      NamedSetting setting{value(), {}, false};
+      setting.settings = parse_setting(value(), {}, &setting.cold);
+      o.settings.push_back(setting);
     } else if (arg.rfind("--", 0) == 0) refuse("unknown option " + arg);
     else o.problems.push_back(arg);
   }
@@ -220,11 +224,13 @@ class HistoryWriter : public cd::SweepObserver {
 };
 
 Solved solve(const cd::ContactProblem& problem, const cd::SolverSettings& settings, cd::SweepObserver* observer,
-             Solved* into = nullptr)
+             Solved* into = nullptr, bool cold = false)
 {
   Solved local;
   Solved& run = into ? *into : local;
   run.contacts = problem.contacts;
+  if (cold)
+    for (cd::Contact& c : run.contacts) c.impulse = {};
   run.velocity = problem.free_velocity;
   cd::apply_impulses(run.contacts, run.velocity);
   cd::GaussSeidel solver(settings);
@@ -258,7 +264,7 @@ int run(const Options& o)
     for (const NamedSetting& s : o.settings) {
       Solved run;
       HistoryWriter writer(history, base_name(path) + "," + s.name, errors, run);
-      solve(problem, s.settings, &writer, &run);
+      solve(problem, s.settings, &writer, &run, s.cold);
       const double contacts = std::max<double>(1.0, static_cast<double>(run.contacts.size()));
       solves << base_name(path) << ',' << s.name << ',' << run.contacts.size() << ',' << run.report.iterations << ','
              << run.report.contact_updates / contacts << ',' << run.report.converged << ',' << run.report.residual

@@ -313,15 +313,66 @@ class StallWatch {
   double path_ = 0.0;
 };
 
-// The sweeps of a stalled solve: relaxed, unaccelerated (relaxation damps the cycle;
-// acceleration would push it on).
-SolverSettings rescue_settings(const SolverSettings& settings)
+// The impulses taken off the velocities and set to zero: a solve starting again from nothing.
+void remove_impulses(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity)
 {
-  SolverSettings rescue = settings;
-  rescue.relaxation = settings.stall_relaxation;
-  rescue.acceleration = Acceleration::none;
-  return rescue;
+  for (Contact& c : contacts) {
+    apply_impulse(c, {-c.impulse.n, -c.impulse.t}, velocity[c.body_a], velocity[c.body_b]);
+    c.impulse = {};
+    c.direction = {};
+  }
 }
+
+// The stall rescue of one solve: its test (StallWatch) and what each stall changes. At the first
+// stall the sweeps go on relaxed by w = stall_relaxation, unaccelerated. At each further stall the
+// solve drops its impulses and starts again from zero, relaxed by w once more (w^2, w^3, ...,
+// down to min_relaxation): in a dense flow at mu 2 the warm start can hold the iterate where no
+// sweep settles, and so can a relaxation too weak for the problem, while a solve from zero,
+// relaxed enough, finds a solution (doc/stalls.md).
+class StallRescue {
+ public:
+  StallRescue(const SolverSettings& settings, GaussSeidel::StallWorkspace& work, SweepExchange* exchange,
+              const std::vector<Contact>& contacts)
+      : watch_(settings, work, exchange), sweeping_(settings), exchange_(exchange)
+  {
+    watch_.start(contacts, 0);
+  }
+
+  // The settings the next sweeps run with.
+  const SolverSettings& sweeping() const { return sweeping_; }
+
+  // Counts a sweep (summed over ranks) into the test and the report.
+  void add_sweep(const SweepChange& change, SolveReport& report)
+  {
+    watch_.add_sweep(change);
+    report.stalled_sweeps += stalls_ > 0;
+  }
+
+  // After a full sweep that did not end the solve: true if a stall was met and the sweeps change.
+  bool act(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, SolveReport& report)
+  {
+    const double relaxation = sweeping_.relaxation * sweeping_.stall_relaxation;
+    if (relaxation < min_relaxation || !watch_.stalled(contacts, report.iterations)) return false;
+    if (stalls_ > 0) {
+      remove_impulses(contacts, velocity);
+      if (exchange_) exchange_->share_velocities();
+      ++report.cold_restarts;
+    }
+    ++stalls_;
+    sweeping_.relaxation = relaxation;
+    sweeping_.acceleration = Acceleration::none;
+    watch_.start(contacts, report.iterations);
+    return true;
+  }
+
+ private:
+  // The weakest relaxation the ladder goes to: below it a sweep barely moves.
+  static constexpr double min_relaxation = 0.1;
+  StallWatch watch_;
+  SolverSettings sweeping_;
+  SweepExchange* exchange_;
+  int stalls_ = 0;
+};
 
 // The contacts a cycle's full sweep left changing, by their place in the contact list (in
 // sweep order). The quiet ones keep their impulses until the next full sweep, so their share of
@@ -358,27 +409,19 @@ SolveReport GaussSeidel::solve_in_full_sweeps(std::vector<Contact>& contacts, st
 {
   SolveReport report;
   ConjugateBeta conjugate;
-  StallWatch watch(settings_, stall_, exchange);
-  watch.start(contacts, 0);
-  bool rescuing = false;
-  SolverSettings sweeping = settings_;
+  StallRescue rescue(settings_, stall_, exchange, contacts);
   double beta = 0.0;
   while (report.iterations < settings_.max_iterations) {
-    SweepChange change = sweep(contacts, velocity, sweeping, beta);
+    SweepChange change = sweep(contacts, velocity, rescue.sweeping(), beta);
     if (exchange) exchange->after_sweep(change);
     const bool converged = count_sweep(report, change, contacts.size(), settings_);
-    watch.add_sweep(change);
-    report.stalled_sweeps += rescuing;
+    rescue.add_sweep(change, report);
     if (observer_) observer_->after_full_sweep(report);
     const bool joined = joining && looks_for_joining(report.iterations, converged) && joining->join(converged);
     if (converged && !joined) return report;
-    if (!rescuing && watch.stalled(contacts, report.iterations)) {
-      rescuing = true;
-      sweeping = rescue_settings(settings_);
-      beta = 0.0;
-    } else if (sweeping.acceleration == Acceleration::conjugate) {
+    if (rescue.act(contacts, velocity, report)) beta = 0.0;
+    else if (rescue.sweeping().acceleration == Acceleration::conjugate)
       beta = conjugate.next(change.sum_change_sq, report.iterations, settings_.max_iterations);
-    }
   }
   report.converged = false;
   return report;
@@ -391,45 +434,38 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
 {
   CycleWorkspace& work = cycle_;
   work.change_sq.resize(contacts.size());
-  SolverSettings sweeping = settings_;
-  // The full sweep records no conjugate direction: the first active sweep, unpushed, does.
-  SolverSettings full_sweep = settings_;
-  full_sweep.acceleration = Acceleration::none;
   SolveReport report;
   ConjugateBeta conjugate;
-  StallWatch watch(settings_, stall_, exchange);
-  watch.start(contacts, 0);
-  bool rescuing = false;
+  StallRescue rescue(settings_, stall_, exchange, contacts);
   double previous_full_residual = std::numeric_limits<double>::infinity();
   for (int full_sweeps = 1; report.iterations < settings_.max_iterations; full_sweeps++) {
+    // The full sweep records no conjugate direction: the first active sweep, unpushed, does.
+    SolverSettings full_sweep = rescue.sweeping();
+    full_sweep.acceleration = Acceleration::none;
     SweepChange change = sweep_measuring(contacts.data(), contacts.data() + contacts.size(), velocity.data(),
                                          full_sweep, 0.0, work.change_sq.data());
     if (exchange) exchange->after_sweep(change);
     const bool converged = count_sweep(report, change, contacts.size(), settings_);
-    watch.add_sweep(change);
-    report.stalled_sweeps += rescuing;
+    rescue.add_sweep(change, report);
     if (observer_) observer_->after_full_sweep(report);
     // Contacts that join are active in the cycle: they have not been swept yet.
     if (joining && looks_for_joining(full_sweeps, converged) && joining->join(converged))
       work.change_sq.resize(contacts.size(), std::numeric_limits<double>::infinity());
     else if (converged) return report;
-    if (!rescuing && watch.stalled(contacts, report.iterations)) {
-      rescuing = true;
-      sweeping = rescue_settings(settings_);
-      full_sweep = sweeping;
-    }
+    // After a restart from zero every contact changes: all are active.
+    if (rescue.act(contacts, velocity, report) && report.cold_restarts > 0)
+      std::fill(work.change_sq.begin(), work.change_sq.end(), std::numeric_limits<double>::infinity());
     select_active(work, contacts, change.quiet_change_sq(settings_.norm, settings_.tolerance, quiet_fraction));
     conjugate.restart(report.residual < previous_full_residual);
     previous_full_residual = report.residual;
     double beta = 0.0;
     for (int k = 1; k < settings_.full_sweep_every && report.iterations < settings_.max_iterations; k++) {
-      SweepChange active_change = sweep_active(work, contacts, velocity.data(), sweeping, beta);
+      SweepChange active_change = sweep_active(work, contacts, velocity.data(), rescue.sweeping(), beta);
       if (exchange) exchange->after_sweep(active_change);
       const bool active_converged = count_sweep(report, active_change, work.active.size(), settings_);
-      watch.add_sweep(active_change);
-      report.stalled_sweeps += rescuing;
+      rescue.add_sweep(active_change, report);
       if (active_converged) break;
-      if (sweeping.acceleration == Acceleration::conjugate)
+      if (rescue.sweeping().acceleration == Acceleration::conjugate)
         beta = conjugate.next(active_change.sum_change_sq, report.iterations, settings_.max_iterations);
     }
   }

@@ -41,11 +41,12 @@ struct SolverSettings {
   // Only a sweep over every contact ends a solve, so the answer meets the same norm as with
   // plain sweeps. Conjugate acceleration restarts with each cycle. 1: every sweep is full.
   int full_sweep_every = 1;
-  // The stall rescue (StallWatch): a solve whose impulses moved, over stall_window sweeps, by
+  // The stall rescue (StallRescue): a solve whose impulses moved, over stall_window sweeps, by
   // less than stall_coherence times the sum of the sweeps' changes (they went back and forth: a
-  // cycle, not a slow drift) goes on with relaxation stall_relaxation and plain sweeps until it
-  // converges or meets the cap. 0: no rescue. The defaults were chosen on the corpus of hard
-  // steps (doc/solver_stalls.md): every mu 2 stall rescued, no mu 0.5 step touched.
+  // cycle, not a slow drift) goes on relaxed by w = stall_relaxation and unaccelerated; each
+  // further stall starts it again from zero impulses, relaxed by w once more (w^2, w^3, ..., not
+  // below 0.1). 0: no rescue. The defaults were chosen on the corpus of hard steps
+  // (doc/stalls.md): every mu 2 cycle rescued, no mu 0.5 step touched.
   int stall_window = 100;
   double stall_coherence = 0.3;
   double stall_relaxation = 0.7;

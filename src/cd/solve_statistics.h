@@ -15,6 +15,7 @@ struct SolveSummary {
   std::int64_t steps = 0;
   std::int64_t unconverged = 0;  // steps whose solve met the cap
   std::int64_t rescued = 0;      // steps whose solve stalled and went on relaxed
+  std::int64_t restarted = 0;    // of those, steps whose relaxed sweeps stalled too: started again from zero
   double largest_final_norm = 0.0;
   int median_sweeps = 0;
   int p99_sweeps = 0;  // the smallest count that 99 % of the steps did not exceed
@@ -35,7 +36,7 @@ class SolveStatistics {
 };
 
 // One line: "N steps, U unconverged (F %), largest final norm R, sweeps per step median M,
-// 99th percentile P, max X, S rescued from a stall".
+// 99th percentile P, max X, S rescued from a stall (C started again from zero)".
 std::string describe(const SolveSummary& summary);
 
 }  // namespace cd

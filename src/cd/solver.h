@@ -18,6 +18,7 @@ struct SolveReport {
   double residual = 0.0;         // the stopping norm at the end
   bool converged = true;
   int stalled_sweeps = 0;  // sweeps made after a stall was detected (GaussSeidel's stall rescue)
+  int cold_restarts = 0;   // times the rescue dropped the impulses and started again from zero
 };
 
 // What a domain-decomposed run does between the sweeps of one rank: after every sweep it

@@ -65,6 +65,7 @@ SolveReport solve_step(ContactSolver& solver, StepContacts& contacts, BodySet& b
     report.solves += 1;
     report.contact_updates += more.contact_updates;
     report.stalled_sweeps += more.stalled_sweeps;
+    report.cold_restarts += more.cold_restarts;
     report.residual = more.residual;
     report.converged = more.converged;
   }

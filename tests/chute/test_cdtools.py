@@ -222,14 +222,18 @@ def check_readings():
 
 def check_solver_health(work):
     line = ("Fix contact/dynamics cd solver: 2000 steps, 3 unconverged (0.15 %), largest final norm 0.00247, "
-            "sweeps per step median 138, 99th percentile 900, max 1000, 4 rescued from a stall\n")
+            "sweeps per step median 138, 99th percentile 900, max 1000, 4 rescued from a stall (1 started again "
+            "from zero)\n")
     first = logs.solver_health(write(work, "first.log", "Step Time\n" + line.replace("2000 steps", "10 steps")
                                      + line))
     check(first == dict(steps=2000, unconverged=3, unconverged_fraction=0.0015, largest_final_norm=0.00247,
-                        sweeps_median=138, sweeps_p99=900, sweeps_max=1000, rescued=4), f"the last line: {first}")
+                        sweeps_median=138, sweeps_p99=900, sweeps_max=1000, rescued=4, restarted=1),
+          f"the last line: {first}")
+    older = logs.solver_health(write(work, "older.log", line.split(" (1 started")[0] + "\n"))
+    check(older["rescued"] == 4 and older["restarted"] == 0, f"a line without restarts: {older}")
     check(logs.solver_health(write(work, "none.log", "Step Time\n")) is None, "a log without the line")
     second = dict(first, steps=6000, unconverged=0, unconverged_fraction=0.0, sweeps_median=200, sweeps_p99=300,
-                  largest_final_norm=0.001, rescued=0)
+                  largest_final_norm=0.001, rescued=0, restarted=0)
     merged = logs.merged_solver_health([first, None, second])
     check((merged["steps"], merged["unconverged"], merged["unconverged_fraction"], merged["largest_final_norm"],
            merged["sweeps_median"], merged["sweeps_p99"], merged["legs"], merged["legs_unrecorded"])

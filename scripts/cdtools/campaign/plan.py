@@ -40,7 +40,7 @@ ANALYSES = {
 # values (by default one per L, deposited with mu_deposition = 0.5, for all three mu).
 DEPOSITION_VARS = ("L", "reading", "grains", "wall_height", "mu_deposition", "e", "e_wall", "seed", "d",
                    "dispersity", "density", "g", "dt_deposition", "tolerance_deposition",
-                   "rain_fill", "settle_ke", "settle_max", "max_iterations")
+                   "rain_fill", "settle_ke", "settle_max", "max_iterations_deposition")
 # Wall laws default to the grains' (mu, e) of each run unless --var sets them.
 WALL_DEFAULTS = {"mu_wall": "mu", "e_wall": "e"}
 
