@@ -51,7 +51,8 @@ def deck_defaults():
     with open(DECK) as src:
         for line in src:
             match = re.match(r"variable\s+(\w+)\s+index\s+(\S+)", line)
-            if match and "${" not in match.group(2):
+            # An empty default ("") is the deck's own: passed on, it would reach LAMMPS as a word.
+            if match and "${" not in match.group(2) and match.group(2) != '""':
                 defaults[match.group(1)] = match.group(2)
     defaults.pop("stage", None)
     defaults.pop("start", None)
