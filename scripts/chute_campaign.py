@@ -67,6 +67,9 @@ def argument_parser():
     parser.add_argument("--comparison", action="append", default=[], metavar="DIR",
                         help="with --report: a reference/run_comparison.sh output folder to include "
                              "(repeatable)")
+    parser.add_argument("--run-var", action="append", default=[], metavar="GLOB:NAME=VALUE",
+                        help="deck variable for the runs whose name matches GLOB only, after --var: e.g. runs "
+                             "made again with another setting (repeatable)")
     parser.add_argument("--publish-unconverged", action="store_true",
                         help="with --report: publish runs with more than 0.1 %% of their steps unconverged "
                              "(flagged) instead of refusing them")
@@ -74,6 +77,17 @@ def argument_parser():
     parser.add_argument("--progress-interval", type=float, default=60.0, help="seconds between progress lines")
     parser.add_argument("--poll", type=float, default=2.0, help=argparse.SUPPRESS)
     return parser
+
+
+def run_variables_of(parser, items):
+    """--run-var GLOB:NAME=VALUE items -> [(glob, {name: value})]."""
+    pairs = []
+    for item in items:
+        if ":" not in item:
+            parser.error(f"--run-var {item}: expected GLOB:NAME=VALUE")
+        pattern, assignment = item.split(":", 1)
+        pairs.append((pattern, deck_variables(parser, [assignment])))
+    return pairs
 
 
 def deck_variables(parser, items):
@@ -100,6 +114,7 @@ def parse_args(argv):
     parser = argument_parser()
     args = parser.parse_args(argv)
     args.var = deck_variables(parser, args.var)
+    args.run_var = run_variables_of(parser, args.run_var)
     if args.jobs < 1 or args.mpi < 1:
         parser.error("--jobs and --mpi must be >= 1")
     args.launcher = launcher(args)

@@ -198,6 +198,18 @@ def check_runs_older_than_a_variable(work):
               f"--var {given}: vars keep '{added}': {added in job.vars}, problem: {problem}")
 
 
+def check_run_vars(work):
+    """--run-var GLOB:NAME=VALUE sets a deck variable for the matching runs only, after --var."""
+    args = argparse.Namespace(out=work, var={"max_iterations": "1000"}, series=["layer_mu2"], only=None,
+                              duration=10.0, run_var=[("mu2_theta2[48]_*", {"max_iterations": "10000"})])
+    caps = {job.name: job.vars["max_iterations"] for job in plan.build_jobs(args) if job.kind == "run"}
+    check(caps["mu2_theta24_L45_layer"] == "10000" and caps["mu2_theta28_L45_layer"] == "10000"
+          and caps["mu2_theta25_L45_layer"] == "1000", f"--run-var: {caps}")
+    deposition = next(job for job in plan.build_jobs(args) if job.kind == "deposition")
+    check("max_iterations" not in deposition.vars and deposition.vars["max_iterations_deposition"] == "1000",
+          f"the rain's cap is its own: {deposition.vars}")
+
+
 def check_readings():
     """The layer reading's runs and packings carry its name, and a deck value written two ways
     (1e-4, 1.0e-4) is one setting for the resume check and the report."""
@@ -261,6 +273,8 @@ def main():
     check_text()
     check_arguments()
     check_readings()
+    with tempfile.TemporaryDirectory() as work:
+        check_run_vars(work)
     print("cdtools: ave/time, ave/chunk and dump readers (cut files included), logs, solver health, statistics, text, "
           "-var arguments, runs older than a deck variable, the two readings' names")
 

@@ -96,6 +96,9 @@ def build_jobs(args):
             name = run_name(variables, defaults)
             if args.only and not any(fnmatch.fnmatch(name, p) for p in args.only):
                 continue
+            for pattern, values in getattr(args, "run_var", []):
+                if fnmatch.fnmatch(name, pattern):
+                    variables.update(values)
             deposition = deposition_of(args, variables, depositions)
             if name not in runs:
                 runs[name] = new_run(args, name, series, variables, deposition)
@@ -120,7 +123,8 @@ def new_run(args, name, series, variables, deposition):
             variables["duration"] = old["duration"]    # an extended run stays extended
         # A deck variable added after the run started is not the run's: it goes on with its own
         # copy of the deck, which has that variable's old behaviour (unless --var sets it).
-        for key in set(variables) - set(old) - set(args.var):
+        given = set(args.var).union(*(values for _, values in getattr(args, "run_var", [])))
+        for key in set(variables) - set(old) - given:
             del variables[key]
     return Job("run", name, folder, variables, deposition, series)
 
