@@ -549,7 +549,7 @@ void FixContactDynamics::final_integrate()
   }
   if (neighbor->ago == 0) check_subdomains();
   place_obstacles();
-  step_box = periodic_box().advanced((1.0 - contact_step.settings().theta) * update->dt);
+  step_box = periodic_box().advanced(step_parameters().lead());
   if (domain_deforms) share_image_shifts();
   gather_bodies();
   RankExchange exchange(*this);
@@ -715,8 +715,8 @@ void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double 
   // An image across a side of a deforming box moves at its body's velocity plus the box's (j is
   // the ghost; i is owned): LAMMPS placed it with the box at the start of the step, the step
   // meets it at the predicted configuration, and its look reaches as far as its speed.
-  const double predictor = (1.0 - contact_step.settings().theta) * update->dt;
-  const double advance = contact_step.settings().theta * update->dt;
+  const double predictor = step_parameters().lead();
+  const double advance = step_parameters().advance();
   // Positions as they are unless obstacles may have moved or the box deforms (no lookups).
   const bool displaced = obstacles_present || domain_deforms;
   double** x = atom->x;
@@ -773,7 +773,7 @@ void FixContactDynamics::collect_wall_pairs(const cd::PairReach& reach, double f
 {
   if (settings.walls.empty()) return;
   // A wall's images move with a deforming box, one edge vector at the speeds below at most.
-  const double image_reach = contact_step.settings().theta * update->dt *
+  const double image_reach = step_parameters().advance() *
                              (std::fabs(step_box.rate_x) + std::fabs(step_box.rate_y) + std::fabs(step_box.rate_xy));
   from_margin += image_reach;
   to_margin += image_reach;

@@ -56,7 +56,7 @@ void FixContactDynamics::check_deforming_box()
 void FixContactDynamics::pre_exchange()
 {
   if (!domain_deforms) return;
-  const double lag = (1.0 - contact_step.settings().theta) * update->dt;
+  const double lag = step_parameters().lead();
   const cd::PeriodicBox box = periodic_box();
   double** x = atom->x;
   for (int i = 0; i < atom->nlocal; i++) {

@@ -29,7 +29,7 @@ Contact contact_frame(const ContactGeometry& g)
 bool is_candidate(const Contact& frame, const BodySet& bodies, const StepParameters& step, double alert)
 {
   const Local2 u_free = relative_velocity(frame, bodies.velocity[frame.body_a], bodies.velocity[frame.body_b]);
-  return frame.gap + step.theta * step.dt * std::min(u_free.n, 0.0) <= alert;
+  return frame.gap + step.advance() * std::min(u_free.n, 0.0) <= alert;
 }
 
 void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies, const StepParameters& step)
@@ -53,7 +53,7 @@ void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies,
     return;
   }
   const double u_start = relative_velocity(c, bodies.start_velocity[c.body_a], bodies.start_velocity[c.body_b]).n;
-  const double advance = step.theta * step.dt;
+  const double advance = step.advance();
   const bool impact = c.gap <= 0.0 || c.gap + advance * u_start <= 0.0;
   c.velocity_bias = impact ? law.restitution * std::min(u_start, 0.0) : c.gap / advance;
 }

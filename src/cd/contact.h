@@ -23,6 +23,11 @@ struct ContactLaw {
 struct StepParameters {
   double dt = 0.0;     // time step (s)
   double theta = 0.5;  // Moreau–Jean theta: x_{n+1} = x_n + dt((1-theta) v_n + theta v_{n+1})
+
+  // The time from x_n to the predicted configuration x_m, where the step is solved (s).
+  double lead() const { return (1.0 - theta) * dt; }
+  // The time from x_m to x_{n+1}, over which v_{n+1} moves the bodies (s).
+  double advance() const { return theta * dt; }
 };
 
 // State of every body for one step. Index 0 is the world (walls): zero inverse mass and zero
@@ -112,7 +117,7 @@ inline double normal_velocity(const ContactGeometry& pair, const std::vector<Bod
 // Linearised gap at the end of the step: gap + theta dt u_n^+ (m).
 inline double end_of_step_gap(double gap, double normal_velocity, const StepParameters& step)
 {
-  return gap + step.theta * step.dt * normal_velocity;
+  return gap + step.advance() * normal_velocity;
 }
 
 // True if a pair left out of the solve would overlap at the end of the step with the solved

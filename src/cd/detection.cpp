@@ -7,7 +7,7 @@ namespace cd {
 
 void PairReach::begin_step(const BodySet& bodies, const StepParameters& step)
 {
-  const double advance = step.theta * step.dt;
+  const double advance = step.advance();
   reach_.resize(bodies.velocity.size());
   for (std::size_t b = 0; b < reach_.size(); b++) {
     const BodyVelocity& v = bodies.velocity[b];
@@ -17,7 +17,7 @@ void PairReach::begin_step(const BodySet& bodies, const StepParameters& step)
 
 double PairReach::needed_margin(const std::vector<BodyVelocity>& velocity, const StepParameters& step) const
 {
-  const double advance = step.theta * step.dt;
+  const double advance = step.advance();
   double largest_gain = 0.0;  // m, advance times speed
   for (std::size_t b = 0; b < reach_.size(); b++) {
     const BodyVelocity& v = velocity[b];

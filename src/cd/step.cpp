@@ -138,7 +138,6 @@ StepReport MoreauJeanStep::solve(BodySet& bodies, double dt, StepHost& host, Swe
 
   StepReport report;
   report.solve = solve_step(*solver_, contacts_, bodies, step, settings_, reach_, host, exchange);
-  report.overlaps = measure_overlaps(contacts_, bodies.velocity, step);
   contacts_.for_each_loaded([&](const PairKey&, const Contact&) { ++report.loaded_contacts; });
   return report;
 }

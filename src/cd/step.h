@@ -37,14 +37,14 @@ struct Displacement {
 // Predictor: the step's first displacement, to x_m = x_n + (1 - theta) dt v_n.
 inline Displacement predicted_motion(const BodyVelocity& start, const StepParameters& step)
 {
-  const double shift = (1.0 - step.theta) * step.dt;
+  const double shift = step.lead();
   return {shift * start.vx, shift * start.vy};
 }
 
 // Corrector: from x_m to x_{n+1} = x_m + theta dt v_{n+1}.
 inline Displacement corrected_motion(const BodyVelocity& end, const StepParameters& step)
 {
-  const double advance = step.theta * step.dt;
+  const double advance = step.advance();
   return {advance * end.vx, advance * end.vy};
 }
 
@@ -103,7 +103,6 @@ std::string check(const StepSettings& settings);
 
 struct StepReport {
   SolveReport solve;
-  OverlapSums overlaps;
   int loaded_contacts = 0;  // solved contacts carrying a positive normal impulse
 };
 

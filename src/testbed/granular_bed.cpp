@@ -329,7 +329,6 @@ FrozenStep GranularBed::freeze() const
   frozen.floor.law = spec_.wall_law;
   frozen.box.periodic_x = true;
   frozen.box.length_x = length_x_;
-  frozen.wall_alert = spec_.skin * spec_.mean_diameter;
   frozen.alert = spec_.alert * spec_.mean_diameter;
   return frozen;
 }

@@ -56,8 +56,7 @@ struct FrozenStep {
   cd::ContactLaw grain_law;
   cd::Wall floor;
   cd::PeriodicBox box;
-  double wall_alert = 0.0;  // m: the fix passes its neighbour skin to cd::wall_contact
-  double alert = 0.0;       // m: cd::is_candidate
+  double alert = 0.0;  // m: cd::is_candidate
 };
 
 // The frozen step as a host of cd::MoreauJeanStep: its neighbour pairs and floor contacts,
