@@ -260,6 +260,15 @@ def check_solver_health(work):
           "a run without a record is published (and shown as not recorded)")
     check(report.solver_cells(dict(solver=first)) == ["3 (0.15 %) ⚠", "138 / 900"], "the runs table's cells")
 
+    def run(mu, cost):
+        return argparse.Namespace(results={"U": 1}, vars=dict(mu=mu, L="45", reading="layer"), cost=cost)
+    records = [run("2", dict(solver=first)), run("2", {}), run("0.5", dict(solver=second))]
+    caveat = report.solver_caveat("pouliquen_curve_angle_mu2", "layer", records)
+    check(caveat == " (⚠ 1 run(s) above 0.1 % unconverged; solver health not recorded for 1 of 2 runs)",
+          f"a mu 2 row's caveat: {caveat}")
+    check(report.solver_caveat("pouliquen_curve_angle_mu0.5", "layer", records) == "", "a mu 0.5 row's caveat")
+    check("1 of 3 runs" in report.solver_caveat("phi_law_k", "layer", records), "a row of every friction")
+
 
 def main():
     with tempfile.TemporaryDirectory() as work:

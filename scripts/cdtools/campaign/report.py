@@ -15,6 +15,7 @@ import glob
 import json
 import math
 import os
+import re
 import shlex
 import shutil
 import sys
@@ -24,7 +25,7 @@ from ..stats import mean_sd_se, pooled_sd
 from ..text import markdown_table, number, with_error
 from .jobs import read_json
 from .legs import run_cost
-from .plan import ANALYSES, build_jobs, changed_vars, reading
+from .plan import ANALYSES, build_jobs, changed_vars, reading, same_value
 from .post import postprocess_run, run_comparison, run_series, window_bounds
 from .schedule import campaign_cdpost
 
@@ -548,9 +549,24 @@ def read_source_rows(folder, columns):
                  row["tolerance"]) for row in csv.DictReader(src)]
 
 
-def section_source(destination):
+def solver_caveat(key, reading_name, records):
+    """What a comparison row of one reading rests on, if not every run of its friction (all
+    frictions for a row of none) recorded at most 0.1 % of its steps unconverged: '' or a caveat."""
+    friction = re.search(r"_mu([0-9.]+?)(?:_|$)", key)
+    runs = [r for r in records if r.results and reading(r.vars) == reading_name and r.vars.get("L") == "45"
+            and (friction is None or same_value(r.vars["mu"], friction.group(1)))]
+    shares = [unconverged_share(r.cost) for r in runs]
+    flagged = sum(1 for share in shares if share is not None and share > UNCONVERGED_LIMIT)
+    unrecorded = sum(1 for share in shares if share is None)
+    parts = ([f"⚠ {flagged} run(s) above {100 * UNCONVERGED_LIMIT:g} % unconverged"] if flagged else []) + \
+        ([f"solver health not recorded for {unrecorded} of {len(runs)} runs"] if unrecorded else [])
+    return " (" + "; ".join(parts) + ")" if parts else ""
+
+
+def section_source(destination, records=()):
     """The comparison with the source (results/source.csv) as `cdpost series --source` made it:
-    both readings' rows, and the L series' rows of the cell length."""
+    both readings' rows, and the L series' rows of the cell length; a row resting on runs with
+    unconverged steps, or runs that did not record them, says so."""
     series = os.path.join(destination, "series")
     rows = read_source_rows(os.path.join(series, "readings"), {name: name for name, _ in READINGS})
     rows += [row for row in read_source_rows(os.path.join(series, "L_series"), {"ours": "count"})
@@ -559,14 +575,14 @@ def section_source(destination):
         return ""
     names = [name for name, _ in READINGS]
     table, agree = [], {name: [0, 0] for name in names}
-    for _, quantity, source, readings, tolerance in rows:
+    for key, quantity, source, readings, tolerance in rows:
         verdicts = []
         for name in names:
             if name in readings and readings[name][1] in ("agrees", "outside"):
                 agree[name][0] += readings[name][1] == "agrees"
                 agree[name][1] += 1
             if name in readings:
-                verdicts.append(f"{name} {readings[name][1]}")
+                verdicts.append(f"{name} {readings[name][1]}" + solver_caveat(key, name, records))
         table.append([quantity, source] + [readings[n][0] if n in readings else "–" for n in names]
                      + [tolerance, "; ".join(verdicts)])
     tally = ", ".join(f"the {name} reading {a} of {n}" for name, (a, n) in agree.items())
@@ -651,7 +667,7 @@ def write_report(records, copied_series, readings, destination, command, changes
                [section_comparisons(destination, os.path.join(destination, "soft"))])
     readme = os.path.join(destination, "README.md")
     write_page(readme, page_header("Results: the erodible-bed chute", command), [
-        section_source(destination),
+        section_source(destination, records),
         section_key_figures(destination),
         section_snapshots(records, destination),
         section_where(),
