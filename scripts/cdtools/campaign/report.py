@@ -521,15 +521,23 @@ def publish_series(records, cdpost, args, changes):
     return published
 
 
-def section_changes(changes):
-    """Every published number this report changed, dropped or added (none: no section)."""
+def section_changes(changes, destination, command):
+    """Every published number this report changed, dropped or added, in changes.md beside the
+    README, and a paragraph pointing at it (none: no section, and no page)."""
+    path = os.path.join(destination, "changes.md")
     if not changes:
+        if os.path.exists(path):
+            os.remove(path)
         return ""
     rows = [[f, name, "–" if old is None else number(old, 6), "–" if new is None else number(new, 6)]
             for f, entries in sorted(changes.items()) for name, old, new in entries]
-    return ("## Changed by this report\n\nNumbers of an earlier publication that this analysis changed "
-            "(a new cdpost, a re-analysed run), dropped (–) or added; the earlier values are in the git "
-            "history of results/.\n\n" + markdown_table(["file", "name", "was", "now"], rows))
+    with open(path, "w") as out:
+        out.write(page_header("Changed by the last report", command) + "\nNumbers of an earlier publication that "
+                  "this analysis changed (a new cdpost, a re-analysed run), dropped (–) or added; the earlier "
+                  "values are in the git history of results/.\n\n" + markdown_table(["file", "name", "was", "now"],
+                                                                                    rows))
+    return (f"## Changed by this report\n\n{len(rows)} published numbers in {len(changes)} files changed, dropped or "
+            f"added: [changes.md](changes.md).\n")
 
 
 # The keys of the L series' comparison with the source that the README's table adds (the
@@ -671,7 +679,7 @@ def write_report(records, copied_series, readings, destination, command, changes
         section_key_figures(destination),
         section_snapshots(records, destination),
         section_where(),
-        section_changes(changes),
+        section_changes(changes, destination, command),
     ])
     return readme
 
