@@ -319,9 +319,10 @@ def main():
         check(published != fits_before, "no muI_I0 row to alter")
         open(fits_path, "w").write(published)
         changed = report(os.path.abspath(args.cdpost), campaign, results)
-        rows = [r for r in changed.splitlines() if r.startswith("| series/flow_rules/fits.csv | muI_I0 | 9")]
-        check("## Changed by this report" in changed and len(rows) == 1,
-              "a changed published fit was not reported:\n" + changed[:1500])
+        changes_page = open(os.path.join(results, "changes.md")).read()
+        rows = [r for r in changes_page.splitlines() if r.startswith("| series/flow_rules/fits.csv | muI_I0 | 9")]
+        check("## Changed by this report" in changed and "[changes.md](changes.md)" in changed and len(rows) == 1,
+              "a changed published fit was not reported:\n" + changed[:1500] + "\n" + changes_page[:1500])
         check(open(fits_path).read() == fits_before, "the altered fit was not replaced by the analysis")
         manifest = open(os.path.join(results, "series", "flow_rules", "manifest.csv")).read()
         check(f"\n../../runs/{lost},0.5,25,0,\n" in manifest, "the manifest does not list the published run:\n"
