@@ -149,11 +149,18 @@ std::string temporary_path(const char* name)
   return ::testing::TempDir() + name;
 }
 
-TEST(ProblemFile, ReadsBackWhatWasWritten)
+// The core tests' pile as a saved problem, every body at one height.
+cd::ContactProblem pile_problem(const char* label, double height)
 {
   const Pile pile = make_pile(0.5, 0.5);
-  cd::ContactProblem problem{pile.contacts, pile.bodies.velocity, {}, "pile of the core tests"};
-  problem.height.assign(problem.free_velocity.size(), 0.25);
+  cd::ContactProblem problem{pile.contacts, pile.bodies.velocity, {}, label};
+  problem.height.assign(problem.free_velocity.size(), height);
+  return problem;
+}
+
+TEST(ProblemFile, ReadsBackWhatWasWritten)
+{
+  const cd::ContactProblem problem = pile_problem("pile of the core tests", 0.25);
   const std::string path = temporary_path("pile.cdp");
   cd::write_problem(path, problem);
   const cd::ContactProblem read = cd::read_problem(path);
@@ -182,9 +189,7 @@ std::string refusal_reading(const std::string& path)
 
 TEST(ProblemFile, RefusesWhatIsNotAWholeProblemInOneLine)
 {
-  const Pile pile = make_pile(0.5, 0.5);
-  cd::ContactProblem problem{pile.contacts, pile.bodies.velocity, {}, "pile"};
-  problem.height.assign(problem.free_velocity.size(), 0.0);
+  const cd::ContactProblem problem = pile_problem("pile", 0.0);
   const std::string path = temporary_path("whole.cdp");
   cd::write_problem(path, problem);
   std::ifstream in(path, std::ios::binary);

@@ -14,16 +14,8 @@ namespace {
 
 using cdtest::LammpsSession;
 
-// Two disks of d = 0.5 mm falling at 3 m/s in a column, the lower one 0.02 d above the floor,
-// the upper one 0.02 d above it. In step 1 the floor is a candidate (its gap closes within the
-// step); the pair is not (both fall alike, and 0.02 d is above the alert distance given, 0.01 d).
-// The first solve stops the lower disk (e = 0); the upper one, still falling 1.5e-5 m in half a
-// step, would overlap it by 0.01 d: the pair joins and the step solves again.
-TEST(IterationCap, CapsEachSolveOfAStepNotTheStep)
-{
-  LammpsSession s;
-  s.commands(cdtest::disk_preamble);
-  s.commands(R"(
+// Two disks of d = 0.5 mm falling at 3 m/s in a column (no fix yet).
+constexpr const char* falling_column = R"(
 boundary p f p
 region box block 0 0.01 0 0.01 -0.0003 0.0003
 create_box 1 box
@@ -33,9 +25,19 @@ set group all diameter 5e-4 density/disc 2500
 velocity all set 0 -3 0 units box
 neighbor 1e-4 bin
 timestep 1e-5
-fix cd all contact/dynamics 0.5 0.0 max_iterations 1 alert 5e-6 wall yplane 0.0 0.5 0.0
-run 1
-)");
+)";
+
+// Two disks of d = 0.5 mm falling at 3 m/s in a column, the lower one 0.02 d above the floor,
+// the upper one 0.02 d above it. In step 1 the floor is a candidate (its gap closes within the
+// step); the pair is not (both fall alike, and 0.02 d is above the alert distance given, 0.01 d).
+// The first solve stops the lower disk (e = 0); the upper one, still falling 1.5e-5 m in half a
+// step, would overlap it by 0.01 d: the pair joins and the step solves again.
+TEST(IterationCap, CapsEachSolveOfAStepNotTheStep)
+{
+  LammpsSession s;
+  s.commands(cdtest::disk_preamble);
+  s.commands(falling_column);
+  s.commands("fix cd all contact/dynamics 0.5 0.0 max_iterations 1 alert 5e-6 wall yplane 0.0 0.5 0.0\nrun 1");
   LAMMPS_NS::Fix* fix = s.fix("cd");
   EXPECT_EQ(fix->compute_vector(2), 2.0);   // contacts solved: the floor, then the pair
   EXPECT_EQ(fix->compute_vector(0), 2.0);   // sweeps this step: one per solve, twice the cap
@@ -54,17 +56,7 @@ TEST(IterationCap, TheRunEndsWithItsSolverLineAndSavesTheStepAtTheCap)
   LammpsSession s;
   s.commands(cdtest::disk_preamble);
   s.commands("log " + log);
-  s.commands(R"(
-boundary p f p
-region box block 0 0.01 0 0.01 -0.0003 0.0003
-create_box 1 box
-create_atoms 1 single 0.005 0.00026 0
-create_atoms 1 single 0.005 0.00077 0
-set group all diameter 5e-4 density/disc 2500
-velocity all set 0 -3 0 units box
-neighbor 1e-4 bin
-timestep 1e-5
-)");
+  s.commands(falling_column);
   s.commands("fix cd all contact/dynamics 0.5 0.0 max_iterations 1 alert 5e-6 save_problems 0 " + prefix +
              " wall yplane 0.0 0.5 0.0");
   s.commands("run 1\nlog none");
