@@ -25,6 +25,7 @@ done
 for exe in "$lmp_a" "$lmp_b"; do
   [ -x "$exe" ] || { echo "side_by_side.sh: no executable $exe: build lmp_cd first" >&2; exit 1; }
 done
+lmp_a=$(realpath "$lmp_a") lmp_b=$(realpath "$lmp_b")  # the runs start in their own folders
 out=${OUT:-$(mktemp -d /tmp/side_by_side.XXXXXX)}
 mkdir -p "$out"
 
