@@ -100,11 +100,10 @@ std::string check(const StepSettings& settings)
 }
 
 MoreauJeanStep::MoreauJeanStep(const StepSettings& settings, std::uint64_t shuffle_seed)
-    : settings_((require_sound(settings), settings)),
-      solver_(std::make_unique<GaussSeidel>(settings.solver)),
-      reach_(settings.alert),
-      shuffle_rng_(shuffle_seed)
+    : settings_(settings), reach_(settings.alert), shuffle_rng_(shuffle_seed)
 {
+  require_sound(settings_);
+  solver_ = std::make_unique<GaussSeidel>(settings_.solver);
 }
 
 void MoreauJeanStep::set_alert(double alert)
