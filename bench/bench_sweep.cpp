@@ -60,9 +60,9 @@ struct LocalProblem {
 
 LocalProblem local_problem(const cd::Contact& c, const std::vector<cd::BodyVelocity>& velocity)
 {
-  const cd::Local2 u = cd::relative_velocity(c, velocity[c.body_a], velocity[c.body_b]);
+  const cd::Local2 u = cd::law_velocity(c, velocity[c.body_a], velocity[c.body_b]);
   const cd::Local2 own = c.delassus.times(c.impulse);
-  return {c.delassus.full(), {u.n + c.velocity_bias - own.n, u.t - own.t}, c.mu};
+  return {c.delassus.full(), {u.n - own.n, u.t - own.t}, c.mu};
 }
 
 // The bed, its next step frozen, and the solver state at the start of that step's solve.

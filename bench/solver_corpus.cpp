@@ -140,10 +140,9 @@ double natural_map(const std::vector<cd::Contact>& contacts, const std::vector<c
 {
   double residual = 0.0, scale = 0.0;
   for (const cd::Contact& c : contacts) {
-    const cd::Local2 u = cd::relative_velocity(c, velocity[c.body_a], velocity[c.body_b]);
+    const cd::Local2 u = cd::law_velocity(c, velocity[c.body_a], velocity[c.body_b]);
     const double w = c.delassus.nn;
-    residual +=
-        cd::natural_map_residual_squared({w * c.impulse.n, w * c.impulse.t}, {u.n + c.velocity_bias, u.t}, c.mu);
+    residual += cd::natural_map_residual_squared({w * c.impulse.n, w * c.impulse.t}, u, c.mu);
     const cd::Local2 wp = c.delassus.times(c.impulse);
     scale += wp.n * wp.n + wp.t * wp.t;
   }

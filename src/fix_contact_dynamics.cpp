@@ -1028,15 +1028,15 @@ void FixContactDynamics::fill_local_output()
     const int a = c.body_a - 1;  // an owned atom
     const cd::Disk disk_a = disk_at_solve(a);
     const bool wall = c.body_b == cd::world_body;
-    const double to_point = c.lever_a + 0.5 * c.gap;
+    const cd::Point point = cd::contact_point(c, disk_a.x, disk_a.y);
     double* out = array_local[row++];
     out[0] = atom->tag[a];
     out[1] = wall ? 0 : atom->tag[c.body_b - 1];
     out[2] = wall ? wall_number(key.partner) : 0;
     out[3] = c.impulse.n;
     out[4] = c.impulse.t;
-    out[5] = disk_a.x - to_point * c.normal_x;
-    out[6] = disk_a.y - to_point * c.normal_y;
+    out[5] = point.x;
+    out[6] = point.y;
   });
   size_local_rows = row;
 }

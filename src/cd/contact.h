@@ -54,21 +54,41 @@ struct Contact {
   double spin_gain_b = 0.0;
   DiskDelassus delassus;  // local W, diagonal for disks
   double mu = 0.0;
-  double velocity_bias = 0.0;  // b (m/s): the normal law acts on u_n + b (prepare_mechanics)
-  double gap = 0.0;            // at the predicted configuration (m)
-  Local2 image_velocity;       // of b's image relative to body b, local frame (ContactGeometry)
-  Local2 impulse;              // accumulated over the step (N s)
-  Local2 direction;            // its change in the last sweep (conjugate acceleration only)
+  // b (m/s): the contact law acts on u + b (law_velocity). Its normal part is the normal law's
+  // (prepare_mechanics); both parts take off the velocity of b's image relative to body b, which
+  // is not zero only across the sides of a deforming box (ContactGeometry::image_vx, image_vy).
+  Local2 velocity_bias;
+  double gap = 0.0;   // at the predicted configuration (m)
+  Local2 impulse;     // accumulated over the step (N s)
+  Local2 direction;   // its change in the last sweep (conjugate acceleration only)
 };
 
-// Relative velocity of a with respect to b at the contact point, in the local frame.
+// Relative velocity of body a with respect to body b at the contact point, in the local frame.
 // Inline: the sweep calls it for every contact update.
 inline Local2 relative_velocity(const Contact& c, const BodyVelocity& a, const BodyVelocity& b)
 {
   const double dvx = a.vx - b.vx;
   const double dvy = a.vy - b.vy;
-  return {dvx * c.normal_x + dvy * c.normal_y - c.image_velocity.n,
-          -dvx * c.normal_y + dvy * c.normal_x - c.image_velocity.t - c.lever_a * a.spin - c.lever_b * b.spin};
+  return {dvx * c.normal_x + dvy * c.normal_y, -dvx * c.normal_y + dvy * c.normal_x - c.lever_a * a.spin - c.lever_b * b.spin};
+}
+
+// The velocity the contact's law acts on: u + b (Contact::velocity_bias).
+inline Local2 law_velocity(const Contact& c, const BodyVelocity& a, const BodyVelocity& b)
+{
+  const Local2 u = relative_velocity(c, a, b);
+  return {u.n + c.velocity_bias.n, u.t + c.velocity_bias.t};
+}
+
+// The contact point (midway across the gap) of a contact whose body a is the disk centred at
+// (a_x, a_y) at the predicted configuration.
+struct Point {
+  double x = 0.0;  // m
+  double y = 0.0;
+};
+inline Point contact_point(const Contact& c, double a_x, double a_y)
+{
+  const double to_point = c.lever_a + 0.5 * c.gap;
+  return {a_x - to_point * c.normal_x, a_y - to_point * c.normal_y};
 }
 
 // An impulse of the contact's local frame (p_n along n, p_t along t = (-n_y, n_x)) in world

@@ -17,10 +17,6 @@ ContactGeometry disk_disk_geometry(int body_a, const Disk& a, int body_b, const 
   g.gap = distance - a.radius - b.radius;
   g.lever_a = a.radius;
   g.lever_b = b.radius;
-  // Midway across the gap (or the overlap): b's surface point plus half the gap.
-  const double from_b = b.radius + 0.5 * g.gap;
-  g.point_x = b.x + from_b * g.normal_x;
-  g.point_y = b.y + from_b * g.normal_y;
   return g;
 }
 
@@ -41,9 +37,6 @@ ContactGeometry disk_world_geometry(int body_a, const Disk& a, double dx, double
   g.gap = distance - a.radius;
   g.lever_a = a.radius;
   g.lever_b = 0.0;
-  const double from_centre = a.radius + 0.5 * g.gap;
-  g.point_x = a.x - from_centre * g.normal_x;
-  g.point_y = a.y - from_centre * g.normal_y;
   return g;
 }
 

@@ -48,8 +48,6 @@ struct ContactGeometry {
   double gap = 0.0;      // signed distance between surfaces, negative when overlapping (m)
   double lever_a = 0.0;  // distance from the centre of a to the contact point (m)
   double lever_b = 0.0;  // same for b; 0 for a wall point
-  double point_x = 0.0;  // contact point, midway across the gap (m)
-  double point_y = 0.0;
   // Velocity of b's periodic image relative to body b (m/s): zero but across the sides of a
   // deforming box, whose images move with the box (Lees-Edwards shear).
   double image_vx = 0.0;

@@ -85,26 +85,6 @@ bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const 
   return contacts.solved.size() > before;
 }
 
-OverlapSums measure_overlaps(const StepContacts& contacts, const std::vector<BodyVelocity>& velocity,
-                             const StepParameters& step)
-{
-  auto overlap_of = [&](const Contact& c) {
-    const double u_n = relative_velocity(c, velocity[c.body_a], velocity[c.body_b]).n;
-    return std::max(0.0, -end_of_step_gap(c.gap, u_n, step));
-  };
-  OverlapSums sums;
-  for (const Contact& c : contacts.solved) {
-    const double overlap = overlap_of(c);
-    sums.deepest = std::max(sums.deepest, overlap);
-    sums.total += overlap;
-  }
-  for (const WatchedPair& pair : contacts.watched) {
-    const double overlap = -end_of_step_gap(pair.geometry.gap, normal_velocity(pair.geometry, velocity), step);
-    sums.deepest = std::max(sums.deepest, overlap);
-  }
-  return sums;
-}
-
 BranchImpulseSums branch_impulse_sums(const std::vector<Contact>& solved)
 {
   BranchImpulseSums sums;

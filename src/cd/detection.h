@@ -151,15 +151,6 @@ class StepContacts {
 // (closes_after_solve) to the solved contacts, prepared, keys with them. True if any moved.
 bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const StepParameters& step);
 
-// Interpenetration at the end of the step, linearised (gap + theta dt u_n^+): deepest and sum
-// over the solved contacts, deepest over the watched pairs too.
-struct OverlapSums {
-  double deepest = 0.0;  // m
-  double total = 0.0;    // m, over the solved contacts
-};
-OverlapSums measure_overlaps(const StepContacts& contacts, const std::vector<BodyVelocity>& velocity,
-                             const StepParameters& step);
-
 // Sum over the loaded contacts (StepContacts::for_each_loaded) between two bodies (not walls) of the branch vector l (from b's
 // centre to a's, at the predicted configuration) times a's impulse p (N s m): the contact part
 // of the pressure tensor times area and step, compressive positive, xy = sum l_x p_y.

@@ -73,9 +73,8 @@ inline double update_frictional(Contact& c, BodyVelocity* velocity, double relax
 {
   BodyVelocity& a = velocity[c.body_a];
   BodyVelocity& b = velocity[c.body_b];
-  const Local2 u = relative_velocity(c, a, b);
-  const Local2 stick{c.impulse.n - c.delassus.inverse_nn * (u.n + c.velocity_bias),
-                     c.impulse.t - c.delassus.inverse_tt * u.t};
+  const Local2 u = law_velocity(c, a, b);
+  const Local2 stick{c.impulse.n - c.delassus.inverse_nn * u.n, c.impulse.t - c.delassus.inverse_tt * u.t};
   const Local2 local = solve_coulomb_disk(stick, c.mu);
   const Local2 solved = relaxed(local, c.impulse, relaxation);
   // The norm takes the plain local solve's change, which relaxation would shrink by w: a relaxed
@@ -97,7 +96,7 @@ inline double update_frictionless(Contact& c, BodyVelocity* velocity, double rel
 {
   BodyVelocity& a = velocity[c.body_a];
   BodyVelocity& b = velocity[c.body_b];
-  const double stick_n = c.impulse.n - c.delassus.inverse_nn * (relative_velocity(c, a, b).n + c.velocity_bias);
+  const double stick_n = c.impulse.n - c.delassus.inverse_nn * law_velocity(c, a, b).n;
   const double local_n = std::max(stick_n, 0.0);
   const double solved_n = relaxed({local_n, 0.0}, c.impulse, relaxation).n;
   const double velocity_change = c.delassus.nn * (local_n - c.impulse.n);

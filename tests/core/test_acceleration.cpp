@@ -51,8 +51,7 @@ double coulomb_residual(const Solved& s)
   double impulse_scale = 0.0, velocity_scale = 0.0;
   std::vector<cd::Local2> velocities;
   for (const cd::Contact& c : s.contacts) {
-    cd::Local2 u = cd::relative_velocity(c, s.velocity[c.body_a], s.velocity[c.body_b]);
-    u.n += c.velocity_bias;
+    const cd::Local2 u = cd::law_velocity(c, s.velocity[c.body_a], s.velocity[c.body_b]);
     velocities.push_back(u);
     impulse_scale = std::max(impulse_scale, std::hypot(c.impulse.n, c.impulse.t));
     velocity_scale = std::max(velocity_scale, std::hypot(u.n, u.t));

@@ -1,7 +1,7 @@
 // Which pairs a step looks at (cd::PairReach) and the solve that lets watched pairs join
 // (cd::solve_step, through cd::MoreauJeanStep): the reach test against the gap it stands for, the margin a solve needs,
 // pairs joining after the solve and during it, a step with the reach against the same step
-// with every pair looked at, and the overlaps a step leaves (cd::measure_overlaps).
+// with every pair looked at.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -203,36 +203,6 @@ TEST(SolveStep, TheReachGivesTheSameStepAsLookingAtEveryPair)
           EXPECT_GE(end_gap(scene, narrow.bodies, i, j), -1e-9) << "trial " << trial << " pair " << i << " " << j;
     }
   }
-}
-
-// Interpenetration at the end of the step, from the kinematics of each pair: a resting overlap
-// keeps its depth, a closing pair overlaps by its gap less theta dt times its closing speed, a
-// separating one not at all; a watched pair counts for the deepest only.
-TEST(MeasureOverlaps, DeepestOverAllPairsAndTotalOverTheSolvedOnes)
-{
-  Scene scene;
-  scene.add({0.0, radius, radius}, {0.0, 0.0, 0.0});  // 1, 2: resting, 1 mm deep
-  scene.add({2.0 * radius - 1e-3, radius, radius}, {0.0, 0.0, 0.0});
-  scene.add({10.0, radius, radius}, {3.0, 0.0, 0.0});  // 3, 4: 1 mm apart, closing at 6 m/s
-  scene.add({10.0 + 2.0 * radius + 1e-3, radius, radius}, {-3.0, 0.0, 0.0});
-  scene.add({20.0, radius, radius}, {-1.0, 0.0, 0.0});  // 5, 6: touching, separating
-  scene.add({20.0 + 2.0 * radius, radius, radius}, {1.0, 0.0, 0.0});
-  scene.add({30.0, radius, radius}, {0.0, 0.0, 0.0});  // 7, 8: watched, 3 mm deep
-  scene.add({30.0 + 2.0 * radius - 3e-3, radius, radius}, {0.0, 0.0, 0.0});
-  auto frame = [&](int a, int b) {
-    return cd::contact_frame(cd::disk_disk_geometry(a, scene.disks[a - 1], b, scene.disks[b - 1]));
-  };
-  cd::StepContacts contacts;
-  for (int a : {1, 3, 5}) contacts.solved.push_back(frame(a, a + 1));
-  const double closing = 1e-3 - step.theta * step.dt * 6.0;  // -2e-3 m
-  cd::OverlapSums sums = cd::measure_overlaps(contacts, scene.bodies.velocity, step);
-  EXPECT_NEAR(sums.deepest, -closing, 1e-12);
-  EXPECT_NEAR(sums.total, 1e-3 - closing, 1e-12);
-
-  contacts.watched.push_back({cd::disk_disk_geometry(7, scene.disks[6], 8, scene.disks[7]), law, {}});
-  sums = cd::measure_overlaps(contacts, scene.bodies.velocity, step);
-  EXPECT_NEAR(sums.deepest, 3e-3, 1e-12) << "the watched pair is the deepest";
-  EXPECT_NEAR(sums.total, 1e-3 - closing, 1e-12) << "the watched pair adds nothing to the total";
 }
 
 }  // namespace

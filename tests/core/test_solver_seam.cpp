@@ -170,7 +170,8 @@ TEST(ProblemFile, ReadsBackWhatWasWritten)
   for (std::size_t k = 0; k < read.contacts.size(); k++) {
     EXPECT_EQ(read.contacts[k].body_a, problem.contacts[k].body_a);
     EXPECT_EQ(read.contacts[k].delassus.inverse_tt, problem.contacts[k].delassus.inverse_tt);
-    EXPECT_EQ(read.contacts[k].velocity_bias, problem.contacts[k].velocity_bias);
+    EXPECT_EQ(read.contacts[k].velocity_bias.n, problem.contacts[k].velocity_bias.n);
+    EXPECT_EQ(read.contacts[k].velocity_bias.t, problem.contacts[k].velocity_bias.t);
   }
   EXPECT_EQ(read.free_velocity.back().vy, problem.free_velocity.back().vy);
   EXPECT_EQ(read.height, problem.height);
