@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
-#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -26,8 +25,11 @@
 #include "update.h"
 #include "utils.h"
 
-#include "cd/impulse_row.h"
+#include "cd/at_solve.h"
 #include "cd/problem_file.h"
+#include "fix_contact_dynamics_checks.h"
+#include "fix_contact_dynamics_listed_pairs.h"
+#include "fix_contact_dynamics_rank_exchange.h"
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -35,10 +37,6 @@ using namespace FixConst;
 namespace {
 
 constexpr int output_columns = 7;
-// Relative spread below which a mass/radius^k ratio counts as uniform over the group.
-constexpr double uniform_ratio_tolerance = 1.0e-6;
-// Overlaps deeper than this, in mean diameters, at the start of a run are reported.
-constexpr double initial_overlap_warning = 0.01;
 // Subdomains narrower than this many contact cutoffs are reported: there every grain is a
 // ghost of a neighbouring rank, and a chute's flow measurably depended on the rank count
 // (doc/benchmarks.md).
@@ -75,6 +73,11 @@ FixContactDynamics::FixContactDynamics(LAMMPS* lmp, int narg, char** arg) : Fix(
   fix_keywords::FixCommand command =
       fix_keywords::parse_settings(narg, arg, atom->ntypes, domain->boxlo, domain->boxhi, error);
   settings = std::move(command.fix);
+  step_grid = std::make_unique<StepGridControl>(lmp, settings.step_grid, settings.travel_fraction,
+                                                [this](const std::string& why) {
+                                                  output->write_restart(update->ntimestep);
+                                                  error->all(FLERR, why);
+                                                });
   contact_step = cd::MoreauJeanStep(command.step, settings.shuffle_seed);
   contact_step.keep_problems(settings.save_problems_over >= 0);
   if (settings.save_problems_over >= 0 && comm->nprocs > 1)
@@ -99,21 +102,20 @@ FixContactDynamics::FixContactDynamics(LAMMPS* lmp, int narg, char** arg) : Fix(
 
   // With a varying step the clock is LAMMPS's time, not step x dt; step 0 is time 0 (this
   // version's reset_timestep keeps the time already run, e.g. a deposition before the chute).
-  if (update->ntimestep == 0) set_clock(0.0);
+  if (update->ntimestep == 0) set_lammps_time(*update, 0.0);
 
-  history_width = cd::impulse_row::width(settings.max_contacts);
-  maxexchange = history_width + ObstacleMotion::values_per_atom;
+  impulses = std::make_unique<ImpulseStore>(memory, settings.max_contacts);
+  maxexchange = impulses->width() + ObstacleMotion::values_per_atom;
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
   atom->add_callback(Atom::RESTART);
-  for (int i = 0; i < atom->nlocal; i++) cd::impulse_row::clear(history[i]);
+  for (int i = 0; i < atom->nlocal; i++) impulses->clear(i);
 }
 
 FixContactDynamics::~FixContactDynamics()
 {
   atom->delete_callback(id, Atom::GROW);
   atom->delete_callback(id, Atom::RESTART);
-  memory->destroy(history);
   memory->destroy(array_local);
 }
 
@@ -121,7 +123,7 @@ int FixContactDynamics::setmask()
 {
   int mask = INITIAL_INTEGRATE | FINAL_INTEGRATE | PRE_EXCHANGE;
   if (settings.disc_density > 0.0) mask |= PRE_FORCE;
-  if (settings.adaptive_step()) mask |= END_OF_STEP;
+  if (step_grid->on()) mask |= END_OF_STEP;
   return mask;
 }
 
@@ -130,12 +132,12 @@ int FixContactDynamics::setmask()
 void FixContactDynamics::init()
 {
   distributed = comm->nprocs > 1;
-  check_deforming_box();
+  sheared_cell.check_box_changes(*this, step_grid->on());
   if (!comm->ghost_velocity)
     error->all(FLERR, "Fix contact/dynamics requires ghost velocities: use comm_modify vel yes");
   if (atom->map_style == Atom::MAP_NONE)
     error->all(FLERR, "Fix contact/dynamics requires an atom map: use atom_modify map hash");
-  check_insertion_map();
+  fix_checks::insertion_map(lmp);
   // The per-step displacement limit (half the skin) keeps every contact in the list only if
   // the list is rebuilt as soon as a grain has moved that far.
   if (neighbor->every != 1 || neighbor->delay != 0 || !neighbor->dist_check)
@@ -146,8 +148,8 @@ void FixContactDynamics::init()
     error->all(FLERR, "Fix contact/dynamics does not support run_style respa");
   if (atom->ntypes != settings.law_types)
     error->all(FLERR, "Fix contact/dynamics: the number of atom types changed since the fix was defined");
-  check_integrators();
-  check_pair_style();
+  fix_checks::integrators(lmp, *this);
+  if (!settings.pair_forces) fix_checks::pair_style(lmp, *this);
   check_alert();
 
   // Largest radius now or announced by an insertion fix (fix pour, fix deposit).
@@ -191,119 +193,30 @@ void FixContactDynamics::request_neighbor_list()
 void FixContactDynamics::init_list(int, NeighList* ptr)
 {
   list = ptr;
+  overlaps.look_at(list, groupbit);
 }
 
 // Pairs are looked at only among the neighbour list's, listed out to a gap of the skin at most:
 // a larger alert would ask for pairs the list does not hold.
 void FixContactDynamics::check_alert()
 {
-  if (settings.alert && *settings.alert > neighbor->skin)
+  const std::optional<double>& alert = contact_step.settings().alert;
+  if (alert && *alert > neighbor->skin)
     error->all(FLERR,
                "Fix contact/dynamics: alert {} is larger than the neighbour skin {}: pairs that far apart are "
                "not listed; lower alert or raise the skin (neighbor command)",
-               *settings.alert, neighbor->skin);
-}
-
-// fix pour in this LAMMPS (29 Sep 2021) resizes the atom map after an insertion step only when
-// the last grain it tried fitted: a step that places fewer grains than it asked for (a crowded
-// insertion region) leaves an array map too short for the new atom IDs, and Atom::map_set
-// writes past its end (a segmentation fault). A hash map grows by itself; `map yes` is an array
-// below a million atom IDs.
-void FixContactDynamics::check_insertion_map()
-{
-  if (atom->map_style == Atom::MAP_HASH) return;
-  for (int f = 0; f < modify->nfix; f++)
-    if (utils::strmatch(modify->fix[f]->style, "^pour"))
-      error->all(FLERR,
-                 "Fix contact/dynamics: fix {} (pour) crashes this LAMMPS with an array atom map (map array "
-                 "or yes) when an insertion falls short; use atom_modify map hash",
-                 modify->fix[f]->id);
-}
-
-void FixContactDynamics::check_integrators()
-{
-  const int* mask = atom->mask;
-  for (int f = 0; f < modify->nfix; f++) {
-    Fix* other = modify->fix[f];
-    if (other == this || !other->time_integrate) continue;
-    int shared_local = (other->igroup == igroup || other->igroup == 0 || igroup == 0) ? 1 : 0;
-    for (int i = 0; i < atom->nlocal && !shared_local; i++)
-      if ((mask[i] & groupbit) && (mask[i] & other->groupbit)) shared_local = 1;
-    int shared = 0;
-    MPI_Allreduce(&shared_local, &shared, 1, MPI_INT, MPI_MAX, world);
-    if (shared)
-      error->all(FLERR, "Fix contact/dynamics: fix {} ({}) also integrates atoms of group {}", other->id, other->style,
-                 group->names[igroup]);
-  }
-}
-
-// A pair style's forces between two grains of the group would act on top of the rigid
-// contacts (springs added to contacts that never overlap): refused unless pair_forces yes says
-// they are wanted (e.g. cohesion). Pair::init() has set cutsq for every type pair by now; a
-// type pair with no interaction (pair_style none, hybrid none) has cutsq 0, pair_style zero
-// exerts no force.
-void FixContactDynamics::check_pair_style()
-{
-  Pair* pair = force->pair;
-  if (settings.pair_forces || !pair || !pair->cutsq || utils::strmatch(force->pair_style, "^zero")) return;
-  const int ntypes = atom->ntypes;
-  std::vector<int> present_local(ntypes + 1, igroup == 0 ? 1 : 0), present(ntypes + 1, 0);
-  for (int i = 0; i < atom->nlocal; i++)
-    if (atom->mask[i] & groupbit) present_local[atom->type[i]] = 1;
-  MPI_Allreduce(present_local.data(), present.data(), ntypes + 1, MPI_INT, MPI_MAX, world);
-  for (int itype = 1; itype <= ntypes; itype++)
-    for (int jtype = itype; jtype <= ntypes; jtype++)
-      if (present[itype] && present[jtype] && pair->cutsq[itype][jtype] > 0.0)
-        error->all(FLERR,
-                   "Fix contact/dynamics: pair style {} also acts on atoms of group {} (types {} and {}); "
-                   "remove it, or add pair_forces yes to keep its forces",
-                   force->pair_style, group->names[igroup], itype, jtype);
+               *alert, neighbor->skin);
 }
 
 // At setup and whenever the atom count changed (insertions): the masses checked, the mean
 // diameter (the unit of the overlap outputs) and the default alert distance that follows it.
 void FixContactDynamics::survey_group()
 {
-  check_disk_masses();
+  fix_checks::disk_masses(lmp, *this);
   mean_diameter = group_mean_diameter();
-  contact_step.set_alert(settings.alert.value_or(cd::default_alert_diameters * mean_diameter));
+  contact_step.set_mean_diameter(mean_diameter);
   natoms_surveyed = atom->natoms;
-  int obstacle_here = 0;
-  for (int i = 0; i < atom->nlocal && !obstacle_here; i++) obstacle_here = (atom->mask[i] & groupbit) ? 0 : 1;
-  int obstacle_anywhere = 0;
-  MPI_Allreduce(&obstacle_here, &obstacle_anywhere, 1, MPI_INT, MPI_MAX, world);
-  obstacles_present = obstacle_anywhere != 0;
-}
-
-// Disks need m = pi r^2 rho. Sphere masses (4/3 pi r^3 rho, as fix pour and set density give)
-// show in a polydisperse group as a uniform mass/r^3 with a non-uniform mass/r^2.
-void FixContactDynamics::check_disk_masses()
-{
-  double local[4];  // max m/r^2, max -m/r^2, max m/r^3, max -m/r^3
-  for (double& value : local) value = -HUGE_VAL;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!(atom->mask[i] & groupbit)) continue;
-    const double r = atom->radius[i];
-    if (r <= 0.0 || atom->rmass[i] <= 0.0)
-      error->one(FLERR, "Fix contact/dynamics: atom {} has radius {} and mass {}; both must be > 0", atom->tag[i], r,
-                 atom->rmass[i]);
-    const double per_area = atom->rmass[i] / (r * r);
-    const double per_volume = per_area / r;
-    local[0] = std::max(local[0], per_area);
-    local[1] = std::max(local[1], -per_area);
-    local[2] = std::max(local[2], per_volume);
-    local[3] = std::max(local[3], -per_volume);
-  }
-  double global[4];
-  MPI_Allreduce(local, global, 4, MPI_DOUBLE, MPI_MAX, world);
-  if (settings.disc_density > 0.0 || global[0] == -HUGE_VAL) return;  // masses set here, or no grain
-  const bool area_uniform = global[0] <= -global[1] * (1.0 + uniform_ratio_tolerance);
-  const bool volume_uniform = global[2] <= -global[3] * (1.0 + uniform_ratio_tolerance);
-  if (!area_uniform && volume_uniform)
-    error->all(FLERR,
-               "Fix contact/dynamics: group {} has sphere masses (4/3 pi r^3 rho); use set "
-               "density/disc or the density keyword",
-               group->names[igroup]);
+  obstacles.find(*atom, groupbit, world);
 }
 
 // Of the group's grains; before any exists (an insertion fix fills the box later), the largest
@@ -332,143 +245,15 @@ void FixContactDynamics::setup(int)
   if (settings.disc_density > 0.0) assign_disc_masses();
   survey_group();
   check_subdomains();
-  warn_initial_overlaps();
+  overlaps.warn_initial(sheared_cell.box_now(), mean_diameter);
   obstacles.record_starts(*atom, groupbit);
-  overlaps_measured_at = -1;
   run_statistics.clear();
-  if (settings.adaptive_step()) init_step_grid();
-}
-
-/* ----------------------------------------------------------------------
-   The step that follows the flow (cd::StepGrid): at the start of a run the level is taken
-   from the grains' speeds unless a previous run or a restart left one, then revised each time
-   an alignment period ends.
-------------------------------------------------------------------------- */
-
-void FixContactDynamics::init_step_grid()
-{
-  settings.step_grid.travel = settings.travel_fraction * neighbor->skin;
-  if (!step_clock.known) {
-    // Without the level and position a restart on this grid left, the grid starts afresh here:
-    // only at a whole period, or the level changes would miss the sample times.
-    const double time = current_time();
-    if (!settings.step_grid.on_alignment(time))
-      error->all(FLERR,
-                 "Fix contact/dynamics: the step grid cannot start at time {:.10g} s, not a whole number of "
-                 "alignment periods ({:.4g} s); continue from a restart written with the same dt_max and dt_align",
-                 time, settings.step_grid.period());
-    step_clock.start(fastest_grain_level());
-  }
-  set_timestep(settings.step_grid.step(step_clock.level));
+  if (step_grid->on()) step_grid->setup(groupbit);
 }
 
 void FixContactDynamics::end_of_step()
 {
-  if (!step_clock.advance(settings.step_grid)) return;
-  step_clock.level = fastest_grain_level();
-  set_timestep(settings.step_grid.step(step_clock.level));
-}
-
-// The level of the grid that keeps the fastest grain's travel per step within the bound; a
-// grain too fast for the smallest step stops the run after a restart is written.
-int FixContactDynamics::fastest_grain_level()
-{
-  struct {
-    double speed;
-    int tag;
-  } local{0.0, 0}, fastest{0.0, 0};
-  double** v = atom->v;
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!(atom->mask[i] & groupbit)) continue;
-    const double speed = std::sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1]);
-    if (speed > local.speed) local = {speed, static_cast<int>(atom->tag[i])};
-  }
-  MPI_Allreduce(&local, &fastest, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
-  const int level = settings.step_grid.level_for(fastest.speed);
-  if (level < 0) {
-    output->write_restart(update->ntimestep);
-    error->all(FLERR,
-               "Fix contact/dynamics: atom {} moves at {:.4g} m/s; the smallest step {:.4g} (dt_max/2^{}) "
-               "moves it {:.4g}, more than travel x skin = {:.4g} (restart files written if a restart command is set)",
-               fastest.tag, fastest.speed, settings.step_grid.step(settings.step_grid.max_level),
-               settings.step_grid.max_level, fastest.speed * settings.step_grid.step(settings.step_grid.max_level),
-               settings.step_grid.travel);
-  }
-  return level;
-}
-
-// As fix dt/reset does: time so far at the old step, then the new step everywhere it is kept.
-void FixContactDynamics::set_timestep(double dt)
-{
-  if (dt == update->dt) return;
-  update->update_time();
-  update->dt = dt;
-  update->dt_default = 0;
-  if (force->pair) force->pair->reset_dt();
-  for (int f = 0; f < modify->nfix; f++) modify->fix[f]->reset_dt();
-}
-
-// A pair across a periodic or rank boundary is listed from both sides: the side with the
-// smaller atom ID takes it (on the rank that owns that atom).
-template <class Visit>
-void FixContactDynamics::for_each_listed_pair(Visit&& visit) const
-{
-  const tagint* tag = atom->tag;
-  const int nlocal = atom->nlocal;
-  for (int ii = 0; ii < list->inum; ii++) {
-    const int i = list->ilist[ii];
-    const int* neighbours = list->firstneigh[i];
-    for (int jj = 0; jj < list->numneigh[i]; jj++) {
-      const int j = neighbours[jj] & NEIGHMASK;
-      if (j >= nlocal && tag[i] > tag[j]) continue;
-      visit(i, j);
-    }
-  }
-}
-
-template <class Visit>
-void FixContactDynamics::for_each_grain_overlap(Visit&& visit) const
-{
-  double** x = atom->x;
-  const double* radius = atom->radius;
-  const int* mask = atom->mask;
-  // Most listed pairs are apart: the squared distance tells them without a square root.
-  for_each_listed_pair([&](int i, int j) {
-    if (!(mask[i] & groupbit) && !(mask[j] & groupbit)) return;
-    const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1];
-    const double touching = radius[i] + radius[j];
-    const double distance_sq = dx * dx + dy * dy;
-    if (distance_sq < touching * touching) visit(touching - std::sqrt(distance_sq));
-  });
-  const cd::PeriodicBox box = periodic_box();
-  for (int i = 0; i < atom->nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    for (const cd::Wall& wall : settings.walls)
-      if (const auto touch = cd::wall_contact(wall, 0, {x[i][0], x[i][1], radius[i]}, 0.0, box))
-        if (touch->geometry.gap < 0.0) visit(-touch->geometry.gap);
-  }
-}
-
-// Rigid contacts never push overlapping grains apart: grains created overlapping (random
-// placement, a lattice that does not fit the periodic cell) stay so. Say it at the start.
-void FixContactDynamics::warn_initial_overlaps()
-{
-  const double threshold = initial_overlap_warning * mean_diameter;
-  double local[2] = {0.0, 0.0};  // count, deepest
-  for_each_grain_overlap([&](double depth) {
-    if (depth <= threshold) return;
-    local[0] += 1.0;
-    local[1] = std::max(local[1], depth);
-  });
-  double global[2];
-  MPI_Allreduce(&local[0], &global[0], 1, MPI_DOUBLE, MPI_SUM, world);
-  MPI_Allreduce(&local[1], &global[1], 1, MPI_DOUBLE, MPI_MAX, world);
-  if (global[0] > 0.0 && comm->me == 0)
-    error->warning(FLERR,
-                   "Fix contact/dynamics: {} contacts overlap by up to {:.3g} mean diameters "
-                   "at the start of the run; rigid contacts keep such overlaps, create the grains "
-                   "apart",
-                   static_cast<bigint>(global[0]), global[1] / mean_diameter);
+  step_grid->end_of_step(groupbit);
 }
 
 // A ghost must be one hop from its owner: the exchange sends each ghost's velocity change
@@ -477,7 +262,7 @@ void FixContactDynamics::check_subdomains()
 {
   const double cutoff = 2.0 * covered_radius + neighbor->skin;
   if (!distributed) return;
-  const double width = narrowest_split_subdomain();
+  const double width = fix_checks::narrowest_split_subdomain(lmp);
   if (width < cutoff)
     error->all(FLERR,
                "Fix contact/dynamics: an MPI subdomain is thinner than the contact cutoff "
@@ -494,25 +279,10 @@ void FixContactDynamics::check_subdomains()
   }
 }
 
-// Width of the narrowest subdomain, over all ranks, along the axes split between ranks (an RCB
-// tiling may split either). A triclinic box splits in reduced coordinates: a slice along x is
-// bounded by lines along the tilted edge (xy, ly), a slice along y by lines along x.
-double FixContactDynamics::narrowest_split_subdomain()
+// A grain LAMMPS is about to wrap across a moving side goes where the step meets its image.
+void FixContactDynamics::pre_exchange()
 {
-  double width[2];
-  if (domain->triclinic) {
-    width[0] = (domain->subhi_lamda[0] - domain->sublo_lamda[0]) * domain->xprd * domain->yprd /
-               std::hypot(domain->yprd, domain->xy);
-    width[1] = (domain->subhi_lamda[1] - domain->sublo_lamda[1]) * domain->yprd;
-  } else {
-    for (int axis = 0; axis < 2; axis++) width[axis] = domain->subhi[axis] - domain->sublo[axis];
-  }
-  double local = std::numeric_limits<double>::max();
-  for (int axis = 0; axis < 2; axis++)
-    if (comm->layout == Comm::LAYOUT_TILED || comm->procgrid[axis] > 1) local = std::min(local, width[axis]);
-  double global = local;
-  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MIN, world);
-  return global;
+  sheared_cell.lead_wrapped_grains(step_parameters());
 }
 
 void FixContactDynamics::pre_force(int)
@@ -549,10 +319,13 @@ void FixContactDynamics::final_integrate()
   }
   if (neighbor->ago == 0) check_subdomains();
   place_obstacles();
-  step_box = periodic_box().advanced(step_parameters().lead());
-  if (domain_deforms) share_image_shifts();
+  sheared_cell.begin_step(step_parameters());
+  if (sheared_cell.deforms()) {
+    sheared_cell.clear_image_shifts(atom->nlocal + atom->nghost);
+    forward(ForwardField::image_shift);
+  }
   gather_bodies();
-  RankExchange exchange(*this);
+  RankExchange exchange(lmp, *this, contact_step.settings().solver.norm);
   LammpsHost host(*this);
   const cd::StepReport report = contact_step.solve(bodies, update->dt, host, distributed ? &exchange : nullptr);
   last_report = report.solve;
@@ -563,7 +336,7 @@ void FixContactDynamics::final_integrate()
   fill_local_output();
   write_back_motion();
   reduce_step_outputs();
-  if (obstacles_present) obstacles.record_starts(*atom, groupbit);
+  if (obstacles.present()) obstacles.record_starts(*atom, groupbit);
 
   count_solve();
 }
@@ -596,7 +369,7 @@ void FixContactDynamics::save_hard_problem()
   for (int i = 0; i < atom->nlocal; i++)
     if (atom->mask[i] & groupbit) problem.height[body_of_atom[i]] = atom->x[i][1];
   problem.label =
-      fmt::format("step {} time {} dt {} sweeps {} converged {} final norm {}", update->ntimestep, current_time(),
+      fmt::format("step {} time {} dt {} sweeps {} converged {} final norm {}", update->ntimestep, lammps_time(*update),
                   update->dt, last_report.iterations, last_report.converged ? 1 : 0, last_report.residual);
   const std::string path = fmt::format("{}.{}.cdp", settings.save_problems_prefix, update->ntimestep);
   try {
@@ -616,8 +389,8 @@ cd::StepParameters FixContactDynamics::step_parameters() const
 // neighbour list does not hold.
 void FixContactDynamics::place_obstacles()
 {
+  if (!obstacles.present()) return;
   obstacles.measure_travel(*atom, *domain, groupbit);
-  if (!obstacles_present) return;
   const double step_limit = 0.5 * neighbor->skin;
   for (int i = 0; i < atom->nlocal; i++) {
     const cd::Displacement& s = obstacles.travel(i);
@@ -627,14 +400,19 @@ void FixContactDynamics::place_obstacles()
                  "reduce the time step or raise the skin",
                  atom->tag[i], std::hypot(s.dx, s.dy), update->ntimestep, neighbor->skin);
   }
-  forward_field = ForwardField::obstacle_travel;
-  comm->forward_comm_fix(this, 2);
+  forward(ForwardField::obstacle_travel);
+}
+
+void FixContactDynamics::forward(ForwardField field)
+{
+  forward_field = field;
+  comm->forward_comm_fix(this, field == ForwardField::velocity ? comm_forward : 2);
   forward_field = ForwardField::velocity;
 }
 
 cd::Disk FixContactDynamics::disk_at_solve(int i) const
 {
-  return obstacles.disk_at_solve(i, atom->x[i], atom->radius[i], contact_step.settings().theta);
+  return obstacles.disk_at_solve(i, {atom->x[i][0], atom->x[i][1], atom->radius[i]}, step_parameters());
 }
 
 /* ---------------------------------------------------------------------- */
@@ -678,7 +456,7 @@ void FixContactDynamics::gather_bodies()
                  atom->tag[i], radius[i], covered_radius);
     // LAMMPS gave a ghost its owner's velocity plus its image's: the body keeps its owner's.
     double image_vx = 0.0, image_vy = 0.0;
-    image_velocity_of(i, image_vx, image_vy);
+    sheared_cell.image_velocity(i, image_vx, image_vy);
     const cd::BodyVelocity own{v[i][0] - image_vx, v[i][1] - image_vy, omega[i][2]};
     const bool grain = mask[i] & groupbit;
     // An obstacle: infinite mass, at the velocity of the step another fix moved it through.
@@ -694,7 +472,7 @@ void FixContactDynamics::gather_bodies()
   }
   if (distributed) {
     ghost_reference.resize(bodies.velocity.size());
-    comm->forward_comm_fix(this);
+    forward(ForwardField::velocity);
   }
 }
 
@@ -715,24 +493,24 @@ void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double 
   // An image across a side of a deforming box moves at its body's velocity plus the box's (j is
   // the ghost; i is owned): LAMMPS placed it with the box at the start of the step, the step
   // meets it at the predicted configuration, and its look reaches as far as its speed.
-  const double predictor = step_parameters().lead();
-  const double advance = step_parameters().advance();
+  const cd::StepParameters step = step_parameters();
   // Positions as they are unless obstacles may have moved or the box deforms (no lookups).
-  const bool displaced = obstacles_present || domain_deforms;
+  const bool displaced = obstacles.present() || sheared_cell.deforms();
   double** x = atom->x;
   const double* radius = atom->radius;
-  for_each_listed_pair([&](int i, int j) {
+  for_each_listed_pair(*list, *atom, [&](int i, int j) {
     if (!(mask[i] & groupbit) && !(mask[j] & groupbit)) return;
     const int body_j = body_of_atom[j];
     double image_vx = 0.0, image_vy = 0.0, image_reach = 0.0;
     cd::Disk disk_i{x[i][0], x[i][1], radius[i]}, disk_j{x[j][0], x[j][1], radius[j]};
     if (displaced) {
-      image_velocity_of(j, image_vx, image_vy);
-      image_reach = advance * std::sqrt(image_vx * image_vx + image_vy * image_vy);
+      sheared_cell.image_velocity(j, image_vx, image_vy);
+      image_reach = cd::image_reach(image_vx, image_vy, step);
       disk_i = disk_at_solve(i);
       disk_j = disk_at_solve(j);
-      disk_j.x += predictor * image_vx;
-      disk_j.y += predictor * image_vy;
+      const cd::Displacement lead = cd::image_lead(image_vx, image_vy, step);
+      disk_j.x += lead.dx;
+      disk_j.y += lead.dy;
     }
     if (!reach.in_look(1 + i, disk_i, body_j, disk_j, from_margin + image_reach, to_margin + image_reach)) return;
     if (body_j == 1 + i)
@@ -742,7 +520,7 @@ void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double 
     cd::ContactGeometry geometry = cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j);
     geometry.image_vx = image_vx;
     geometry.image_vy = image_vy;
-    contacts.offer(geometry, settings.law(type[i], type[j]), key, carried_impulse(key));
+    contacts.offer(geometry, settings.law(type[i], type[j]), key, impulses->carried(key));
   });
 }
 
@@ -755,26 +533,13 @@ cd::PairKey FixContactDynamics::pair_key(int i, int j) const
   return {j, tag[i]};
 }
 
-cd::PeriodicBox FixContactDynamics::periodic_box() const
-{
-  const double* rate = domain->h_rate;  // Voigt: xx, yy, zz, yz, xz, xy
-  return {domain->xperiodic != 0,
-          domain->yperiodic != 0,
-          domain->xprd,
-          domain->yprd,
-          domain->triclinic ? domain->xy : 0.0,
-          rate[0],
-          rate[1],
-          rate[5]};
-}
-
 void FixContactDynamics::collect_wall_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
                                             cd::StepContacts& contacts)
 {
   if (settings.walls.empty()) return;
   // A wall's images move with a deforming box, one edge vector at the speeds below at most.
-  const double image_reach = step_parameters().advance() *
-                             (std::fabs(step_box.rate_x) + std::fabs(step_box.rate_y) + std::fabs(step_box.rate_xy));
+  const cd::PeriodicBox& step_box = sheared_cell.step_box();
+  const double image_reach = cd::wall_image_reach(step_box, step_parameters());
   from_margin += image_reach;
   to_margin += image_reach;
   double** x = atom->x;
@@ -786,7 +551,7 @@ void FixContactDynamics::collect_wall_pairs(const cd::PairReach& reach, double f
       const auto touch = cd::wall_contact(settings.walls[w], 1 + i, disk, reach_i + to_margin, step_box);
       if (!touch || !reach.wall_in_look(1 + i, touch->geometry.gap, from_margin)) continue;
       const cd::PairKey key{i, wall_partner(w, touch->part)};
-      contacts.offer(touch->geometry, settings.walls[w].law, key, carried_impulse(key));
+      contacts.offer(touch->geometry, settings.walls[w].law, key, impulses->carried(key));
     }
   }
 }
@@ -797,21 +562,16 @@ void FixContactDynamics::collect_wall_pairs(const cd::PairReach& reach, double f
    body the pair has the same (p_n, p_t): swapping a and b flips both normal and tangent.
 ------------------------------------------------------------------------- */
 
-cd::Local2 FixContactDynamics::carried_impulse(const cd::PairKey& key) const
-{
-  return cd::impulse_row::find(history[key.row], key.partner);
-}
-
 // The step's loaded contacts replace what the owned atoms carried.
 void FixContactDynamics::store_impulses()
 {
-  for (int i = 0; i < atom->nlocal; i++) cd::impulse_row::clear(history[i]);
+  for (int i = 0; i < atom->nlocal; i++) impulses->clear(i);
   contact_step.contacts().for_each_loaded([&](const cd::PairKey& key, const cd::Contact& contact) {
     const cd::Local2 p = contact.impulse;
     if (!std::isfinite(p.n) || !std::isfinite(p.t))
       error->one(FLERR, "Fix contact/dynamics: non-finite impulse between atom {} and {} at step {}",
                  atom->tag[key.row], partner_name(key.partner), update->ntimestep);
-    if (!cd::impulse_row::append(history[key.row], settings.max_contacts, key.partner, p))
+    if (!impulses->append(key, p))
       error->one(FLERR, "Fix contact/dynamics: atom {} has more than {} loaded contacts; raise max_contacts",
                  atom->tag[key.row], settings.max_contacts);
   });
@@ -860,84 +620,24 @@ void FixContactDynamics::reduce_step_outputs()
   full_sweep_work = sums[0] > 0.0 ? sums[2] / sums[0] : 0.0;
 }
 
-// Outputs 5 and 6 from the positions when they are read, after every fix has moved its atoms
-// (the corrector, fix move, ...): what a user measures at the end of the step. The ghosts are
-// brought to their owners' positions first. Called on every rank (LAMMPS evaluates global
-// outputs on all), once a step.
-void FixContactDynamics::measure_overlaps()
-{
-  comm->forward_comm();
-  double local[2] = {0.0, 0.0};  // deepest, sum (m)
-  for_each_grain_overlap([&](double depth) {
-    local[0] = std::max(local[0], depth);
-    local[1] += depth;
-  });
-  double deepest = 0.0, total = 0.0;
-  MPI_Allreduce(&local[0], &deepest, 1, MPI_DOUBLE, MPI_MAX, world);
-  MPI_Allreduce(&local[1], &total, 1, MPI_DOUBLE, MPI_SUM, world);
-  max_overlap = deepest / mean_diameter;
-  mean_overlap = solved_contacts_total > 0.0 ? total / solved_contacts_total / mean_diameter : 0.0;
-  overlaps_measured_at = update->ntimestep;
-}
-
 // Between runs outputs are read without the run's lists: measure the last step's now.
 void FixContactDynamics::post_run()
 {
-  if (mean_diameter > 0.0 && overlaps_measured_at != update->ntimestep) measure_overlaps();
+  if (mean_diameter > 0.0) overlaps.measure_if_stale(sheared_cell.box_now(), mean_diameter, solved_contacts_total);
   if (comm->me == 0)
     utils::logmesg(lmp, "Fix contact/dynamics {} solver: {}\n", id, cd::describe(run_statistics.summary()));
 }
 
 /* ----------------------------------------------------------------------
-   Exchange across ranks. A sweep changes the velocities of owned bodies and of ghost bodies
-   touched by contacts this rank solves; the changes of ghosts are summed into their owners,
-   then every ghost takes its owner's velocity again.
+   Exchange across ranks (RankExchange): the bodies' velocities to the ghosts, the ghosts'
+   changes over a sweep back to their owners.
 ------------------------------------------------------------------------- */
-
-void FixContactDynamics::RankExchange::share_velocities()
-{
-  fix.comm->reverse_comm_fix(&fix);
-  fix.comm->forward_comm_fix(&fix);
-}
-
-void FixContactDynamics::RankExchange::sum_over_ranks(double* values, int count)
-{
-  MPI_Allreduce(MPI_IN_PLACE, values, count, MPI_DOUBLE, MPI_SUM, fix.world);
-}
-
-void FixContactDynamics::RankExchange::after_sweep(cd::SweepChange& change)
-{
-  share_velocities();
-  double sums[4] = {change.sum_change_sq, change.sum_scale_sq, change.sum_scale, change.contacts};
-  MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, fix.world);
-  // The largest change matters to the maximum norm only: spare the quadratic one a reduction.
-  if (fix.contact_step.settings().solver.norm == cd::ConvergenceNorm::maximum)
-    MPI_Allreduce(MPI_IN_PLACE, &change.max_change, 1, MPI_DOUBLE, MPI_MAX, fix.world);
-  change.sum_change_sq = sums[0];
-  change.sum_scale_sq = sums[1];
-  change.sum_scale = sums[2];
-  change.contacts = sums[3];
-}
-
-bool FixContactDynamics::RankExchange::on_any_rank(bool here)
-{
-  int mine = here ? 1 : 0, any = 0;
-  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, fix.world);
-  return any != 0;
-}
 
 int FixContactDynamics::pack_forward_comm(int n, int* list, double* buf, int pbc_flag, int* pbc)
 {
   if (forward_field == ForwardField::obstacle_travel) return obstacles.pack_travel(n, list, buf);
+  if (forward_field == ForwardField::image_shift) return sheared_cell.pack_image_shifts(n, list, buf, pbc_flag, pbc);
   int m = 0;
-  if (sending_image_shifts) {
-    const int across_x = pbc_flag ? pbc[0] : 0, across_y = pbc_flag ? pbc[1] : 0;
-    for (int k = 0; k < n; k++) {
-      buf[m++] = image_shift[list[k]].x + across_x;
-      buf[m++] = image_shift[list[k]].y + across_y;
-    }
-    return m;
-  }
   for (int k = 0; k < n; k++) {
     const cd::BodyVelocity& velocity = bodies.velocity[body_of_atom[list[k]]];
     buf[m++] = velocity.vx;
@@ -950,12 +650,8 @@ int FixContactDynamics::pack_forward_comm(int n, int* list, double* buf, int pbc
 void FixContactDynamics::unpack_forward_comm(int n, int first, double* buf)
 {
   if (forward_field == ForwardField::obstacle_travel) return obstacles.unpack_travel(n, first, buf);
+  if (forward_field == ForwardField::image_shift) return sheared_cell.unpack_image_shifts(n, first, buf);
   int m = 0;
-  if (sending_image_shifts) {
-    for (int g = first; g < first + n; g++, m += 2)
-      image_shift[g] = {static_cast<int>(buf[m]), static_cast<int>(buf[m + 1])};
-    return;
-  }
   for (int g = first; g < first + n; g++, m += 3) {
     if (body_of_atom[g] != 1 + g) continue;  // an image: its body is updated elsewhere
     const cd::BodyVelocity velocity{buf[m], buf[m + 1], buf[m + 2]};
@@ -1051,9 +747,9 @@ double FixContactDynamics::compute_vector(int n)
     case 4:
     case 5:
       // Within a run and once the fix has set up (an earlier fix may read it before).
-      if (update->whichflag != 0 && mean_diameter > 0.0 && overlaps_measured_at != update->ntimestep)
-        measure_overlaps();
-      return n == 4 ? max_overlap : mean_overlap;
+      if (update->whichflag != 0 && mean_diameter > 0.0)
+        overlaps.measure_if_stale(sheared_cell.box_now(), mean_diameter, solved_contacts_total);
+      return n == 4 ? overlaps.deepest() : overlaps.mean();
     case 6: return last_report.converged ? 1.0 : 0.0;
     case 7: return total_iterations;
     case 8: return total_unconverged_steps;
@@ -1083,17 +779,13 @@ constexpr double restart_version_without_grid = -2.0;
 void FixContactDynamics::write_restart(FILE* fp)
 {
   if (comm->me != 0) return;
-  const bool known = settings.adaptive_step() && step_clock.known;
-  const double elapsed = current_time();
-  const double record[9] = {restart_version,
-                            total_iterations,
-                            total_unconverged_steps,
-                            total_steps,
-                            known ? step_clock.level : -1.0,
-                            known ? static_cast<double>(step_clock.steps_into_period) : -1.0,
-                            elapsed,
-                            settings.step_grid.dt_max,
-                            static_cast<double>(settings.step_grid.steps_per_align)};
+  const cd::StepClock& clock = step_grid->clock();
+  const bool known = step_grid->on() && clock.known;
+  const double elapsed = lammps_time(*update);
+  const double record[9] = {
+      restart_version, total_iterations,           total_unconverged_steps,
+      total_steps,     known ? clock.level : -1.0, known ? static_cast<double>(clock.steps_into_period) : -1.0,
+      elapsed,         step_grid->grid().dt_max,   static_cast<double>(step_grid->grid().steps_per_align)};
   const int size = sizeof(record);
   fwrite(&size, sizeof(int), 1, fp);
   fwrite(record, sizeof(double), 9, fp);
@@ -1110,65 +802,48 @@ void FixContactDynamics::restart(char* buf)
   // This LAMMPS version's restart files do not keep the time (the next run would start it at 0),
   // and with a varying step the step count does not give it: the fix keeps it. Files of earlier
   // versions of the fix came from fixed steps: step x dt.
-  set_clock(versioned ? totals[5] : static_cast<double>(update->ntimestep) * update->dt);
+  set_lammps_time(*update, versioned ? totals[5] : static_cast<double>(update->ntimestep) * update->dt);
   // The level and position hold on the grid they were written on only.
-  const bool same_grid = record[0] == restart_version && totals[6] == settings.step_grid.dt_max &&
-                         static_cast<int>(totals[7]) == settings.step_grid.steps_per_align;
+  const bool same_grid = record[0] == restart_version && totals[6] == step_grid->grid().dt_max &&
+                         static_cast<int>(totals[7]) == step_grid->grid().steps_per_align;
   if (!same_grid || totals[3] < 0.0) return;
-  step_clock = {static_cast<int>(totals[3]), static_cast<long long>(totals[4]), true};
-}
-
-double FixContactDynamics::current_time() const
-{
-  if (update->ntimestep == 0) return 0.0;
-  return update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
-}
-
-void FixContactDynamics::set_clock(double time)
-{
-  update->atime = time;
-  update->atimestep = update->ntimestep;
+  step_grid->restore({static_cast<int>(totals[3]), static_cast<long long>(totals[4]), true});
 }
 
 void FixContactDynamics::grow_arrays(int nmax)
 {
-  memory->grow(history, nmax, history_width, "contact/dynamics:history");
+  impulses->grow(nmax);
   obstacles.grow(nmax);
 }
 
 void FixContactDynamics::copy_arrays(int i, int j, int)
 {
-  std::memcpy(history[j], history[i], sizeof(double) * cd::impulse_row::used(history[i]));
+  impulses->copy(i, j);
   obstacles.copy(i, j);
 }
 
 void FixContactDynamics::set_arrays(int i)
 {
-  cd::impulse_row::clear(history[i]);
+  impulses->clear(i);
   obstacles.set_start(i, atom->x[i]);
 }
 
 // The warm-start row, then the obstacle start.
 int FixContactDynamics::pack_exchange(int i, double* buf)
 {
-  const int n = cd::impulse_row::used(history[i]);
-  std::memcpy(buf, history[i], sizeof(double) * n);
+  const int n = impulses->pack(i, buf);
   return n + obstacles.pack(i, buf + n);
 }
 
 int FixContactDynamics::unpack_exchange(int nlocal, double* buf)
 {
-  const int n = cd::impulse_row::used(buf);
-  std::memcpy(history[nlocal], buf, sizeof(double) * n);
+  const int n = impulses->unpack(nlocal, buf);
   return n + obstacles.unpack(nlocal, buf + n);
 }
 
 int FixContactDynamics::pack_restart(int i, double* buf)
 {
-  const int n = cd::impulse_row::used(history[i]);
-  buf[0] = n + 1;  // LAMMPS convention: the first value counts the values of this fix
-  std::memcpy(buf + 1, history[i], sizeof(double) * n);
-  return n + 1;
+  return impulses->pack_restart(i, buf);
 }
 
 void FixContactDynamics::unpack_restart(int nlocal, int nth)
@@ -1177,28 +852,28 @@ void FixContactDynamics::unpack_restart(int nlocal, int nth)
   int m = 0;
   for (int k = 0; k < nth; k++) m += static_cast<int>(extra[nlocal][m]);
   m++;
-  const int count = cd::impulse_row::entries(&extra[nlocal][m]);
+  const int count = ImpulseStore::entries_in(&extra[nlocal][m]);
   if (count > settings.max_contacts)
     error->one(FLERR,
                "Fix contact/dynamics: restart holds {} contacts for atom {}, more than "
                "max_contacts {}",
                count, atom->tag[nlocal], settings.max_contacts);
-  std::memcpy(history[nlocal], &extra[nlocal][m], sizeof(double) * cd::impulse_row::width(count));
+  impulses->unpack_restart(nlocal, &extra[nlocal][m]);
 }
 
 int FixContactDynamics::size_restart(int i)
 {
-  return 1 + cd::impulse_row::used(history[i]);
+  return impulses->size_restart(i);
 }
 
 int FixContactDynamics::maxsize_restart()
 {
-  return 1 + history_width;
+  return 1 + impulses->width();
 }
 
 double FixContactDynamics::memory_usage()
 {
-  double bytes = static_cast<double>(atom->nmax) * history_width * sizeof(double);
+  double bytes = impulses->memory_usage(atom->nmax);
   bytes += obstacles.memory_usage(atom->nmax);
   bytes += static_cast<double>(contact_step.contacts().memory_bytes());
   bytes += bodies.velocity.capacity() * (2 * sizeof(cd::BodyVelocity) + sizeof(cd::BodyInertia));

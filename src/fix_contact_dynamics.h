@@ -12,6 +12,7 @@ FixStyle(contact/dynamics,FixContactDynamics);
 #ifndef LMP_FIX_CONTACT_DYNAMICS_H
 #define LMP_FIX_CONTACT_DYNAMICS_H
 
+#include <memory>
 #include <vector>
 
 #include "cd/detection.h"
@@ -20,8 +21,12 @@ FixStyle(contact/dynamics,FixContactDynamics);
 #include "cd/step.h"
 #include "cd/walls.h"
 #include "fix.h"
+#include "fix_contact_dynamics_impulse_store.h"
 #include "fix_contact_dynamics_obstacles.h"
+#include "fix_contact_dynamics_overlaps.h"
 #include "fix_contact_dynamics_settings.h"
+#include "fix_contact_dynamics_sheared_cell.h"
+#include "fix_contact_dynamics_step_grid.h"
 
 namespace LAMMPS_NS {
 
@@ -60,21 +65,6 @@ class FixContactDynamics : public Fix {
   double memory_usage() override;
 
  private:
-  // Per-iteration exchange across MPI ranks: ghost velocity changes summed into their owners
-  // (reverse comm), owners' velocities copied to ghosts (forward comm), norm sums reduced.
-  class RankExchange : public cd::SweepExchange {
-   public:
-    explicit RankExchange(FixContactDynamics& fix) : fix(fix) {}
-    void after_sweep(cd::SweepChange& change) override;
-    bool on_any_rank(bool here) override;
-    void share_velocities() override;
-    void sum_over_ranks(double* values, int count) override;
-
-   private:
-    FixContactDynamics& fix;
-  };
-  friend class RankExchange;
-
   // The step's host (cd::StepHost): pairs from LAMMPS's neighbour list and the walls, each with
   // the impulse it carried in the per-atom store (which travels with the atoms and into restarts).
   class LammpsHost : public cd::StepHost {
@@ -88,34 +78,26 @@ class FixContactDynamics : public Fix {
   };
   friend class LammpsHost;
 
-  // --- settings (from the command line; the step grid's travel is set at setup) ---
+  // --- settings (from the command line) ---
   fix_keywords::FixSettings settings;
-  bool narrow_subdomains_reported = false;  // the narrow-subdomain warning is given once per fix
-  // Where a run stands on the step grid of the adaptive step (settings.step_grid).
-  cd::StepClock step_clock;
+  bool narrow_subdomains_reported = false;     // the narrow-subdomain warning is given once per fix
+  std::unique_ptr<StepGridControl> step_grid;  // the step that follows the flow (dt_max)
 
   // --- per-step state ---
   class NeighList* list = nullptr;
-  double covered_radius = 0.0;                    // largest radius the neighbour/ghost cutoff was set for
-  double mean_diameter = 0.0;                     // of the group at natoms_surveyed atoms (m)
-  bigint natoms_surveyed = -1;                    // atom count at the last survey_group
-  cd::BodySet bodies;                             // world, owned atoms, then ghosts owned elsewhere
-  std::vector<int> body_of_atom;                  // body of every owned and ghost atom this step
-  std::vector<cd::BodyVelocity> ghost_reference;  // ghost velocities at the last forward comm
-  // A deforming box (fix deform ... remap v): every ghost's edge vectors from its owner, and the
-  // box at the predicted configuration, whose images move with it.
-  bool domain_deforms = false;
-  bool sending_image_shifts = false;  // the forward comm carries image shifts, not velocities
-  std::vector<cd::PeriodicBox::Shift> image_shift;
-  cd::PeriodicBox step_box;
+  double covered_radius = 0.0;                        // largest radius the neighbour/ghost cutoff was set for
+  double mean_diameter = 0.0;                         // of the group at natoms_surveyed atoms (m)
+  bigint natoms_surveyed = -1;                        // atom count at the last survey_group
+  cd::BodySet bodies;                                 // world, owned atoms, then ghosts owned elsewhere
+  std::vector<int> body_of_atom;                      // body of every owned and ghost atom this step
+  std::vector<cd::BodyVelocity> ghost_reference;      // ghost velocities at the last forward comm
+  ShearedCell sheared_cell{lmp};                      // the box as the step meets it, its images if it deforms
   double contact_pressure[4] = {0.0, 0.0, 0.0, 0.0};  // xx, yy, xy, yx over all ranks (N/m in 2D SI)
   bool distributed = false;                           // more than one rank: exchange every sweep
   cd::MoreauJeanStep contact_step;                    // the core's step: pairs, order, warm start, solve
   cd::SolveReport last_report;
-  cd::SolveStatistics run_statistics;  // this run's steps, reported at its end (post_run)
-  // Outputs 5 and 6 (in mean diameters, over all ranks), measured when read (measure_overlaps).
-  double max_overlap = 0.0, mean_overlap = 0.0;
-  bigint overlaps_measured_at = -1;  // the step they were measured at; -1: not yet this run
+  cd::SolveStatistics run_statistics;                               // this run's steps, reported at its end (post_run)
+  OverlapGauge overlaps{lmp, settings.walls};                       // outputs 5 and 6, the warning at a run's start
   double solved_contacts_total = 0.0, loaded_contacts_total = 0.0;  // over all ranks
   double full_sweep_work = 0.0;  // the step's local solves over all ranks / solved contacts
   int loaded_contacts = 0;       // on this rank
@@ -123,45 +105,28 @@ class FixContactDynamics : public Fix {
   // --- running totals (kept across restarts) ---
   double total_iterations = 0.0, total_unconverged_steps = 0.0, total_steps = 0.0;
 
-  // --- per-atom warm-start store: [count, (partner key, p_n, p_t) x max_contacts] ---
-  double** history = nullptr;
-  int history_width = 0;
+  // --- per-atom warm-start store ---
+  std::unique_ptr<ImpulseStore> impulses;
 
   // --- obstacles that other fixes move: their starts travel with the atoms ---
   ObstacleMotion obstacles{memory};
-  bool obstacles_present = false;  // some atom outside the group, on any rank
-  enum class ForwardField { velocity, obstacle_travel } forward_field = ForwardField::velocity;
+  // What a forward communication carries (forward): bodies' velocities (comm_forward values an
+  // atom) unless an obstacle's travel or an image's shift (2 values) is asked for.
+  enum class ForwardField { velocity, obstacle_travel, image_shift } forward_field = ForwardField::velocity;
 
   // --- local output: one row per loaded contact ---
   int local_rows_allocated = 0;
 
-  void check_insertion_map();
-  void check_integrators();
-  void check_pair_style();
   void check_alert();
   void survey_group();
-  void check_disk_masses();
   double group_mean_diameter();
   void assign_disc_masses();
   void request_neighbor_list();
 
   void check_subdomains();
-  double narrowest_split_subdomain();
-  // Every pair of LAMMPS's neighbour list once, as visit(i, j) (definition in the .cpp).
-  template <class Visit>
-  void for_each_listed_pair(Visit&& visit) const;
-  // The overlap depth (m, > 0) of every overlapping listed pair with a grain and of every grain
-  // overlapping a wall, at the positions now.
-  template <class Visit>
-  void for_each_grain_overlap(Visit&& visit) const;
-  void warn_initial_overlaps();
-  void measure_overlaps();
   void place_obstacles();
+  void forward(ForwardField field);
   cd::Disk disk_at_solve(int i) const;
-  cd::PeriodicBox periodic_box() const;
-  void check_deforming_box();
-  void share_image_shifts();
-  void image_velocity_of(int atom, double& vx, double& vy) const;
   void tally_contact_stress();
   void map_bodies();
   void gather_bodies();
@@ -171,15 +136,9 @@ class FixContactDynamics : public Fix {
                            cd::StepContacts& contacts);
   void collect_wall_pairs(const cd::PairReach& reach, double from_margin, double to_margin, cd::StepContacts& contacts);
   cd::PairKey pair_key(int i, int j) const;
-  cd::Local2 carried_impulse(const cd::PairKey& key) const;
   void store_impulses();
   void write_back_motion();
   void reduce_step_outputs();
-  void init_step_grid();
-  int fastest_grain_level();
-  void set_timestep(double dt);
-  double current_time() const;  // LAMMPS's time now (s)
-  void set_clock(double time);  // sets it
   void fill_local_output();
   void count_solve();
   void save_hard_problem();

@@ -41,6 +41,15 @@ int ObstacleMotion::unpack(int i, const double* buf)
   return values_per_atom;
 }
 
+void ObstacleMotion::find(const Atom& atom, int groupbit, MPI_Comm world)
+{
+  int here = 0;
+  for (int i = 0; i < atom.nlocal && !here; i++) here = (atom.mask[i] & groupbit) ? 0 : 1;
+  int anywhere = 0;
+  MPI_Allreduce(&here, &anywhere, 1, MPI_INT, MPI_MAX, world);
+  present_ = anywhere != 0;
+}
+
 void ObstacleMotion::record_starts(const Atom& atom, int groupbit)
 {
   for (int i = 0; i < atom.nlocal; i++)

@@ -1,18 +1,14 @@
 // Obstacles of fix contact/dynamics (atoms outside its group) that other fixes move (fix move,
-// fix nve, fix deform's remap x, ...), met at the instant the grains are met.
-//
-// A step detects the grains' contacts at x_m = x_n + (1 - theta) dt v_n, the fraction 1 - theta
-// of the step. An obstacle that travelled by s = x_now - x_start since the previous solve
-// (x_start: where it stood then) is placed at the same fraction of its own step,
-// x_start + (1 - theta) s = x_now - theta s, with velocity s / dt: the step's corrector then
-// ends it where the other fix put it. An obstacle nothing moved (s exactly zero) stays where it
-// is with its own velocity, a surface velocity of its contacts.
+// fix nve, fix deform's remap x, ...), met at the instant the grains are met: each one's start
+// (where the previous solve found it) travels with the atom, its travel since then is measured
+// here, and the core places it (cd::obstacle_at_solve, cd::obstacle_velocity).
 #pragma once
+
+#include <mpi.h>
 
 #include <vector>
 
-#include "cd/contact_geometry.h"
-#include "cd/step.h"
+#include "cd/at_solve.h"
 
 namespace LAMMPS_NS {
 class Atom;
@@ -36,6 +32,10 @@ class ObstacleMotion {
   int pack(int i, double* buf) const;
   int unpack(int i, const double* buf);
 
+  // Whether any atom on any rank lies outside the group: without, nothing here runs.
+  void find(const Atom& atom, int groupbit, MPI_Comm world);
+  bool present() const { return present_; }
+
   // Where every owned obstacle stands now: the start of its next step.
   void record_starts(const Atom& atom, int groupbit);
   // The travel of every owned obstacle since its start (nearest periodic image); grains and
@@ -45,23 +45,21 @@ class ObstacleMotion {
   void unpack_travel(int n, int first, const double* buf);
 
   const cd::Displacement& travel(int i) const { return travel_[i]; }
-  // The disk of atom i (at x now) at the instant of the grains' x_m.
-  cd::Disk disk_at_solve(int i, const double* x, double radius, double theta) const
+  // The disk of atom i, `now`, at the instant of the grains' x_m.
+  cd::Disk disk_at_solve(int i, const cd::Disk& now, const cd::StepParameters& step) const
   {
-    const cd::Displacement& s = travel_[i];
-    return {x[0] - theta * s.dx, x[1] - theta * s.dy, radius};
+    return present_ ? cd::obstacle_at_solve(now, travel_[i], step) : now;
   }
-  // The step's velocity of obstacle i: its travel over dt if it moved, else `own`.
+  // The step's velocity of obstacle i (`own`: LAMMPS's).
   cd::BodyVelocity velocity(int i, const cd::BodyVelocity& own, double dt) const
   {
-    const cd::Displacement& s = travel_[i];
-    if (s.dx == 0.0 && s.dy == 0.0) return own;
-    return {s.dx / dt, s.dy / dt, own.spin};
+    return cd::obstacle_velocity(travel_[i], own, dt);
   }
   double memory_usage(int nmax) const;
 
  private:
   Memory* memory_;
+  bool present_ = false;
   double** start_ = nullptr;              // per owned atom: where the last solve found it
   std::vector<cd::Displacement> travel_;  // per owned and ghost atom, this step
 };

@@ -166,7 +166,7 @@ void SettingsParser::parse_value(const std::string& keyword, const char* value)
       error->all(FLERR, "Fix contact/dynamics: max_contacts must be in [1,{}], got {}", max_contacts_limit,
                  settings.max_contacts);
   } else if (keyword == "alert") {
-    settings.alert = step.alert = number_for("alert", value, error);
+    step.alert = number_for("alert", value, error);
   } else if (keyword == "dt_max") {
     settings.step_grid.dt_max = number_for("dt_max", value, error);
     if (settings.step_grid.dt_max <= 0.0)

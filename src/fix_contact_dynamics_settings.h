@@ -4,7 +4,6 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,13 +20,10 @@ namespace fix_keywords {
 // its cd::MoreauJeanStep (FixCommand).
 struct FixSettings {
   std::uint64_t shuffle_seed = 0;  // order shuffle's seed (> 0); 0 with the fixed order
-  // m: candidate pairs are those whose gap closes to within it at free velocity; not given:
-  // the fix takes a fraction of the group's mean diameter.
-  std::optional<double> alert;
-  int max_contacts = 12;      // contacts carried per atom in the warm-start store
-  double disc_density = 0.0;  // kg/m^2; > 0: masses reset to pi r^2 rho
-  bool pair_forces = false;   // a pair style may act on the group's pairs too
-  int law_types = 0;          // atom types when the fix was defined
+  int max_contacts = 12;           // contacts carried per atom in the warm-start store
+  double disc_density = 0.0;       // kg/m^2; > 0: masses reset to pi r^2 rho
+  bool pair_forces = false;        // a pair style may act on the group's pairs too
+  int law_types = 0;               // atom types when the fix was defined
   // mu and e of every type pair, (law_types+1)^2 row-major (law()): mu e, then mu/types, e/types.
   std::vector<cd::ContactLaw> type_laws;
   std::vector<cd::Wall> walls;  // in the order given
@@ -49,7 +45,7 @@ struct FixSettings {
 // the fix hands to its step.
 struct FixCommand {
   FixSettings fix;
-  cd::StepSettings step;  // its alert: the alert keyword's, 0 if not given
+  cd::StepSettings step;  // its alert: the alert keyword's, if given
 };
 
 // Reads arg[3..narg) (mu, e, then keywords). ntypes: the atom types (mu/types, e/types ranges);

@@ -58,9 +58,9 @@ struct Contact {
   // (prepare_mechanics); both parts take off the velocity of b's image relative to body b, which
   // is not zero only across the sides of a deforming box (ContactGeometry::image_vx, image_vy).
   Local2 velocity_bias;
-  double gap = 0.0;   // at the predicted configuration (m)
-  Local2 impulse;     // accumulated over the step (N s)
-  Local2 direction;   // its change in the last sweep (conjugate acceleration only)
+  double gap = 0.0;  // at the predicted configuration (m)
+  Local2 impulse;    // accumulated over the step (N s)
+  Local2 direction;  // its change in the last sweep (conjugate acceleration only)
 };
 
 // Relative velocity of body a with respect to body b at the contact point, in the local frame.
@@ -69,7 +69,8 @@ inline Local2 relative_velocity(const Contact& c, const BodyVelocity& a, const B
 {
   const double dvx = a.vx - b.vx;
   const double dvy = a.vy - b.vy;
-  return {dvx * c.normal_x + dvy * c.normal_y, -dvx * c.normal_y + dvy * c.normal_x - c.lever_a * a.spin - c.lever_b * b.spin};
+  return {dvx * c.normal_x + dvy * c.normal_y,
+          -dvx * c.normal_y + dvy * c.normal_x - c.lever_a * a.spin - c.lever_b * b.spin};
 }
 
 // The velocity the contact's law acts on: u + b (Contact::velocity_bias).

@@ -94,32 +94,30 @@ std::string check(const StepSettings& settings)
     return refusal("tolerance", "in (0,1)", settings.solver.tolerance);
   const std::string solver_problem = check(settings.solver);
   if (!solver_problem.empty()) return solver_problem;
-  if (!(settings.alert >= 0.0)) return refusal("alert", ">= 0", settings.alert);
+  if (settings.alert && !(*settings.alert >= 0.0)) return refusal("alert", ">= 0", *settings.alert);
   if (settings.max_solves < 1) return refusal("max_solves", ">= 1", settings.max_solves);
   return {};
 }
 
 MoreauJeanStep::MoreauJeanStep(const StepSettings& settings, std::uint64_t shuffle_seed)
-    : settings_(settings), reach_(settings.alert), shuffle_rng_(shuffle_seed)
+    : settings_(settings), alert_(settings.alert.value_or(0.0)), reach_(alert_), shuffle_rng_(shuffle_seed)
 {
   require_sound(settings_);
   solver_ = std::make_unique<GaussSeidel>(settings_.solver);
 }
 
-void MoreauJeanStep::set_alert(double alert)
+void MoreauJeanStep::set_mean_diameter(double mean_diameter)
 {
-  StepSettings changed = settings_;
-  changed.alert = alert;
-  require_sound(changed);
-  settings_.alert = alert;
+  if (!(mean_diameter > 0.0)) throw std::invalid_argument(refusal("the grains' mean diameter", "> 0", mean_diameter));
+  alert_ = settings_.alert.value_or(default_alert_diameters * mean_diameter);
 }
 
 void MoreauJeanStep::prepare(const BodySet& bodies, double dt, StepHost& host)
 {
   const StepParameters step{dt, settings_.theta};
-  reach_.set_margin_floor(settings_.alert);
+  reach_.set_margin_floor(alert_);
   reach_.begin_step(bodies, step);
-  contacts_.begin(bodies, step, settings_.alert, settings_.warm_start);
+  contacts_.begin(bodies, step, alert_, settings_.warm_start);
   host.collect_pairs(reach_, -std::numeric_limits<double>::infinity(), reach_.margin(), contacts_);
   reorder(static_cast<int>(bodies.velocity.size()));
 }

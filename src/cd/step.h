@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -90,7 +91,9 @@ inline constexpr double default_alert_diameters = 0.01;
 struct StepSettings {
   double theta = 0.5;
   SolverSettings solver;
-  double alert = 0.0;  // m: candidate selection (cd::is_candidate)
+  // m: candidate selection (cd::is_candidate); not given, default_alert_diameters times the
+  // grains' mean diameter, which the host tells as it learns it (MoreauJeanStep::set_mean_diameter).
+  std::optional<double> alert;
   bool warm_start = true;
   ContactOrder order = ContactOrder::interleaved;
   int max_solves = 10;                     // solves of one step, at most (the solve loop)
@@ -113,9 +116,10 @@ class MoreauJeanStep {
 
   // The step's settings: it owns them, from its construction on.
   const StepSettings& settings() const { return settings_; }
-  // The alert distance (m), the one setting a host learns only as it runs (it follows the grain
-  // size); checked as the constructor checks.
-  void set_alert(double alert);
+  // The grains' mean diameter (m), which a host learns only as it runs; the alert distance
+  // follows it unless the settings gave one. Throws std::invalid_argument unless > 0.
+  void set_mean_diameter(double mean_diameter);
+  double alert() const { return alert_; }  // m: the one in use
   PairReach& reach() { return reach_; }
 
   // Everything before the solve: the pairs, their order, their warm start (not yet applied to
@@ -142,6 +146,7 @@ class MoreauJeanStep {
   void reorder(int body_count);
 
   StepSettings settings_;
+  double alert_ = 0.0;                     // m: settings_.alert, or the default's for the grain size
   std::unique_ptr<ContactSolver> solver_;  // settings_.solver's method
   PairReach reach_;
   StepContacts contacts_;

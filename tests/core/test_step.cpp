@@ -187,10 +187,15 @@ TEST(StepSettings, AStepRefusesSettingsThatCannotRun)
   bad.solver.tolerance = 2.0;
   EXPECT_THROW(cd::MoreauJeanStep{bad}, std::invalid_argument);
   cd::MoreauJeanStep step;
-  step.set_alert(1e-5);
-  EXPECT_EQ(step.settings().alert, 1e-5);
-  EXPECT_THROW(step.set_alert(-1e-5), std::invalid_argument);
-  EXPECT_EQ(step.settings().alert, 1e-5) << "a refused alert leaves the last one";
+  step.set_mean_diameter(1e-3);
+  EXPECT_DOUBLE_EQ(step.alert(), cd::default_alert_diameters * 1e-3) << "no alert given: it follows the grains";
+  EXPECT_THROW(step.set_mean_diameter(0.0), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(step.alert(), cd::default_alert_diameters * 1e-3) << "a refused diameter leaves the last alert";
+  cd::StepSettings given;
+  given.alert = 2e-5;
+  cd::MoreauJeanStep fixed{given};
+  fixed.set_mean_diameter(1e-3);
+  EXPECT_EQ(fixed.alert(), 2e-5) << "a given alert does not follow the grains";
 }
 
 // The model's disks (cd::disk_mass, cd::disk_inertia): m = pi r^2 rho and I = m r^2 / 2.
