@@ -6,6 +6,7 @@
 #include <set>
 
 #include "analysis/along_cell_series.h"
+#include "analysis/creep_results.h"
 #include "analysis/series_analysis.h"
 #include "analysis/series_figures.h"
 #include "analysis/source_comparison.h"

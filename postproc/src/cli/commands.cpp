@@ -6,6 +6,7 @@
 #include <iostream>
 #include <map>
 
+#include "analysis/creep_results.h"
 #include "analysis/published_run.h"
 #include "analysis/run_analysis.h"
 #include "analysis/series_analysis.h"
