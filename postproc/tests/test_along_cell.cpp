@@ -12,6 +12,9 @@
 #include "analysis/along_cell.h"
 #include "analysis/run_analysis.h"
 #include "analysis/series_analysis.h"
+#include "figures/along_cell_figures.h"
+#include "figures/run_figures.h"
+#include "figures/series_figures.h"
 #include "synthetic_run.h"
 
 namespace cdpost {

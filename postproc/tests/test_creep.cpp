@@ -6,6 +6,7 @@
 #include <functional>
 #include <random>
 
+#include "analysis/creep_results.h"
 #include "fit/creep.h"
 #include "fit/profile_fits.h"
 

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "analysis/snapshot.h"
+#include "figures/snapshot.h"
 #include "io/line_source.h"
 #include "lammps_text.h"
 #include "temp_files.h"

@@ -1,4 +1,4 @@
-// The comparison with a source study (analysis/source_comparison.h) on synthetic series of
+// The comparison with a source study (source/source_comparison.h) on synthetic series of
 // published runs built from the source's own laws (results/source.csv): every verdict agrees,
 // the mu(I) rule's under GDR MiDi's I of a Bagnold layer; with phi_c offset at one friction, or f
 // following the opposite trend, exactly the rows that read those fail; runs whose deck set h show
@@ -11,8 +11,8 @@
 #include <set>
 
 #include "analysis/series_analysis.h"
-#include "analysis/source_comparison.h"
 #include "output/results.h"
+#include "source/source_comparison.h"
 #include "temp_files.h"
 
 namespace cdpost {

@@ -2,10 +2,10 @@
 #include <filesystem>
 #include <iostream>
 
-#include "cli/options.h"
 #include "collision.h"
 #include "comparison.h"
 #include "io/line_source.h"
+#include "io/options.h"
 #include "overlaps.h"
 #include "signal/statistics.h"
 #include "spatial_to_chunk.h"

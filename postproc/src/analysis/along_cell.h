@@ -10,7 +10,6 @@
 
 #include "fit/linear_fit.h"
 #include "io/ave_chunk.h"
-#include "output/gnuplot.h"
 #include "output/results.h"
 #include "signal/space_time.h"
 
@@ -97,13 +96,5 @@ struct AlongCell {
 // its numbers go to `results`, a failed coherence fit to `warnings`. reduced_rate_hz = sqrt(g/d).
 AlongCell analyse_along_cell(const SpaceTimeField& field, const SpectralPeak& peak, const SpectrumOptions& options,
                              double reduced_rate_hz, ResultTable& results, std::vector<std::string>& warnings);
-
-// OUT/space_time.csv (m, k, f, power) and OUT/coherence.csv (r, C, pairs, fit).
-void write_along_cell_tables(const AlongCell& along, const std::string& out_dir);
-// The (k, f) map of log10 power and the coherence against distance with its fit.
-Figure along_cell_figure(const AlongCell& along);
-// The report's paragraph: method, then the verdict; `window` names the time window analysed
-// ("stationary window", or a forced one labelled not stationary: window_name).
-std::string along_cell_text(const AlongCell& along, const std::string& window);
 
 }  // namespace cdpost

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "analysis/creep_results.h"
 #include "analysis/layer_geometry.h"
 #include "io/ave_time.h"
 #include "io/line_source.h"

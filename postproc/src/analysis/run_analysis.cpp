@@ -8,6 +8,7 @@
 #include <sstream>
 #include <gsl/gsl_statistics_double.h>
 
+#include "analysis/creep_results.h"
 #include "analysis/layer_geometry.h"
 #include "io/ave_chunk.h"
 #include "io/ave_time.h"

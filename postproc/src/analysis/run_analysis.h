@@ -147,9 +147,4 @@ struct ColumnSpectrum {
 };
 ColumnSpectrum analyse_column_spectrum(const std::string& path, const std::string& column, const RunSettings& settings);
 
-// Writes OUT/results.{csv,json}, OUT/spectrum.csv, OUT/profile.csv, OUT/layers.csv,
-// OUT/space_time.csv and OUT/coherence.csv (with columns.chunk), the figures in OUT/figures
-// and OUT/report.md. `dump` (optional) adds a snapshot.
-void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::string& dump_path);
-
 }  // namespace cdpost

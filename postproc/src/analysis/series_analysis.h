@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "analysis/run_analysis.h"
-#include "analysis/source_numbers.h"
 #include "fit/flow_rules.h"
 #include "fit/profile_fits.h"
+#include "source/source_numbers.h"
 
 namespace cdpost {
 
@@ -32,7 +32,7 @@ struct SeriesSettings {
   // held (at beta): the rms residual against the held value shows what the runs determine.
   std::vector<double> held_i0{0.1, 0.15, 0.2, 0.3, 0.4, 0.5};
   std::vector<double> held_ell{0.5, 0.75, 1, 1.25, 1.5, 1.75, 2, 2.5, 3};
-  // The numbers of the source study to compare with (analysis/source_numbers.h); empty: none.
+  // The numbers of the source study to compare with (source/source_numbers.h); empty: none.
   std::string source_file;
 };
 
@@ -117,9 +117,5 @@ struct SeriesAnalysis {
 };
 
 SeriesAnalysis analyse_series(const SeriesSettings& settings);
-
-// OUT/runs.csv (one row per flowing run), OUT/fits.{csv,json}, OUT/residuals.csv, OUT/held_fits.csv,
-// OUT/layer_amplitudes.csv, OUT/depth_decay.csv, OUT/figures, OUT/report.md.
-void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir);
 
 }  // namespace cdpost

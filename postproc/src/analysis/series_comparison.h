@@ -42,8 +42,4 @@ std::vector<ComparedFit> compared_fits(const SeriesComparison& comparison);
 // The warnings of both series, each led by its series' label.
 std::vector<std::string> comparison_warnings(const SeriesComparison& comparison);
 
-// OUT/compared_fits.csv (name,unit,A,A_error,B,B_error,difference_sigma with A and B the
-// labels), OUT/figures, OUT/report.md.
-void write_comparison_outputs(SeriesComparison& comparison, const std::string& out_dir);
-
 }  // namespace cdpost

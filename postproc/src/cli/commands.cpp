@@ -6,15 +6,19 @@
 #include <iostream>
 #include <map>
 
+#include "analysis/creep_results.h"
 #include "analysis/published_run.h"
 #include "analysis/run_analysis.h"
 #include "analysis/series_analysis.h"
 #include "analysis/series_comparison.h"
-#include "analysis/snapshot.h"
-#include "cli/options.h"
 #include "cli/run_parameters.h"
+#include "figures/run_figures.h"
+#include "figures/series_comparison_figures.h"
+#include "figures/series_figures.h"
+#include "figures/snapshot.h"
 #include "io/ave_time.h"
 #include "io/line_source.h"
+#include "io/options.h"
 
 namespace cdpost {
 

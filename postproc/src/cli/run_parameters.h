@@ -7,8 +7,8 @@
 #include <string>
 
 #include "analysis/run_analysis.h"
-#include "cli/options.h"
 #include "io/chute_record.h"
+#include "io/options.h"
 
 namespace cdpost {
 

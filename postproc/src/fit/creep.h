@@ -18,7 +18,6 @@
 #include <vector>
 
 #include "fit/linear_fit.h"
-#include "output/results.h"
 
 namespace cdpost {
 
@@ -70,9 +69,8 @@ CreepMeasure measure_creep(const std::vector<double>& z, const std::vector<doubl
 std::optional<CreepBand> first_decade_decay(const std::vector<double>& z, const std::vector<double>& u,
                                             double depth_d = CreepSettings{}.depth_d);
 
-// The rows creep_floor, creep_points, creep_z_high, creep_z_low, creep_lambda, creep_u0 and
-// creep_lambda_band_<top>_<bottom> (what the measure has) added to `results`.
-void add_creep_results(ResultTable& results, const CreepMeasure& creep);
+// The band as "<top>-<bottom> d".
+std::string band_label(const CreepBand& band);
 
 // The measure in one paragraph: lambda over its fit range with the floor and the bands, or the
 // verdict.
@@ -80,12 +78,5 @@ std::string creep_summary(const CreepMeasure& creep);
 
 // The verdict (when unresolved) and the bands that do not decay: a run's warnings.
 std::vector<std::string> creep_problems(const CreepMeasure& creep);
-
-// The band of a creep_lambda_band_<top>_<bottom> result, as "<top>-<bottom> d"; none for
-// another name.
-std::optional<std::string> creep_band_of(const std::string& result_name);
-
-// Whether a result row belongs to the creep measure (named creep_*).
-bool is_creep_result(const std::string& name);
 
 }  // namespace cdpost

@@ -5,7 +5,6 @@
 #include <string>
 
 #include "fit/linear_fit.h"
-#include "output/results.h"
 
 namespace cdpost {
 

@@ -4,8 +4,6 @@
 
 #include <cmath>
 
-#include "output/results.h"
-
 namespace cdpost {
 
 namespace {

@@ -27,6 +27,12 @@ struct Curve {
   bool dashed = false;  // Lines, LinesBand
 };
 
+// A curve of one friction coefficient (a series' figures, the source drawn over them).
+struct FrictionCurve {
+  double mu = 0;
+  Curve curve;
+};
+
 struct Panel {
   std::string title, x_label, y_label;
   bool log_x = false, log_y = false;

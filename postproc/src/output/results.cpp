@@ -99,17 +99,6 @@ void ResultTable::write_json(const std::string& path, const std::vector<std::str
   out << "]\n}\n";
 }
 
-std::string format_estimate(double value, const std::optional<double>& error)
-{
-  if (!error || *error <= 0) return number(value, 5);
-  // Two significant digits of the error, the value to the same decimal place.
-  int decimals = std::max(0, 1 - static_cast<int>(std::floor(std::log10(*error))));
-  char buffer[96];
-  if (decimals > 8 || std::abs(value) >= 1e6) std::snprintf(buffer, sizeof buffer, "%.4g ± %.2g", value, *error);
-  else std::snprintf(buffer, sizeof buffer, "%.*f ± %.*f", decimals, value, decimals, *error);
-  return buffer;
-}
-
 std::string ResultTable::markdown() const
 {
   std::ostringstream out;

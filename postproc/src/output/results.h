@@ -37,9 +37,6 @@ class ResultTable {
   std::vector<ResultRow> rows_;
 };
 
-// "1.234 ± 0.005", with a precision fitted to the error.
-std::string format_estimate(double value, const std::optional<double>& error);
-
 // A CSV of named numeric columns of equal length.
 void write_columns_csv(const std::string& path, const std::vector<std::string>& names,
                        const std::vector<std::vector<double>>& columns);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace cdpost {
@@ -52,6 +53,20 @@ CorrelationTest test_correlation(const std::vector<double>& x, const std::vector
   test.n = static_cast<int>(x.size());
   test.p_value = correlation_p_value(test.r, test.n);
   return test;
+}
+
+std::string format_estimate(double value, const std::optional<double>& error)
+{
+  char buffer[96];
+  if (!error || *error <= 0) {
+    std::snprintf(buffer, sizeof buffer, "%.5g", value);
+    return buffer;
+  }
+  // Two significant digits of the error, the value to the same decimal place.
+  int decimals = std::max(0, 1 - static_cast<int>(std::floor(std::log10(*error))));
+  if (decimals > 8 || std::abs(value) >= 1e6) std::snprintf(buffer, sizeof buffer, "%.4g ± %.2g", value, *error);
+  else std::snprintf(buffer, sizeof buffer, "%.*f ± %.*f", decimals, value, decimals, *error);
+  return buffer;
 }
 
 }  // namespace cdpost

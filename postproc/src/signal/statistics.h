@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace cdpost {
@@ -19,6 +20,9 @@ struct Estimate {
   double value = 0;
   std::optional<double> error;
 };
+
+// "1.234 ± 0.005", with a precision fitted to the error.
+std::string format_estimate(double value, const std::optional<double>& error);
 
 // Mean of x[begin, end) with the standard error of `blocks` consecutive block means
 // (block averaging: correct for correlated samples when a block is longer than the

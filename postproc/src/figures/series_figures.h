@@ -1,5 +1,6 @@
-// The pieces of a series' figures (series_figures.cpp), shared with the comparison of two series
-// (series_comparison.cpp): the runs' points and the fitted curves, each tagged with its friction.
+// The outputs of a series (analysis/series_analysis.h), and the pieces of its figures shared with
+// the comparison of two series (series_comparison_figures.cpp): the runs' points and the fitted
+// curves, each tagged with its friction.
 #pragma once
 
 #include <string>
@@ -11,11 +12,9 @@
 
 namespace cdpost {
 
-// A curve of one friction coefficient.
-struct FrictionCurve {
-  double mu = 0;
-  Curve curve;
-};
+// OUT/runs.csv (one row per flowing run), OUT/fits.{csv,json}, OUT/residuals.csv, OUT/held_fits.csv,
+// OUT/layer_amplitudes.csv, OUT/depth_decay.csv, OUT/figures, OUT/report.md.
+void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir);
 
 // Result y (with its error bars if any) against result x ("theta": the tilt), one curve per
 // friction coefficient that has runs with both.

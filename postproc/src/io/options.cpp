@@ -1,4 +1,4 @@
-#include "cli/options.h"
+#include "io/options.h"
 
 #include <algorithm>
 #include <charconv>

@@ -1,11 +1,13 @@
 // Figures, data tables and the Markdown report of one run.
+#include "figures/run_figures.h"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 
-#include "analysis/run_analysis.h"
-#include "analysis/snapshot.h"
+#include "figures/along_cell_figures.h"
+#include "figures/snapshot.h"
 #include "output/gnuplot.h"
 #include "output/report.h"
 

@@ -1,4 +1,4 @@
-#include "analysis/snapshot.h"
+#include "figures/snapshot.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
 // Tables, figure and report text of the along-cell analysis of one run.
+#include "figures/along_cell_figures.h"
+
 #include <algorithm>
 #include <cmath>
-
-#include "analysis/along_cell.h"
 
 namespace cdpost {
 

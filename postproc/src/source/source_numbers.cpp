@@ -1,4 +1,4 @@
-#include "analysis/source_numbers.h"
+#include "source/source_numbers.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "io/ave_time.h"
 #include "io/line_source.h"
 #include "io/tokens.h"
-#include "output/results.h"
+#include "signal/statistics.h"
 
 namespace cdpost {
 

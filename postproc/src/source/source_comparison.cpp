@@ -1,4 +1,4 @@
-#include "analysis/source_comparison.h"
+#include "source/source_comparison.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// A series against the numbers of its source (analysis/source_numbers.h): curves compared as
+// A series against the numbers of its source (source/source_numbers.h): curves compared as
 // curves (each run against the source's rule at the run's own I, h and U), ranges as ranges,
 // signs as signs with their errors; the fit parameters that the runs cannot separate (3
 // parameters over a few angles) shown apart as degenerate, with their correlation; and the
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "analysis/series_analysis.h"
-#include "analysis/series_figures.h"
+#include "output/gnuplot.h"
 #include "output/report.h"
 
 namespace cdpost {

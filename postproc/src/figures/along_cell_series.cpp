@@ -1,4 +1,4 @@
-#include "analysis/along_cell_series.h"
+#include "figures/along_cell_series.h"
 
 #include "analysis/along_cell.h"
 

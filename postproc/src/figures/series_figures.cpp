@@ -5,13 +5,14 @@
 #include <filesystem>
 #include <set>
 
-#include "analysis/along_cell_series.h"
+#include "analysis/creep_results.h"
 #include "analysis/series_analysis.h"
-#include "analysis/series_figures.h"
-#include "analysis/source_comparison.h"
+#include "figures/along_cell_series.h"
+#include "figures/series_figures.h"
 #include "io/ave_time.h"
 #include "output/gnuplot.h"
 #include "output/report.h"
+#include "source/source_comparison.h"
 
 namespace cdpost {
 
@@ -177,7 +178,7 @@ Figure flow_rule_figure(const SeriesAnalysis& series)
       panels);
 }
 
-// theta against each reading of a run's I (analysis/source_numbers.h), one panel each, with both
+// theta against each reading of a run's I (source/source_numbers.h), one panel each, with both
 // of the source's rules over the runs' range of I.
 std::optional<Figure> inertial_readings_figure(const SeriesAnalysis& series)
 {
