@@ -6,7 +6,7 @@ error are compared with the reference's: a quantity agrees when the two means di
 most twice their combined standard error.
 
     studies/accuracy_45d.py compare --runs DIR --reference ref_mu0.5 --candidate new_mu0.5 \\
-        --windows 10.2:11.2,11.2:12.2,12.2:13.2 --out doc/accuracy
+        --windows 10.2:11.2,11.2:12.2,12.2:13.2 --out results/accuracy
     studies/accuracy_45d.py convergence --runs DIR --series "tol:1e-1=tol1e-1_mu0.5,..." ...
 
 The runs are in.chute flow runs (`-var stage flow -var start RESTART`), one folder each.

@@ -9,7 +9,7 @@ compute pressure (the fix's contact stress plus the kinetic part of compute temp
 second half of the shear, with d = 1 the mean diameter and rho = 1 the disks' areal density; the
 standard errors from five blocks of that window, and the deepest overlap the fix warned of at
 the start of that window (start_overlap, mean diameters). Writes OUT/plane_shear.csv and the figure
-OUT/plane_shear.png (doc/figures/plane_shear.png is one). Standard library and gnuplot.
+OUT/plane_shear.png (results/plane_shear/plane_shear.png is one). Standard library and gnuplot.
 """
 
 import argparse
