@@ -21,7 +21,7 @@ import sys
 import tempfile
 import time
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, "scripts"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, "studies"))
 from cdtools.lammps_files import read_dump  # noqa: E402
 
 TOP = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir)

@@ -28,8 +28,8 @@ import os
 import subprocess
 import sys
 
-# cdtools, found from this file (scripts/cdtools/__init__.py)
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, "scripts"))
+# cdtools, found from this file (studies/cdtools/__init__.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, "studies"))
 
 from cdtools.lammps_files import read_dump, read_time_file
 from cdtools.logs import read_progress

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The project's enforced style, one language per call (ctest: style.cpp, style.python):
 #   cpp      the C++ of src/, postproc/, reference/, bench/ and tests/ as .clang-format formats it
-#   python   the Python of scripts/, bench/ and tests/ clean under flake8 (.flake8)
+#   python   the Python of scripts/, studies/, bench/ and tests/ clean under flake8 (.flake8)
 # Exit status 1 with the files or lines at fault.
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
@@ -25,7 +25,7 @@ case "${1:-}" in
     ;;
   python)
     need flake8
-    flake8 scripts bench tests
+    flake8 scripts studies bench tests
     ;;
   *)
     echo "usage: scripts/check_style.sh cpp|python"

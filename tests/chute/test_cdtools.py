@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks of scripts/cdtools, the tools' package, run by ctest (no simulation, a second).
+"""Checks of studies/cdtools, the tools' package, run by ctest (no simulation, a second).
 
     tests/chute/test_cdtools.py
 
@@ -22,8 +22,8 @@ import zlib
 import argparse
 import json
 
-# cdtools, found from this file (scripts/cdtools/__init__.py)
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "scripts"))
+# cdtools, found from this file (studies/cdtools/__init__.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "studies"))
 
 from cdtools import lammps_files, logs, run, stats, text
 from cdtools.campaign import plan, report

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Deck-level tests of inputs/in.chute and scripts/chute_campaign.py, run by ctest.
+"""Deck-level tests of inputs/in.chute and studies/chute_campaign.py, run by ctest.
 
     tests/chute/test_chute.py CASE --lmp build/lmp_cd --work DIR
 
@@ -19,15 +19,15 @@ import subprocess
 import sys
 import time
 
-# cdtools, found from this file (scripts/cdtools/__init__.py)
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "scripts"))
+# cdtools, found from this file (studies/cdtools/__init__.py)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "studies"))
 
-from cdtools import rank_solutions
+import rank_solutions
 from cdtools.lammps_files import read_chunk_file, read_dump, read_time_file, unwrapped
 from cdtools.logs import tagged_line
 from cdtools.run import DECK, TOP, lmp_command, mpi_launcher
 
-RUNNER = os.path.join(TOP, "scripts", "chute_campaign.py")
+RUNNER = os.path.join(TOP, "studies", "chute_campaign.py")
 
 D = 5.0e-4                      # mean diameter (m), the deck's default
 G = 9.81
@@ -372,7 +372,7 @@ def case_flow_two_ranks(args):
     part after a few ms (a grain is 3.5e-3 d away after 4 ms, 0.07 d after 20 ms): they are two
     realisations of one flow, compared as compare_realisations says (the interpenetration was
     1.2-1.8e-3 d in 19 runs on 1, 2 and 4 ranks). Independent starts on 1, 2 and 4 ranks:
-    scripts/cdtools/rank_replicas.py."""
+    studies/rank_replicas.py."""
     launcher = mpi_launcher(args.mpirun, args.ranks)
     folder, output = chute(args, f"flow_np{args.ranks}", FLOW_THETA, FLOW_DURATION, launcher=launcher)
     check(f"{args.ranks} by 1 by 1 MPI processor grid" in output,
@@ -402,7 +402,7 @@ def case_default_sweeps_flow(args):
 
 def case_solve_two_ranks(args):
     """One step from two snapshots of flow_run (1.1 and 1.2 s), solved at tolerance 1e-9 on 1
-    and on 2 ranks (scripts/cdtools/rank_solutions.py): the decomposed Gauss-Seidel must reach the 1-rank
+    and on 2 ranks (studies/rank_solutions.py): the decomposed Gauss-Seidel must reach the 1-rank
     solution (relative error of the velocities < SAME_SOLUTION; measured 1e-9 here, < 1e-4 in
     18 of 20 snapshots of independent flows on 2 and 4 ranks) or, where the frictional problem
     has several solutions, one that a 1-rank solve with another contact order or a cold start

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks of scripts/packing_against_plane_shear.py on synthetic tables, run by ctest (no
+"""Checks of studies/packing_against_plane_shear.py on synthetic tables, run by ctest (no
 simulation, no figure).
 
     tests/chute/test_packing_against_plane_shear.py
@@ -16,7 +16,7 @@ import os
 import sys
 import tempfile
 
-TOOL = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "scripts",
+TOOL = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "studies",
                     "packing_against_plane_shear.py")
 
 

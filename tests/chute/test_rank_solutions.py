@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks of scripts/cdtools/rank_solutions.py's own measures, run by ctest (no simulation).
+"""Checks of studies/rank_solutions.py's own measures, run by ctest (no simulation).
 
     tests/chute/test_rank_solutions.py
 
@@ -15,15 +15,15 @@ import subprocess
 import sys
 import tempfile
 
-SCRIPTS = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "scripts")
-# cdtools, found from this file (scripts/cdtools/__init__.py)
-sys.path.insert(0, SCRIPTS)
+STUDIES = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "studies")
+# the study and cdtools, found from this file (studies/cdtools/__init__.py)
+sys.path.insert(0, STUDIES)
 
-from cdtools import rank_solutions as solutions  # noqa: E402
+import rank_solutions as solutions  # noqa: E402
 
-# The tool's command line, run as the package's module (bench/rank_solutions.py runs the same main).
-TOOL = [sys.executable, "-m", "cdtools.rank_solutions"]
-ENV = dict(os.environ, PYTHONPATH=SCRIPTS)
+# The tool's command line.
+TOOL = [sys.executable, os.path.join(STUDIES, "rank_solutions.py")]
+ENV = dict(os.environ, PYTHONPATH=STUDIES)
 
 
 def check(condition, message):

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""scripts/chute_campaign.py --report on a synthetic campaign, run by ctest.
+"""studies/chute_campaign.py --report on a synthetic campaign, run by ctest.
 
     test_report.py --cdpost build/postproc/cdpost --work DIR
 
@@ -30,7 +30,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.dirname(os.path.dirname(HERE))
-RUNNER = os.path.join(TOP, "scripts", "chute_campaign.py")
+RUNNER = os.path.join(TOP, "studies", "chute_campaign.py")
 # The pages --report writes: the README, then the pages holding the runs', series' and soft tables.
 PAGES = ("README.md", "runs/README.md", "series/README.md", "soft/README.md")
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks of scripts/size_law_offset.py on synthetic runs, run by ctest (no simulation).
+"""Checks of studies/size_law_offset.py on synthetic runs, run by ctest (no simulation).
 
     tests/chute/test_size_law_offset.py
 
@@ -16,7 +16,7 @@ import subprocess
 import sys
 import tempfile
 
-TOOL = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "scripts",
+TOOL = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "studies",
                     "size_law_offset.py")
 K, PHI_C = 0.002, {"0.5": 0.80, "0.05": 0.83}
 # (mu, theta, seed part, U area, residual area, U diameter, residual diameter)

@@ -1,15 +1,15 @@
 #!/usr/bin/env python3
-"""Checks of scripts/cdtools/step_profile.py's grouping, run by ctest (no perf, no simulation): each
+"""Checks of bench/step_profile.py's grouping, run by ctest (no perf, no simulation): each
 symbol of a perf report lands in its part of a step, the shares add up, and lines that are not
 samples (headers, call chains) are ignored. Standard library only."""
 
 import os
 import sys
 
-# cdtools, found from this file (scripts/cdtools/__init__.py)
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "scripts"))
+# bench/step_profile.py, found from this file
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "bench"))
 
-from cdtools import step_profile  # noqa: E402
+import step_profile  # noqa: E402
 
 REPORT = """# Samples: 1K of event 'cpu-clock'
 #

@@ -15,7 +15,8 @@ TOP = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pa
 PAGE = os.path.join(TOP, "doc", "architecture.md")
 MAX_LINES = 150
 # A backquoted path: starts at one of the repository's top folders or files.
-TOP_LEVEL = ("src/", "inputs/", "reference/", "postproc/", "scripts/", "bench/", "tests/", "results/", "doc/")
+TOP_LEVEL = ("src/", "inputs/", "reference/", "postproc/", "scripts/", "studies/", "bench/", "tests/", "results/",
+             "doc/")
 
 
 def expanded(pattern):

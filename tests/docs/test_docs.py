@@ -14,7 +14,7 @@ How the pages mark what they show (the test finds blocks by these marks):
   ```lammps          (Markdown) or `.. code-block:: LAMMPS` (reST): a complete deck. The case
                      `decks` runs it as shown with lmp_cd in a scratch folder.
   ```sh              commands. The case `commands` runs each block's commands in order in one
-                     scratch folder that links the repository's inputs/, scripts/, bench/,
+                     scratch folder that links the repository's inputs/, scripts/, studies/, bench/,
                      reference/, doc/ and build/, with lmp_cd and cdpost on the PATH.
   ```sh long         commands too long for a test (set-up, campaigns, studies, benchmarks).
                      The case `long_commands` checks them: every program of the repository
@@ -51,7 +51,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.dirname(os.path.dirname(HERE))
 PAGES = [os.path.join(TOP, "README.md")] + sorted(glob.glob(os.path.join(TOP, "doc", "*.md"))) + \
     sorted(glob.glob(os.path.join(TOP, "doc", "*.rst")))
-LINKED = ("inputs", "scripts", "bench", "reference", "doc", "build")
+LINKED = ("inputs", "scripts", "studies", "bench", "reference", "doc", "build")
 
 SMALL_CELL = ["-var", "L", "8", "-var", "grains", "60", "-var", "wall_height", "3"]
 TIME_SCALE = 0.1
@@ -60,7 +60,7 @@ DEFAULT_DURATION = {"in.chute": 10.0, "in.default_scene": 1.5}
 WRAPPERS = {"nice": {"-n"}, "taskset": {"-c"}, "/usr/bin/time": set(), "time": set(),
             "stdbuf": set(), "mpirun": {"-np", "-n"}, "mpiexec": {"-np", "-n"}, "perf": set()}
 # A line of an unmarked block that starts with one of these is a command.
-COMMAND_STARTS = ("lmp_cd", "build/", "cdpost", "cdref", "scripts/", "bench/", "reference/",
+COMMAND_STARTS = ("lmp_cd", "build/", "cdpost", "cdref", "scripts/", "studies/", "bench/", "reference/",
                   "inputs/", "mpirun", "cmake", "ctest", "lmp ", "liggghts", "taskset", "nice ")
 BAD_LINE = re.compile(r"^(ERROR|WARNING)|^cdpost: (error|warning)", re.M)
 

@@ -6,8 +6,8 @@ phi - (phi_c - k U) about the layer reading's phi(U) law (results/series/layer_f
 fits.csv: k = phi_k, phi_c = phi_c_mu<mu>), and the shift, area minus diameter; then per
 friction the mean shift with its standard error over the runs.
 
-    scripts/size_law_offset.py                 # the markdown tables
-    scripts/size_law_offset.py --csv FILE      # the per-run rows as CSV too
+    studies/size_law_offset.py                 # the markdown tables
+    studies/size_law_offset.py --csv FILE      # the per-run rows as CSV too
 
 Standard library only.
 """

@@ -11,8 +11,8 @@ local phi and I at one height, not the layer's mean phi against the stated I. Wh
 has the chute's friction, each run's phi is compared with the plane-shear phi at the run's I
 (linear in I between the two plane-shear points around it).
 
-    scripts/packing_against_plane_shear.py                      # the table, to stdout
-    scripts/packing_against_plane_shear.py --out DIR            # and DIR/phi_vs_I.png, DIR/packing.md
+    studies/packing_against_plane_shear.py                      # the table, to stdout
+    studies/packing_against_plane_shear.py --out DIR            # and DIR/phi_vs_I.png, DIR/packing.md
 
 Standard library and gnuplot.
 """
@@ -155,7 +155,7 @@ def main(argv=None):
         os.makedirs(args.out, exist_ok=True)
         figure(readings, plane_shear, read_rows(LITERATURE), source_phi_c(SOURCE), os.path.join(args.out, "phi_vs_I"))
         with open(os.path.join(args.out, "packing.md"), "w") as out:
-            out.write("# The chute's phi against plane shear\n\nMade by `scripts/packing_against_plane_shear.py "
+            out.write("# The chute's phi against plane shear\n\nMade by `studies/packing_against_plane_shear.py "
                       "--out results/series/packing` (its docstring says how). Figure: "
                       "[phi_vs_I.png](phi_vs_I.png).\n\n" + text)
     return 0

@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Does the domain-decomposed Gauss-Seidel solve the same contact problem as one rank?
 
 From chute snapshots (restart files written by inputs/in.chute's flow), one time step of the
@@ -14,7 +15,7 @@ A frictional packing can have several solutions; where the N-rank one differs, 1
 with other contact orders and cold starts are tried: if one of them reaches the N-rank
 solution, that solution is one of the problem's own.
 
-    bench/rank_solutions.py --out runs/rank_solutions --ranks 1 2 4 \\
+    studies/rank_solutions.py --out runs/rank_solutions --ranks 1 2 4 \\
         --snapshots runs/rank_replicas/seed*/np1/chute.restart
 
 The cell's in.chute -vars (--cell) must be those of the flow that wrote the snapshots.
@@ -28,9 +29,11 @@ import os
 import statistics
 import sys
 
-
-from .lammps_files import read_dump, read_time_file
-from .run import BUILT_LMP_CD, DECK, check_snapshot_study, lmp_command, mpi_launcher, name_value_pairs, run_checked
+# cdtools, found from this file (studies/cdtools/__init__.py)
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
+from cdtools.lammps_files import read_dump, read_time_file
+from cdtools.run import (BUILT_LMP_CD, DECK, check_snapshot_study, lmp_command, mpi_launcher, name_value_pairs,
+                         run_checked)
 
 SAME_SOLUTION = 1e-3    # error below which two solves count as one solution (see doc/benchmarks.md)
 # Columns of in.chute's solver.time: the sweeps and the fraction of steps converged.

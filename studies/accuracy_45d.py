@@ -5,9 +5,9 @@ stationary flow), cdpost analyses every window, and each setting's group mean an
 error are compared with the reference's: a quantity agrees when the two means differ by at
 most twice their combined standard error.
 
-    bench/accuracy_45d.py compare --runs DIR --reference ref_mu0.5 --candidate new_mu0.5 \\
-        --windows 10.2:11.2,11.2:12.2,12.2:13.2 --out doc/accuracy
-    bench/accuracy_45d.py convergence --runs DIR --series "tol:1e-1=tol1e-1_mu0.5,..." ...
+    studies/accuracy_45d.py compare --runs DIR --reference ref_mu0.5 --candidate new_mu0.5 \\
+        --windows 10.2:11.2,11.2:12.2,12.2:13.2 --out results/accuracy
+    studies/accuracy_45d.py convergence --runs DIR --series "tol:1e-1=tol1e-1_mu0.5,..." ...
 
 The runs are in.chute flow runs (`-var stage flow -var start RESTART`), one folder each.
 """
@@ -19,8 +19,8 @@ import re
 import subprocess
 import sys
 
-# cdtools, found from this file (scripts/cdtools/__init__.py)
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, "scripts"))
+# cdtools, found from this file (studies/cdtools/__init__.py)
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 
 from cdtools.campaign.plan import deck_defaults
 from cdtools.cdpost import read_results

@@ -1,6 +1,7 @@
+#!/usr/bin/env python3
 """Run the stability matrix of fix contact/dynamics and write a Markdown results table.
 
-    scripts/stability_matrix.py --out /work/stab-runs [--lmp build/lmp_cd] [--jobs 1]
+    studies/stability_matrix.py --out /work/stab-runs [--lmp build/lmp_cd] [--jobs 1]
                                 [--only PATTERN] [--list]
 
 Every case is one lmp_cd process in its own folder under --out (deck, log, screen output).
@@ -27,15 +28,18 @@ import json
 import math
 import os
 import shutil
+import sys
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 
-from .lammps_files import read_dump, read_time_file, unwrapped
-from .logs import error_line, has_non_finite, tagged_line, thermo_rows
-from .run import BUILT_LMP_CD, DECK as CHUTE_DECK, lmp_command, run_timed
-from .stats import least_squares_slope
-from .text import markdown_table, number
+# cdtools, found from this file (studies/cdtools/__init__.py)
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
+from cdtools.lammps_files import read_dump, read_time_file, unwrapped
+from cdtools.logs import error_line, has_non_finite, tagged_line, thermo_rows
+from cdtools.run import BUILT_LMP_CD, DECK as CHUTE_DECK, lmp_command, run_timed
+from cdtools.stats import least_squares_slope
+from cdtools.text import markdown_table, number
 
 D = 5.0e-4          # mean diameter (m)
 G = 9.81            # gravity (m/s^2)
@@ -523,3 +527,7 @@ def main():
     count = runner.run_all(cases)
     write_results(args, runner, count)
     return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -626,7 +626,12 @@ def section_where():
             "- [bed/analysis/bed.md](bed/analysis/bed.md): the erodible bed against the solver's tolerance and its "
             "floor at rest (doc/bed.md).\n"
             "- `size_law/`: flows rained with diameters uniform in area, the size law's part of the packing law's "
-            "offset (doc/source.md, `scripts/size_law_offset.py`).\n")
+            "offset (doc/source.md, `studies/size_law_offset.py`).\n"
+            "- `accuracy/`: cheaper solver settings against a reference on the 45 d scene (doc/accuracy.md).\n"
+            "- `plane_shear/`: µ(I) and φ(I) of the same grains in plane shear (doc/plane_shear_results.md).\n"
+            "- `stalls/`: the corpus of hard steps and the settings measured on it (doc/stalls.md).\n\n"
+            "Which study makes each folder, and its one report command: "
+            "[doc/studies.md](../doc/studies.md).\n")
 
 
 def page_header(title, command):
@@ -713,7 +718,7 @@ def write_results(args):
             write_run(r, args.report, changes)
     series = publish_series(records, cdpost, args, changes)
     readings = publish_readings(series, cdpost, args)
-    command = " ".join(shlex.quote(a) for a in ["scripts/chute_campaign.py"] + args.argv)
+    command = " ".join(shlex.quote(a) for a in ["studies/chute_campaign.py"] + args.argv)
     publish_comparisons(args.comparison, args.report)
     readme = write_report(records, series, readings, args.report, command, changes)
     for path, entries in sorted(changes.items()):

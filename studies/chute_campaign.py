@@ -5,7 +5,7 @@ Every deposition and every run has its own folder under --out (depositions/<name
 runs/<name>/ with legs/NN/, one lmp_cd process each; series/<analysis>/ for cdpost's series
 analyses). Interrupt the runner (Ctrl-C, kill, power cut) and start it again with the same
 options: finished runs are skipped, unfinished ones continue from their newest restart. The
-folder layout and the steps of a run: scripts/cdtools/campaign/__init__.py.
+folder layout and the steps of a run: studies/cdtools/campaign/__init__.py.
 
 Standard library only.
 """
@@ -15,7 +15,7 @@ import os
 import shlex
 import sys
 
-# cdtools, found from this file (scripts/cdtools/__init__.py)
+# cdtools, found from this file (studies/cdtools/__init__.py)
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 
 from cdtools.campaign.plan import SERIES, build_jobs

@@ -18,10 +18,10 @@ the same options, finished jobs are skipped and an unfinished one continues from
 restart (the deck writes one every 0.1 s); a job whose origin is not finished waits for it
 (another runner of the study may be running it on the other core). The outputs of the legs are spliced by time step
 into the job's folder. --collect copies the small outputs of the finished jobs (and cdpost's
-results of each continuation) into a folder of the repository; analysis: bench/bed_profiles.py.
+results of each continuation) into a folder of the repository; analysis: studies/bed_profiles.py.
 
-    bench/bed_study.py --out runs/bed --core 0 --only 'floor/*1e-3*' --only 'start/*'
-    bench/bed_study.py --out runs/bed --only '*' --collect results/bed
+    studies/bed_study.py --out runs/bed --core 0 --only 'floor/*1e-3*' --only 'start/*'
+    studies/bed_study.py --out runs/bed --only '*' --collect results/bed
 
 Standard library only.
 """
@@ -37,8 +37,8 @@ import subprocess
 import sys
 import time
 
-# cdtools, found from this file (scripts/cdtools/__init__.py)
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, "scripts"))
+# cdtools, found from this file (studies/cdtools/__init__.py)
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 
 from cdtools.campaign.legs import LEG_OUTPUTS, splice_legs
 from cdtools.lammps_files import time_span
@@ -203,7 +203,7 @@ KEPT_FILES = ("profile.chunk", "packing.chunk", "flow.time", "solver.time", "chu
 def collect(job, args):
     """The small outputs of a finished job into --collect (the study's layout): its profiles,
     flow.time and solver.time, each leg's command and LAMMPS timers, and for a continuation
-    cdpost's results over the windows bench/bed_profiles.py averages (--flow-from 0.4 s on)."""
+    cdpost's results over the windows studies/bed_profiles.py averages (--flow-from 0.4 s on)."""
     folder, kept = job.folder(args.out), os.path.join(args.collect, job.name)
     if not os.path.exists(os.path.join(folder, "DONE")) or job.name.startswith("start/"):
         return

@@ -2,14 +2,14 @@
 """mu(I) and phi(I) of rigid disks in plane shear: inputs/examples/in.plane_shear (a Lees-Edwards
 cell at fixed area) run at several packing fractions, each giving one inertial number.
 
-    scripts/plane_shear.py [--phis 0.70,0.74,0.77,0.79,0.80,0.81] [--side 32] [--strain 10] [--out runs/plane_shear]
+    studies/plane_shear.py [--phis 0.70,0.74,0.77,0.79,0.80,0.81] [--side 32] [--strain 10] [--out runs/plane_shear]
 
 For each phi: I = rate d / sqrt(P_yy / rho) and mu = -P_xy / P_yy, from the pressure tensor of
 compute pressure (the fix's contact stress plus the kinetic part of compute temp/deform) over the
 second half of the shear, with d = 1 the mean diameter and rho = 1 the disks' areal density; the
 standard errors from five blocks of that window, and the deepest overlap the fix warned of at
 the start of that window (start_overlap, mean diameters). Writes OUT/plane_shear.csv and the figure
-OUT/plane_shear.png (doc/figures/plane_shear.png is one). Standard library and gnuplot.
+OUT/plane_shear.png (results/plane_shear/plane_shear.png is one). Standard library and gnuplot.
 """
 
 import argparse

@@ -1,4 +1,4 @@
-"""The erodible-bed chute campaign behind scripts/chute_campaign.py (doc/chute.md).
+"""The erodible-bed chute campaign behind studies/chute_campaign.py (doc/chute.md).
 
 A campaign is a set of runs, each a chute at one (mu, theta, L) started from a settled packing
 deposited at the same (mu, L, seed). Every deposition and every run has its own folder under

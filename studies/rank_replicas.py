@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Does a chute's flow depend on the number of MPI ranks? Replicas from independent starts.
 
 For every deposition seed the chute's bed is rained anew (one rank), then the same flow is run
@@ -8,14 +9,14 @@ comparison is made between replicas: per rank count the mean over seeds and its 
 error, and the paired difference from one rank (same start, so the slow variables of the bed
 cancel) with its standard error and t = mean / error over the seeds.
 
-    bench/rank_replicas.py --out runs/rank_replicas --seeds 1-10 --ranks 1 2
-    bench/rank_replicas.py --out DIR --seeds 1-4 --ranks 4          # adds 4 ranks to the same starts
-    bench/rank_replicas.py --out DIR --seeds 1-10 --ranks 1 2 4 --analyse-only
-    bench/rank_replicas.py --out DIR2 --beds DIR --against DIR --ranks 1 --solver order=shuffle
+    studies/rank_replicas.py --out runs/rank_replicas --seeds 1-10 --ranks 1 2
+    studies/rank_replicas.py --out DIR --seeds 1-4 --ranks 4          # adds 4 ranks to the same starts
+    studies/rank_replicas.py --out DIR --seeds 1-10 --ranks 1 2 4 --analyse-only
+    studies/rank_replicas.py --out DIR2 --beds DIR --against DIR --ranks 1 --solver order=shuffle
                                                      # same beds, another contact order, paired with DIR
-    bench/rank_replicas.py --out DIR --against DIR DIR2 --ranks 2 4 --analyse-only
+    studies/rank_replicas.py --out DIR --against DIR DIR2 --ranks 2 4 --analyse-only
                                                      # paired with both 1-rank runs of each bed (their mean)
-    bench/rank_replicas.py --out DIR --seeds 1-10 --ranks 1 4 --analyse-only --timeline 0.2
+    studies/rank_replicas.py --out DIR --seeds 1-10 --ranks 1 4 --analyse-only --timeline 0.2
                                                      # and the paired flowing-layer vx in 0.2 s bins
 
 The default cell is the test chute (10 d, 200 grains, walls 8 d): the only cell on which 4 ranks
@@ -30,12 +31,13 @@ import os
 import re
 import sys
 
-
-from .cdpost import read_results
-from .lammps_files import read_time_file
-from .logs import log_summary
-from .run import BUILT_CDPOST, BUILT_LMP_CD, DECK, lmp_command, mpi_launcher, name_value_pairs, run_checked
-from .stats import mean_sd_se, pooled_sd
+# cdtools, found from this file (studies/cdtools/__init__.py)
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
+from cdtools.cdpost import read_results
+from cdtools.lammps_files import read_time_file
+from cdtools.logs import log_summary
+from cdtools.run import BUILT_CDPOST, BUILT_LMP_CD, DECK, lmp_command, mpi_launcher, name_value_pairs, run_checked
+from cdtools.stats import mean_sd_se, pooled_sd
 
 CDPOST_QUANTITIES = ("U", "phi", "h", "f")
 STUDY_VARIABLES = {"stage", "start", "duration"}   # in.chute -vars the study sets (seed: the beds')

@@ -7,13 +7,13 @@ each flowed 8 s with the layer series' solver settings (results/series/README.md
     <out>/seed<S>/mu<mu>_theta<t>/  a flow from it, in legs (legs/NN, one lmp_cd each)
 
 Started again with the same options, finished runs are skipped and an unfinished one continues
-from its newest restart (bench/bed_study.py's runner). --collect runs cdpost on each finished
+from its newest restart (studies/bed_study.py's runner). --collect runs cdpost on each finished
 run and copies chute.params, results.csv and results.json into
 <collect>/mu<mu>_theta<t>_L45[_seed<S>]_layer_area (the seed named unless it is the series'
-own, 20261122); the shifts: scripts/size_law_offset.py.
+own, 20261122); the shifts: studies/size_law_offset.py.
 
-    taskset -c 1 scripts/size_law_runs.py --out /work/size2
-    scripts/size_law_runs.py --out /work/size2 --collect results/size_law
+    taskset -c 1 studies/size_law_runs.py --out /work/size2
+    studies/size_law_runs.py --out /work/size2 --collect results/size_law
 
 Standard library only.
 """
@@ -26,7 +26,6 @@ import sys
 import types
 
 HERE = os.path.dirname(os.path.realpath(__file__))
-sys.path.insert(0, os.path.join(HERE, os.pardir, "bench"))
 sys.path.insert(0, HERE)
 
 from bed_study import Job, legs, run_job

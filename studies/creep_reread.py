@@ -6,7 +6,7 @@ results.json updated (`cdpost creep RUN --update`), the series' runs.csv and rep
 per run the creep length before (the results.csv of git revision --old-rev) and after, with the
 fit range, the floor and the local decay lengths; per friction and reading the medians.
 
-usage: python3 scripts/creep_reread.py CDPOST [--old-rev REV] [--creep-floor U]
+usage: python3 studies/creep_reread.py CDPOST [--old-rev REV] [--creep-floor U]
 """
 import argparse
 import csv
@@ -157,7 +157,7 @@ def main():
     args = parser.parse_args()
     runs = sorted(r for r in os.listdir(os.path.join(TOP, RUNS)) if NAME.match(r))
     records = [record(os.path.abspath(args.cdpost), run, args.old_rev, args.creep_floor) for run in runs]
-    command = "python3 scripts/creep_reread.py build/postproc/cdpost --old-rev " + args.old_rev + \
+    command = "python3 studies/creep_reread.py build/postproc/cdpost --old-rev " + args.old_rev + \
         (f" --creep-floor {args.creep_floor}" if args.creep_floor else "")
     write_report(records, command, args.creep_floor)
     remake_series(os.path.abspath(args.cdpost))
