@@ -138,6 +138,7 @@ void FixContactDynamics::init()
   if (atom->map_style == Atom::MAP_NONE)
     error->all(FLERR, "Fix contact/dynamics requires an atom map: use atom_modify map hash");
   fix_checks::insertion_map(lmp);
+  if (step_grid->on()) fix_checks::pour_with_step_grid(lmp);
   // The per-step displacement limit (half the skin) keeps every contact in the list only if
   // the list is rebuilt as soon as a grain has moved that far.
   if (neighbor->every != 1 || neighbor->delay != 0 || !neighbor->dist_check)
@@ -577,12 +578,15 @@ void FixContactDynamics::store_impulses()
   });
 }
 
+// Neighbour lists are rebuilt once a grain has moved half the skin; a grain moving more than
+// that in one step could pass through a pair the list does not hold: the farthest such grain is
+// kept, and the run stops once every rank knows (reduce_step_outputs).
 void FixContactDynamics::write_back_motion()
 {
   const cd::StepParameters step = step_parameters();
-  // Neighbour lists are rebuilt once a grain has moved half the skin; a grain moving more than
-  // that in one step could pass through a pair the list does not hold.
   const double step_limit_sq = 0.25 * neighbor->skin * neighbor->skin;
+  farthest_mover = {0.0, 0};
+  too_far_movers = 0;
   double** x = atom->x;
   double** v = atom->v;
   double** omega = atom->omega;
@@ -594,11 +598,11 @@ void FixContactDynamics::write_back_motion()
       error->one(FLERR, "Fix contact/dynamics: non-finite velocity of atom {} at step {}", atom->tag[i],
                  update->ntimestep);
     const cd::Displacement moved = cd::step_motion(bodies.start_velocity[1 + i], velocity, step);
-    if (moved.dx * moved.dx + moved.dy * moved.dy > step_limit_sq)
-      error->one(FLERR,
-                 "Fix contact/dynamics: atom {} moved {} in step {}, more than half the "
-                 "neighbour skin {}; reduce the time step or raise the skin",
-                 atom->tag[i], std::hypot(moved.dx, moved.dy), update->ntimestep, neighbor->skin);
+    if (moved.dx * moved.dx + moved.dy * moved.dy > step_limit_sq) {
+      ++too_far_movers;
+      const double distance = std::hypot(moved.dx, moved.dy);
+      if (distance > farthest_mover.distance) farthest_mover = {distance, static_cast<int>(atom->tag[i])};
+    }
     v[i][0] = velocity.vx;
     v[i][1] = velocity.vy;
     omega[i][2] = velocity.spin;
@@ -608,16 +612,25 @@ void FixContactDynamics::write_back_motion()
   }
 }
 
-// The step's output vector: sums over ranks.
+// The step's output vector: sums over ranks, with the count of grains that moved too far in the
+// same reduction. A stop is then every rank's (one error line, no MPI abort), naming the farthest.
 void FixContactDynamics::reduce_step_outputs()
 {
-  const double local_sums[3] = {static_cast<double>(contact_step.contacts().solved.size()),
-                                static_cast<double>(loaded_contacts), last_report.contact_updates};
-  double sums[3];
-  MPI_Allreduce(local_sums, sums, 3, MPI_DOUBLE, MPI_SUM, world);
+  const double local_sums[4] = {static_cast<double>(contact_step.contacts().solved.size()),
+                                static_cast<double>(loaded_contacts), last_report.contact_updates,
+                                static_cast<double>(too_far_movers)};
+  double sums[4];
+  MPI_Allreduce(local_sums, sums, 4, MPI_DOUBLE, MPI_SUM, world);
   solved_contacts_total = sums[0];
   loaded_contacts_total = sums[1];
   full_sweep_work = sums[0] > 0.0 ? sums[2] / sums[0] : 0.0;
+  if (sums[3] == 0.0) return;
+  Mover farthest{0.0, 0};
+  MPI_Allreduce(&farthest_mover, &farthest, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+  error->all(FLERR,
+             "Fix contact/dynamics: atom {} moved {} in step {}, more than half the neighbour skin {}; reduce the "
+             "time step or raise the skin",
+             farthest.tag, farthest.distance, update->ntimestep, neighbor->skin);
 }
 
 // Between runs outputs are read without the run's lists: measure the last step's now.

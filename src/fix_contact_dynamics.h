@@ -101,6 +101,13 @@ class FixContactDynamics : public Fix {
   double solved_contacts_total = 0.0, loaded_contacts_total = 0.0;  // over all ranks
   double full_sweep_work = 0.0;  // the step's local solves over all ranks / solved contacts
   int loaded_contacts = 0;       // on this rank
+  // Grains that moved more than half the skin in the step, on this rank, and the farthest of them
+  // (the layout of MPI_DOUBLE_INT).
+  struct Mover {
+    double distance;  // m
+    int tag;
+  } farthest_mover{0.0, 0};
+  int too_far_movers = 0;
 
   // --- running totals (kept across restarts) ---
   double total_iterations = 0.0, total_unconverged_steps = 0.0, total_steps = 0.0;

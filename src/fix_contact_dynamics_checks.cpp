@@ -41,6 +41,17 @@ void fix_checks::insertion_map(LAMMPS* lmp)
                       modify.fix[f]->id);
 }
 
+void fix_checks::pour_with_step_grid(LAMMPS* lmp)
+{
+  Modify& modify = *lmp->modify;
+  for (int f = 0; f < modify.nfix; f++)
+    if (utils::strmatch(modify.fix[f]->style, "^pour"))
+      lmp->error->all(FLERR,
+                      "Fix contact/dynamics: fix {} (pour) cannot follow dt_max: it stops the run when the step "
+                      "changes; pour at a fixed step, then continue with dt_max",
+                      modify.fix[f]->id);
+}
+
 void fix_checks::integrators(LAMMPS* lmp, const Fix& fix)
 {
   const Atom& atom = *lmp->atom;

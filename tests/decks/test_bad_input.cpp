@@ -186,6 +186,17 @@ const BadCase bad_cases[] = {
      "use neigh_modify delay 0 every 1 check yes"},
     {"step_longer_than_half_skin", preamble + "set atom 1 vx 20.0\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
      "atom 1 moved 0.0002 in step 1, more than half the neighbour skin 0.0001"},
+    {"pour_with_step_grid",
+     [] {
+       std::string deck = preamble;
+       deck.replace(deck.find("map array"), 9, "map hash");
+       return deck +
+              "fix g all gravity 9.81 vector 0 -1 0\n"
+              "region slab block 0.001 0.009 0.006 0.009 -0.0003 0.0003 units box\n"
+              "fix pour all pour 4 1 4767548 diam one 5e-4 dens 2500 2500 region slab\n"
+              "fix cd all contact/dynamics 0.5 0.5 density 2500 dt_max 1e-5\nrun 1\n";
+     }(),
+     "fix pour (pour) cannot follow dt_max: it stops the run when the step changes"},
     {"second_integrator", preamble + "fix nve all nve/sphere\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
      "fix nve (nve/sphere) also integrates atoms of group all"},
     {"pair_style_on_the_group",
@@ -220,6 +231,17 @@ const BadCase bad_cases[] = {
 
 INSTANTIATE_TEST_SUITE_P(Decks, BadInput, ::testing::ValuesIn(bad_cases),
                          [](const auto& info) { return std::string(info.param.name); });
+
+// A grain that moved more than half the skin stops every rank with the one line, as LAMMPS's own
+// errors do, not with an MPI abort and its banner.
+TEST(Stops, TheSkinStopEndsTheRunWithoutAnMpiAbort)
+{
+  const RunResult result =
+      run_deck("skin_stop", preamble + "set atom 1 vx 20.0\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n");
+  EXPECT_NE(result.exit_status, 0) << result.output;
+  EXPECT_NE(error_line(result.output).find("more than half the neighbour skin"), std::string::npos) << result.output;
+  EXPECT_EQ(result.output.find("MPI_ABORT"), std::string::npos) << result.output;
+}
 
 TEST(Warnings, OverlapsAtTheStartOfARunAreReported)
 {
