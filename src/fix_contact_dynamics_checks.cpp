@@ -22,6 +22,15 @@ using namespace LAMMPS_NS;
 namespace {
 // Relative spread below which a mass/radius^k ratio counts as uniform over the group.
 constexpr double uniform_ratio_tolerance = 1.0e-6;
+
+// The first fix pour, or none.
+const Fix* pour_fix(LAMMPS* lmp)
+{
+  const Modify& modify = *lmp->modify;
+  for (int f = 0; f < modify.nfix; f++)
+    if (utils::strmatch(modify.fix[f]->style, "^pour")) return modify.fix[f];
+  return nullptr;
+}
 }  // namespace
 
 // fix pour in this LAMMPS (29 Sep 2021) resizes the atom map after an insertion step only when
@@ -31,25 +40,21 @@ constexpr double uniform_ratio_tolerance = 1.0e-6;
 // below a million atom IDs.
 void fix_checks::insertion_map(LAMMPS* lmp)
 {
-  if (lmp->atom->map_style == Atom::MAP_HASH) return;
-  Modify& modify = *lmp->modify;
-  for (int f = 0; f < modify.nfix; f++)
-    if (utils::strmatch(modify.fix[f]->style, "^pour"))
-      lmp->error->all(FLERR,
-                      "Fix contact/dynamics: fix {} (pour) crashes this LAMMPS with an array atom map (map array "
-                      "or yes) when an insertion falls short; use atom_modify map hash",
-                      modify.fix[f]->id);
+  const Fix* pour = pour_fix(lmp);
+  if (pour && lmp->atom->map_style != Atom::MAP_HASH)
+    lmp->error->all(FLERR,
+                    "Fix contact/dynamics: fix {} (pour) crashes this LAMMPS with an array atom map (map array "
+                    "or yes) when an insertion falls short; use atom_modify map hash",
+                    pour->id);
 }
 
 void fix_checks::pour_with_step_grid(LAMMPS* lmp)
 {
-  Modify& modify = *lmp->modify;
-  for (int f = 0; f < modify.nfix; f++)
-    if (utils::strmatch(modify.fix[f]->style, "^pour"))
-      lmp->error->all(FLERR,
-                      "Fix contact/dynamics: fix {} (pour) cannot follow dt_max: it stops the run when the step "
-                      "changes; pour at a fixed step, then continue with dt_max",
-                      modify.fix[f]->id);
+  if (const Fix* pour = pour_fix(lmp))
+    lmp->error->all(FLERR,
+                    "Fix contact/dynamics: fix {} (pour) cannot follow dt_max: it stops the run when the step "
+                    "changes; pour at a fixed step, then continue with dt_max",
+                    pour->id);
 }
 
 void fix_checks::integrators(LAMMPS* lmp, const Fix& fix)
