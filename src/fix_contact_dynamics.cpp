@@ -567,7 +567,7 @@ void FixContactDynamics::collect_wall_pairs(const cd::PairReach& reach, double f
 void FixContactDynamics::store_impulses()
 {
   for (int i = 0; i < atom->nlocal; i++) impulses->clear(i);
-  contact_step.contacts().for_each_loaded([&](const cd::PairKey& key, const cd::Contact& contact) {
+  contact_step.contacts().for_each_loaded([&](const cd::PairKey& key, const cd::Contact& contact, double) {
     const cd::Local2 p = contact.impulse;
     if (!std::isfinite(p.n) || !std::isfinite(p.t))
       error->one(FLERR, "Fix contact/dynamics: non-finite impulse between atom {} and {} at step {}",
@@ -709,7 +709,7 @@ void FixContactDynamics::unpack_reverse_comm(int n, int* list, double* buf)
 // (energy units) for compute pressure.
 void FixContactDynamics::tally_contact_stress()
 {
-  const cd::BranchImpulseSums sums = cd::branch_impulse_sums(contact_step.contacts().solved);
+  const cd::BranchImpulseSums sums = cd::branch_impulse_sums(contact_step.contacts());
   double local[4] = {sums.xx, sums.yy, sums.xy, sums.yx};  // m N s
   const double dt = update->dt;
   if (vflag_global) {
@@ -733,11 +733,11 @@ void FixContactDynamics::fill_local_output()
     memory->create(array_local, local_rows_allocated, output_columns, "contact/dynamics:array_local");
   }
   int row = 0;
-  contact_step.contacts().for_each_loaded([&](const cd::PairKey& key, const cd::Contact& c) {
+  contact_step.contacts().for_each_loaded([&](const cd::PairKey& key, const cd::Contact& c, double gap) {
     const int a = c.body_a - 1;  // an owned atom
     const cd::Disk disk_a = disk_at_solve(a);
     const bool wall = c.body_b == cd::world_body;
-    const cd::Point point = cd::contact_point(c, disk_a.x, disk_a.y);
+    const cd::Point point = cd::contact_point(c, gap, disk_a.x, disk_a.y);
     double* out = array_local[row++];
     out[0] = atom->tag[a];
     out[1] = wall ? 0 : atom->tag[c.body_b - 1];

@@ -20,20 +20,19 @@ Contact contact_frame(const ContactGeometry& g)
   c.normal_y = g.normal_y;
   c.lever_a = g.lever_a;
   c.lever_b = g.lever_b;
-  c.gap = g.gap;
   // Until prepare_mechanics adds the normal law's part, the bias is the image's velocity only.
   c.velocity_bias = {-(g.image_vx * g.normal_x + g.image_vy * g.normal_y),
                      -(-g.image_vx * g.normal_y + g.image_vy * g.normal_x)};
   return c;
 }
 
-bool is_candidate(const Contact& frame, const BodySet& bodies, const StepParameters& step, double alert)
+bool is_candidate(const Contact& frame, double gap, const BodySet& bodies, const StepParameters& step, double alert)
 {
   const Local2 u_free = law_velocity(frame, bodies.velocity[frame.body_a], bodies.velocity[frame.body_b]);
-  return frame.gap + step.advance() * std::min(u_free.n, 0.0) <= alert;
+  return gap + step.advance() * std::min(u_free.n, 0.0) <= alert;
 }
 
-void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies, const StepParameters& step)
+void prepare_mechanics(Contact& c, double gap, const ContactLaw& law, const BodySet& bodies, const StepParameters& step)
 {
   const BodyInertia& a = bodies.inertia[c.body_a];
   const BodyInertia& b = bodies.inertia[c.body_b];
@@ -49,12 +48,20 @@ void prepare_mechanics(Contact& c, const ContactLaw& law, const BodySet& bodies,
 
   // A touching pair is an impact whatever its pre-step velocity, and at e = 0 the normal law adds
   // nothing: nothing to read, so a scene without restitution does not pay for it.
-  if (c.gap <= 0.0 && law.restitution == 0.0) return;
+  if (gap <= 0.0 && law.restitution == 0.0) return;
   // The frame's bias is the image's velocity (contact_frame), part of the pre-step velocity.
   const double u_start = law_velocity(c, bodies.start_velocity[c.body_a], bodies.start_velocity[c.body_b]).n;
   const double advance = step.advance();
-  const bool impact = c.gap <= 0.0 || c.gap + advance * u_start <= 0.0;
-  c.velocity_bias.n += impact ? law.restitution * std::min(u_start, 0.0) : c.gap / advance;
+  const bool impact = gap <= 0.0 || gap + advance * u_start <= 0.0;
+  c.velocity_bias.n += impact ? law.restitution * std::min(u_start, 0.0) : gap / advance;
+}
+
+Contact prepared_contact(const ContactGeometry& geometry, const ContactLaw& law, const BodySet& bodies,
+                         const StepParameters& step)
+{
+  Contact c = contact_frame(geometry);
+  prepare_mechanics(c, geometry.gap, law, bodies, step);
+  return c;
 }
 
 void warm_start(Contact& c, Local2 carried)

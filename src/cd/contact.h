@@ -40,7 +40,8 @@ struct BodySet {
   void reset(int body_count);  // world body included in the count
 };
 
-// One active contact, holding everything the sweep needs so that it never looks up a body.
+// One active contact, holding everything the sweep needs so that it never looks up a body, and
+// nothing else: its gap and its key are the step's (StepContacts), read after the solve.
 struct Contact {
   int body_a = 0;
   int body_b = 0;
@@ -58,7 +59,6 @@ struct Contact {
   // (prepare_mechanics); both parts take off the velocity of b's image relative to body b, which
   // is not zero only across the sides of a deforming box (ContactGeometry::image_vx, image_vy).
   Local2 velocity_bias;
-  double gap = 0.0;  // at the predicted configuration (m)
   Local2 impulse;    // accumulated over the step (N s)
   Local2 direction;  // its change in the last sweep (conjugate acceleration only)
 };
@@ -80,15 +80,15 @@ inline Local2 law_velocity(const Contact& c, const BodyVelocity& a, const BodyVe
   return {u.n + c.velocity_bias.n, u.t + c.velocity_bias.t};
 }
 
-// The contact point (midway across the gap) of a contact whose body a is the disk centred at
+// The contact point (midway across `gap`) of a contact whose body a is the disk centred at
 // (a_x, a_y) at the predicted configuration.
 struct Point {
   double x = 0.0;  // m
   double y = 0.0;
 };
-inline Point contact_point(const Contact& c, double a_x, double a_y)
+inline Point contact_point(const Contact& c, double gap, double a_x, double a_y)
 {
-  const double to_point = c.lever_a + 0.5 * c.gap;
+  const double to_point = c.lever_a + 0.5 * gap;
   return {a_x - to_point * c.normal_x, a_y - to_point * c.normal_y};
 }
 
@@ -110,17 +110,22 @@ Contact contact_frame(const ContactGeometry& geometry);
 // relative velocity for theta dt, is at most `alert` (m): gap + theta dt min(u_n^free, 0) <= alert.
 // Pairs further apart cannot meet within the step unless other impulses drive them together
 // faster than alert / (theta dt); they are watched for overlap but not solved.
-bool is_candidate(const Contact& frame, const BodySet& bodies, const StepParameters& step, double alert);
+bool is_candidate(const Contact& frame, double gap, const BodySet& bodies, const StepParameters& step, double alert);
 
-// Completes a candidate: inverse masses, Delassus block, friction, and the velocity bias b of
-// the normal law u_n^+ + b >= 0 ⊥ p_n >= 0:
+// Completes a candidate, once per frame (it adds to the frame's bias): inverse masses, Delassus
+// block, friction, and the velocity bias b of the normal law u_n^+ + b >= 0 ⊥ p_n >= 0:
 //   impact (touching at x_m, or meeting within the step at the pre-step velocity v_n):
 //       b = e min(u_n^-, 0), Newton's restitution on the pre-impact velocity u_n^-;
 //   otherwise (open, and closing only through the step's forces or other impulses):
 //       b = gap / (theta dt), the gap may close but not overlap by the end of the step.
 // The second law holds resting contacts whose gap is a rounding error above zero, and
 // keeps contacts that close gently from overlapping; it adds no restitution.
-void prepare_mechanics(Contact& contact, const ContactLaw& law, const BodySet& bodies, const StepParameters& step);
+void prepare_mechanics(Contact& contact, double gap, const ContactLaw& law, const BodySet& bodies,
+                       const StepParameters& step);
+
+// contact_frame, then prepare_mechanics at the geometry's gap.
+Contact prepared_contact(const ContactGeometry& geometry, const ContactLaw& law, const BodySet& bodies,
+                         const StepParameters& step);
 
 // Starts a contact from the impulse it carried at the end of the previous step. A frictionless
 // contact keeps only the normal part: it can carry no tangential impulse, and the sweep never

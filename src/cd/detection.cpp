@@ -35,6 +35,7 @@ void StepContacts::begin(const BodySet& bodies, const StepParameters& step, doub
 {
   solved.clear();
   keys.clear();
+  gaps.clear();
   watched.clear();
   bodies_ = &bodies;
   step_ = step;
@@ -46,13 +47,14 @@ void StepContacts::begin(const BodySet& bodies, const StepParameters& step, doub
 void StepContacts::offer(const ContactGeometry& geometry, const ContactLaw& law, const PairKey& key, Local2 carried)
 {
   const Contact frame = contact_frame(geometry);
-  if (watch_only_ || !is_candidate(frame, *bodies_, step_, alert_)) {
+  if (watch_only_ || !is_candidate(frame, geometry.gap, *bodies_, step_, alert_)) {
     watched.push_back({geometry, law, key});
     return;
   }
   solved.push_back(frame);
   keys.push_back(key);
-  prepare_mechanics(solved.back(), law, *bodies_, step_);
+  gaps.push_back(geometry.gap);
+  prepare_mechanics(solved.back(), geometry.gap, law, *bodies_, step_);
   if (warm_start_) warm_start(solved.back(), carried);
 }
 
@@ -60,12 +62,15 @@ void StepContacts::reorder(const std::vector<int>& permutation)
 {
   reordered_.clear();
   reordered_keys_.clear();
+  reordered_gaps_.clear();
   for (const int k : permutation) {
     reordered_.push_back(solved[k]);
     reordered_keys_.push_back(keys[k]);
+    reordered_gaps_.push_back(gaps[k]);
   }
   solved.swap(reordered_);
   keys.swap(reordered_keys_);
+  gaps.swap(reordered_gaps_);
 }
 
 bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const StepParameters& step)
@@ -77,21 +82,22 @@ bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const 
       contacts.watched[kept++] = pair;
       continue;
     }
-    contacts.solved.push_back(contact_frame(pair.geometry));
-    prepare_mechanics(contacts.solved.back(), pair.law, bodies, step);
+    contacts.solved.push_back(prepared_contact(pair.geometry, pair.law, bodies, step));
     contacts.keys.push_back(pair.key);
+    contacts.gaps.push_back(pair.geometry.gap);
   }
   contacts.watched.resize(kept);
   return contacts.solved.size() > before;
 }
 
-BranchImpulseSums branch_impulse_sums(const std::vector<Contact>& solved)
+BranchImpulseSums branch_impulse_sums(const StepContacts& contacts)
 {
   BranchImpulseSums sums;
-  for (const Contact& c : solved) {
+  for (std::size_t k = 0; k < contacts.solved.size(); k++) {
+    const Contact& c = contacts.solved[k];
     const bool finite = std::isfinite(c.impulse.n) && std::isfinite(c.impulse.t);
     if (c.body_b == world_body || (finite && c.impulse.n <= 0.0)) continue;  // as for_each_loaded
-    const double branch = c.lever_a + c.lever_b + c.gap;
+    const double branch = c.lever_a + c.lever_b + contacts.gaps[k];
     const double lx = branch * c.normal_x, ly = branch * c.normal_y;
     const WorldImpulse p = world_impulse(c, c.impulse);
     sums.xx += lx * p.x;

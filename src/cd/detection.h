@@ -95,12 +95,14 @@ struct WatchedPair {
   PairKey key;
 };
 
-// The contacts of one step: those solved, in sweep order, each with its key (keys[k] is the
-// key of solved[k]: whatever reorders the contacts reorders the keys), and those only watched.
+// The contacts of one step: those solved, in sweep order, each with its key and its gap at the
+// predicted configuration (keys[k] and gaps[k] are solved[k]'s: whatever reorders the contacts
+// reorders them), and those only watched.
 class StepContacts {
  public:
   std::vector<Contact> solved;
   std::vector<PairKey> keys;
+  std::vector<double> gaps;  // m
   std::vector<WatchedPair> watched;
 
   // Starts a step: offered pairs are solved if candidates (is_candidate at `alert`, m), watched
@@ -115,7 +117,7 @@ class StepContacts {
   // previous step ({0, 0} if none).
   void offer(const ContactGeometry& geometry, const ContactLaw& law, const PairKey& key, Local2 carried);
 
-  // Calls visit(key, contact) for every solved contact whose impulse the next step starts
+  // Calls visit(key, contact, gap) for every solved contact whose impulse the next step starts
   // from: loaded (p_n > 0), or not finite (the host reports it: it knows the bodies' names).
   template <class Visit>
   void for_each_loaded(Visit&& visit) const
@@ -123,18 +125,19 @@ class StepContacts {
     for (std::size_t k = 0; k < solved.size(); k++) {
       const Local2 p = solved[k].impulse;
       if (std::isfinite(p.n) && std::isfinite(p.t) && p.n <= 0.0) continue;
-      visit(keys[k], solved[k]);
+      visit(keys[k], solved[k], gaps[k]);
     }
   }
 
-  // Puts the solved contacts (and their keys) in the order of `permutation`, whose k-th entry
+  // Puts the solved contacts (and their keys and gaps) in the order of `permutation`, whose k-th entry
   // is the old index of the new k-th contact.
   void reorder(const std::vector<int>& permutation);
 
   std::size_t memory_bytes() const
   {
     return (solved.capacity() + reordered_.capacity()) * sizeof(Contact) +
-           (keys.capacity() + reordered_keys_.capacity()) * sizeof(PairKey) + watched.capacity() * sizeof(WatchedPair);
+           (keys.capacity() + reordered_keys_.capacity()) * sizeof(PairKey) +
+           (gaps.capacity() + reordered_gaps_.capacity()) * sizeof(double) + watched.capacity() * sizeof(WatchedPair);
   }
 
  private:
@@ -145,10 +148,11 @@ class StepContacts {
   bool watch_only_ = false;
   std::vector<Contact> reordered_;  // scratch of reorder
   std::vector<PairKey> reordered_keys_;
+  std::vector<double> reordered_gaps_;
 };
 
 // Moves the watched pairs that would overlap at the end of the step with the solved velocities
-// (closes_after_solve) to the solved contacts, prepared, keys with them. True if any moved.
+// (closes_after_solve) to the solved contacts, prepared, keys and gaps with them. True if any moved.
 bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const StepParameters& step);
 
 // Sum over the loaded contacts (StepContacts::for_each_loaded) between two bodies (not walls) of the branch vector l (from b's
@@ -160,6 +164,6 @@ struct BranchImpulseSums {
   double xy = 0.0;
   double yx = 0.0;
 };
-BranchImpulseSums branch_impulse_sums(const std::vector<Contact>& solved);
+BranchImpulseSums branch_impulse_sums(const StepContacts& contacts);
 
 }  // namespace cd

@@ -135,7 +135,7 @@ StepReport MoreauJeanStep::solve(BodySet& bodies, double dt, StepHost& host, Swe
 
   StepReport report;
   report.solve = solve_step(*solver_, contacts_, bodies, step, settings_, reach_, host, exchange);
-  contacts_.for_each_loaded([&](const PairKey&, const Contact&) { ++report.loaded_contacts; });
+  contacts_.for_each_loaded([&](const PairKey&, const Contact&, double) { ++report.loaded_contacts; });
   return report;
 }
 

@@ -340,7 +340,7 @@ cd::SolveReport GranularBed::step()
   cd::BodySet bodies = frozen.bodies;
   const cd::StepReport report = moreau_jean_.solve(bodies, frozen.step.dt, host);
   carried_.clear();
-  moreau_jean_.contacts().for_each_loaded([&](const cd::PairKey& key, const cd::Contact& contact) {
+  moreau_jean_.contacts().for_each_loaded([&](const cd::PairKey& key, const cd::Contact& contact, double) {
     carried_[pair_key(key.row, static_cast<int>(key.partner))] = contact.impulse;
   });
   const cd::StepParameters step = frozen.step;

@@ -27,9 +27,8 @@ struct DoubleFloor {
     pile.bodies.velocity[1] = {0.0, fall, 0.0};
     const cd::Disk disk{0.0, radius, radius};
     for (int copy = 0; copy < 2; copy++) {
-      cd::Contact c = cd::contact_frame(cd::disk_world_geometry(1, disk, 0.0, 0.0, 0.0, 1.0));
-      cd::prepare_mechanics(c, cd::ContactLaw{0.5, 0.0}, pile.bodies, step);
-      pile.contacts.push_back(c);
+      pile.contacts.push_back(cd::prepared_contact(cd::disk_world_geometry(1, disk, 0.0, 0.0, 0.0, 1.0),
+                                                   cd::ContactLaw{0.5, 0.0}, pile.bodies, step));
     }
   }
   double vy() const { return pile.bodies.velocity[1].vy; }
@@ -84,11 +83,7 @@ struct WalledStack {
       bodies.velocity[k] = {0.0, -gravity * step.dt, 0.0};
     }
     const cd::ContactLaw law{0.0, 0.0};
-    auto add = [&](const cd::ContactGeometry& g) {
-      cd::Contact c = cd::contact_frame(g);
-      cd::prepare_mechanics(c, law, bodies, step);
-      contacts.push_back(c);
-    };
+    auto add = [&](const cd::ContactGeometry& g) { contacts.push_back(cd::prepared_contact(g, law, bodies, step)); };
     const double right = 2 * columns * radius;
     for (int i = 0; i < count; i++) {
       const cd::Disk& disk = disks[i];

@@ -16,6 +16,7 @@ constexpr double inertia = 0.5 * mass * radius * radius;
 struct Impact {
   cd::BodySet bodies;
   cd::Contact contact;
+  double gap = 0.0;  // m
 };
 
 // Disk a at the origin moving with (vx, vy) and spin; disk b at rest, touching a on its +x side.
@@ -29,8 +30,9 @@ Impact make_impact(double vx, double vy, double spin, double mu, double e)
   const cd::ContactGeometry g =
       cd::disk_disk_geometry(1, cd::Disk{0.0, 0.0, radius}, 2, cd::Disk{2.0 * radius, 0.0, radius});
   impact.contact = cd::contact_frame(g);
-  EXPECT_TRUE(cd::is_candidate(impact.contact, impact.bodies, {1e-3, 0.5}, 0.0));
-  cd::prepare_mechanics(impact.contact, {mu, e}, impact.bodies, {1e-3, 0.5});
+  impact.gap = g.gap;
+  EXPECT_TRUE(cd::is_candidate(impact.contact, g.gap, impact.bodies, {1e-3, 0.5}, 0.0));
+  cd::prepare_mechanics(impact.contact, g.gap, {mu, e}, impact.bodies, {1e-3, 0.5});
   return impact;
 }
 
@@ -114,6 +116,7 @@ TEST(BinaryImpact, ElasticFrictionlessImpactConservesEnergy)
 struct PairNearContact {
   cd::BodySet bodies;
   cd::Contact contact;
+  double gap = 0.0;  // m
 };
 
 PairNearContact pair_near_contact(double gap, double vx, double vx_free)
@@ -123,21 +126,22 @@ PairNearContact pair_near_contact(double gap, double vx, double vx_free)
   pair.bodies.inertia[1] = pair.bodies.inertia[2] = {1.0, 2.0};
   pair.bodies.start_velocity[1] = {vx, 0.0, 0.0};
   pair.bodies.velocity[1] = {vx_free, 0.0, 0.0};
-  pair.contact =
-      cd::contact_frame(cd::disk_disk_geometry(1, cd::Disk{0.0, 0.0, 0.5}, 2, cd::Disk{1.0 + gap, 0.0, 0.5}));
+  const cd::ContactGeometry g = cd::disk_disk_geometry(1, cd::Disk{0.0, 0.0, 0.5}, 2, cd::Disk{1.0 + gap, 0.0, 0.5});
+  pair.contact = cd::contact_frame(g);
+  pair.gap = g.gap;
   return pair;
 }
 
 TEST(Candidates, OnlyPairsThatCanMeetWithinTheStepAreSolved)
 {
   const cd::StepParameters step{1e-3, 0.5};
-  EXPECT_FALSE(cd::is_candidate(pair_near_contact(1e-3, -1.0, -1.0).contact, pair_near_contact(1e-3, -1.0, -1.0).bodies,
-                                step, 1e-4));
+  const PairNearContact opening = pair_near_contact(1e-3, -1.0, -1.0);
+  EXPECT_FALSE(cd::is_candidate(opening.contact, opening.gap, opening.bodies, step, 1e-4));
   const PairNearContact closing = pair_near_contact(1e-3, 2.0, 2.0);  // closes 1e-3 in the step
-  EXPECT_TRUE(cd::is_candidate(closing.contact, closing.bodies, step, 0.0));
+  EXPECT_TRUE(cd::is_candidate(closing.contact, closing.gap, closing.bodies, step, 0.0));
   const PairNearContact near = pair_near_contact(5e-5, 0.0, 0.0);
-  EXPECT_TRUE(cd::is_candidate(near.contact, near.bodies, step, 1e-4));
-  EXPECT_FALSE(cd::is_candidate(near.contact, near.bodies, step, 1e-5));
+  EXPECT_TRUE(cd::is_candidate(near.contact, near.gap, near.bodies, step, 1e-4));
+  EXPECT_FALSE(cd::is_candidate(near.contact, near.gap, near.bodies, step, 1e-5));
 }
 
 TEST(Candidates, FastApproachFromAGapRebounds)
@@ -145,7 +149,7 @@ TEST(Candidates, FastApproachFromAGapRebounds)
   // Meets within the step at its pre-step velocity: an impact, rebounding with e from a gap.
   const cd::StepParameters step{1e-3, 0.5};
   PairNearContact pair = pair_near_contact(2e-4, 1.0, 1.0);
-  cd::prepare_mechanics(pair.contact, {0.0, 0.5}, pair.bodies, step);
+  cd::prepare_mechanics(pair.contact, pair.gap, {0.0, 0.5}, pair.bodies, step);
   std::vector<cd::Contact> contacts{pair.contact};
   cd::solve_gauss_seidel(contacts, pair.bodies.velocity, {});
   EXPECT_NEAR(pair.bodies.velocity[2].vx - pair.bodies.velocity[1].vx, 0.5, 1e-12);
@@ -158,7 +162,7 @@ TEST(Candidates, GentleClosureStopsAtContactWithoutRestitution)
   const cd::StepParameters step{1e-3, 0.5};
   const double gap = 1e-5;
   PairNearContact pair = pair_near_contact(gap, 0.0, 0.5);
-  cd::prepare_mechanics(pair.contact, {0.0, 1.0}, pair.bodies, step);
+  cd::prepare_mechanics(pair.contact, pair.gap, {0.0, 1.0}, pair.bodies, step);
   std::vector<cd::Contact> contacts{pair.contact};
   cd::solve_gauss_seidel(contacts, pair.bodies.velocity, {1e-12, 100, 1.0, cd::ConvergenceNorm::quadratic});
   const double u_n = cd::relative_velocity(contacts[0], pair.bodies.velocity[1], pair.bodies.velocity[2]).n;

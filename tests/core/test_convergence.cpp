@@ -41,9 +41,7 @@ TEST(ConvergenceNorm, ScaleFreeAcrossUnits)
       const cd::ContactGeometry g_k =
           k == 1 ? cd::disk_world_geometry(1, cd::Disk{0, r, r}, 0.0, r, 0.0, 1.0)
                  : cd::disk_disk_geometry(k, cd::Disk{0, (2 * k - 1) * r, r}, k - 1, cd::Disk{0, (2 * k - 3) * r, r});
-      cd::Contact c = cd::contact_frame(g_k);
-      cd::prepare_mechanics(c, {0.5, 0.0}, bodies, {dt, 0.5});
-      contacts.push_back(c);
+      contacts.push_back(cd::prepared_contact(g_k, {0.5, 0.0}, bodies, {dt, 0.5}));
     }
     return cd::solve_gauss_seidel(contacts, bodies.velocity, {1e-6, 10000, 1.0, cd::ConvergenceNorm::quadratic});
   };

@@ -92,9 +92,9 @@ constexpr cd::Joining both_joinings[] = {cd::Joining::after_solve, cd::Joining::
 
 double end_gap(const Scene& scene, const cd::BodySet& bodies, int i, int j)
 {
-  cd::Contact frame = cd::contact_frame(cd::disk_disk_geometry(1 + i, scene.disks[i], 1 + j, scene.disks[j]));
-  const double u_n = cd::relative_velocity(frame, bodies.velocity[1 + i], bodies.velocity[1 + j]).n;
-  return cd::end_of_step_gap(frame.gap, u_n, step);
+  const cd::ContactGeometry g = cd::disk_disk_geometry(1 + i, scene.disks[i], 1 + j, scene.disks[j]);
+  const double u_n = cd::relative_velocity(cd::contact_frame(g), bodies.velocity[1 + i], bodies.velocity[1 + j]).n;
+  return cd::end_of_step_gap(g.gap, u_n, step);
 }
 
 TEST(PairReach, WithinIsTheGapAgainstBothReachesPlusTheMargin)
@@ -221,13 +221,15 @@ TEST(BranchImpulseSums, AreTheBranchVectorTimesTheImpulseOfLoadedPairsOnly)
   pair.normal_y = 0.8;
   pair.lever_a = 1.0;
   pair.lever_b = 2.0;
-  pair.gap = 0.5;
   pair.impulse = {3.0, 1.0};
   cd::Contact wall = pair;
   wall.body_b = cd::world_body;
   cd::Contact unloaded = pair;
   unloaded.impulse = {0.0, 0.0};
-  const cd::BranchImpulseSums sums = cd::branch_impulse_sums({pair, wall, unloaded});
+  cd::StepContacts contacts;
+  contacts.solved = {pair, wall, unloaded};
+  contacts.gaps = {0.5, 0.5, 0.5};
+  const cd::BranchImpulseSums sums = cd::branch_impulse_sums(contacts);
   const double lx = 3.5 * 0.6, ly = 3.5 * 0.8;
   EXPECT_NEAR(sums.xx, lx * 1.0, 1e-14);
   EXPECT_NEAR(sums.yy, ly * 3.0, 1e-14);

@@ -31,8 +31,8 @@ Landing make_landing()
   bodies.inertia[1] = {1.0, 2.0};
   bodies.start_velocity[1] = {0.0, -1.0, 0.0};
   bodies.velocity = bodies.start_velocity;
-  cd::Contact c = cd::contact_frame(cd::disk_world_geometry(1, cd::Disk{0.0, 0.5, 0.5}, 0.0, 0.0, 0.0, 1.0));
-  cd::prepare_mechanics(c, {0.5, 0.0}, bodies, step);
+  const cd::Contact c = cd::prepared_contact(cd::disk_world_geometry(1, cd::Disk{0.0, 0.5, 0.5}, 0.0, 0.0, 0.0, 1.0),
+                                             {0.5, 0.0}, bodies, step);
   landing.contacts = {c};
   landing.velocity = bodies.velocity;
   return landing;

@@ -60,7 +60,7 @@ class Pile : public cd::StepHost {
   void keep(const cd::StepContacts& contacts)
   {
     carried.clear();
-    contacts.for_each_loaded([&](const cd::PairKey& key, const cd::Contact& contact) {
+    contacts.for_each_loaded([&](const cd::PairKey& key, const cd::Contact& contact, double) {
       EXPECT_TRUE(carried.emplace(std::make_pair(key.row, key.partner), contact.impulse).second)
           << "a pair stored twice";
     });

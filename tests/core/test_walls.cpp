@@ -70,7 +70,7 @@ TEST(Walls, TiltedBoxImagesTheSegmentAlongTheTilt)
   EXPECT_EQ(under->part, cd::WallPart::interior);
   EXPECT_NEAR(under->geometry.normal_y, 1.0, 1e-12);
   EXPECT_NEAR(under->geometry.gap, -0.1, 1e-12);
-  const cd::Point point = cd::contact_point(cd::contact_frame(under->geometry), 7.5, 0.4);
+  const cd::Point point = cd::contact_point(cd::contact_frame(under->geometry), under->geometry.gap, 7.5, 0.4);
   EXPECT_NEAR(point.x, 7.5, 1e-12);
   EXPECT_NEAR(point.y, -0.55, 1e-12) << "midway across the 0.1 overlap: the disk's lowest point -0.6, the image -0.5";
   EXPECT_FALSE(cd::wall_contact(ledge, 1, {2.5, 0.4, 1.0}, 0.0, box));

@@ -338,6 +338,7 @@ struct Scene {
   std::vector<cd::Disk> disks;  // indexed by body; disks[0] stands for the world
   std::vector<ContactKinematics> kinematics;
   std::vector<cd::Contact> contacts;
+  std::vector<double> gaps;  // of the contacts (m)
   cd::BodySet bodies;
   int body_count() const { return static_cast<int>(disks.size()) - 1; }  // the world excluded
 };
@@ -414,9 +415,8 @@ Scene random_scene(int disk_count, double nest_probability, double mu, std::mt19
 
   const cd::ContactLaw law{mu, 0.0};
   auto add = [&](const cd::ContactGeometry& g, const ContactKinematics& k) {
-    cd::Contact c = cd::contact_frame(g);
-    cd::prepare_mechanics(c, law, s.bodies, scene_step);
-    s.contacts.push_back(c);
+    s.contacts.push_back(cd::prepared_contact(g, law, s.bodies, scene_step));
+    s.gaps.push_back(g.gap);
     s.kinematics.push_back(k);
   };
   for (int i = 1; i <= n; ++i)
@@ -447,7 +447,8 @@ Scene random_scene(int disk_count, double nest_probability, double mu, std::mt19
 // Prepares the scene's contacts again with another friction coefficient.
 void set_friction(Scene& s, double mu)
 {
-  for (cd::Contact& c : s.contacts) cd::prepare_mechanics(c, {mu, 0.0}, s.bodies, scene_step);
+  for (std::size_t k = 0; k < s.contacts.size(); k++)
+    cd::prepare_mechanics(s.contacts[k], s.gaps[k], {mu, 0.0}, s.bodies, scene_step);
 }
 
 // H, the 2m x 3N map from body velocities (vx, vy, spin of bodies 1..N) to contact velocities,
