@@ -320,6 +320,25 @@ std::string two_rank_deck(const std::string& box_width)
          "fix cd all contact/dynamics 0.5 0.5 wall yplane 0 0.5 0.5\nrun 5\nrun 5\n";
 }
 
+// Two grains too fast for the skin on two ranks: every rank stops with the one line, which names
+// the farther (atom 2, on rank 1: 2e-4 m in the step, atom 1 on rank 0: 1e-4 m).
+TEST(MultipleRanks, TheSkinStopNamesTheFarthestGrainWithoutAnMpiAbort)
+{
+  const std::string deck =
+      "units si\ndimension 2\natom_style sphere\natom_modify map array\ncomm_modify vel yes\n"
+      "neigh_modify delay 0\nprocessors 2 1 1\nboundary p f p\n"
+      "region box block 0 0.003 0 0.01 -0.0003 0.0003\ncreate_box 1 box\n"
+      "create_atoms 1 single 0.0004 0.00025 0\ncreate_atoms 1 single 0.0022 0.00025 0\n"
+      "set group all diameter 5e-4 density/disc 2500\nneighbor 1e-4 bin\ntimestep 1e-5\n"
+      "set atom 1 vx 10.0\nset atom 2 vx 20.0\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n";
+  const RunResult result = run_deck("skin_stop_two_ranks", deck, "mpirun --allow-run-as-root --oversubscribe -np 2 ");
+  EXPECT_NE(result.exit_status, 0) << result.output;
+  EXPECT_NE(error_line(result.output).find("atom 2 moved 0.0002 in step 1, more than half the neighbour skin"),
+            std::string::npos)
+      << result.output;
+  EXPECT_EQ(result.output.find("MPI_ABORT"), std::string::npos) << result.output;
+}
+
 std::size_t count_of(const std::string& text, const std::string& part)
 {
   std::size_t count = 0;
