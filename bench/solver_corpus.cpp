@@ -19,8 +19,10 @@
 //   switches      contacts whose status (open, stick, slip +, slip -) changed in the last sweep.
 // Files: DIR/solves.csv (one row per problem and setting, at the end of the solve) and
 // DIR/history.csv (rows at every full sweep up to 16, then at 1.1x spaced sweep counts).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -30,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "cd/block_solve.h"
 #include "cd/gauss_seidel.h"
 #include "cd/problem_file.h"
 
@@ -38,7 +41,10 @@ namespace {
 struct NamedSetting {
   std::string name;
   cd::SolverSettings settings;
-  bool cold = false;  // start from zero impulses instead of the saved warm start
+  bool cold = false;     // start from zero impulses instead of the saved warm start
+  unsigned shuffle = 0;  // > 0: the contacts swept in a random order drawn from this seed
+  int block_rounds = 0;  // an unconverged solve: exact block solves around its residual, each then swept again
+  int block_hops = 2;
 };
 
 struct Options {
@@ -67,7 +73,7 @@ double number(const std::string& key, const std::string& text)
   return value;
 }
 
-cd::SolverSettings parse_setting(const std::string& text, cd::SolverSettings settings, bool* cold = nullptr)
+cd::SolverSettings parse_setting(const std::string& text, cd::SolverSettings settings, NamedSetting* named = nullptr)
 {
   std::istringstream items(text);
   std::string item;
@@ -82,7 +88,11 @@ cd::SolverSettings parse_setting(const std::string& text, cd::SolverSettings set
     else if (key == "stall_window") settings.stall_window = static_cast<int>(number(key, value));
     else if (key == "stall_coherence") settings.stall_coherence = number(key, value);
     else if (key == "stall_relaxation") settings.stall_relaxation = number(key, value);
-    else if (key == "cold" && cold && (value == "yes" || value == "no")) *cold = value == "yes";
+    else if (key == "stall_block") settings.stall_block = static_cast<int>(number(key, value));
+    else if (key == "shuffle" && named) named->shuffle = static_cast<unsigned>(number(key, value));
+    else if (key == "block_rounds" && named) named->block_rounds = static_cast<int>(number(key, value));
+    else if (key == "block_hops" && named) named->block_hops = static_cast<int>(number(key, value));
+    else if (key == "cold" && named && (value == "yes" || value == "no")) named->cold = value == "yes";
     else if (key == "acceleration" && (value == "none" || value == "conjugate"))
       settings.acceleration = value == "none" ? cd::Acceleration::none : cd::Acceleration::conjugate;
     else refuse("unknown setting '" + item + "'");
@@ -112,8 +122,9 @@ Options parse_options(int argc, char** argv)
     else if (arg == "--reference-cap") o.reference_cap = static_cast<int>(number(arg, value()));
     else if (arg == "--reference") reference_text = value();
     else if (arg == "--setting") {
-      NamedSetting setting{value(), {}, false};
-      setting.settings = parse_setting(value(), {}, &setting.cold);
+      NamedSetting setting;
+      setting.name = value();
+      setting.settings = parse_setting(value(), {}, &setting);
       o.settings.push_back(setting);
     } else if (arg.rfind("--", 0) == 0) refuse("unknown option " + arg);
     else o.problems.push_back(arg);
@@ -147,6 +158,60 @@ double natural_map(const std::vector<cd::Contact>& contacts, const std::vector<c
     scale += wp.n * wp.n + wp.t * wp.t;
   }
   return scale > 0.0 ? std::sqrt(residual / scale) : 0.0;
+}
+
+// The largest normal impulse over the median loaded one: self-stress shows as a large ratio.
+double impulse_spread(const std::vector<cd::Contact>& contacts)
+{
+  std::vector<double> loaded;
+  for (const cd::Contact& c : contacts)
+    if (c.impulse.n > 0.0) loaded.push_back(c.impulse.n);
+  if (loaded.empty()) return 0.0;
+  std::sort(loaded.begin(), loaded.end());
+  return loaded.back() / loaded[loaded.size() / 2];
+}
+
+// Where an iterate's natural-map residual sits: how many contacts carry 90 % of its square, and
+// in how many clusters (contacts linked by a shared mobile body) they lie.
+std::string residual_spread(const std::vector<cd::Contact>& contacts, const std::vector<cd::BodyVelocity>& velocity)
+{
+  std::vector<std::pair<double, int>> share;
+  double total = 0.0;
+  for (std::size_t k = 0; k < contacts.size(); k++) {
+    const cd::Contact& c = contacts[k];
+    const cd::Local2 u = cd::law_velocity(c, velocity[c.body_a], velocity[c.body_b]);
+    const double w = c.delassus.nn;
+    const double r = cd::natural_map_residual_squared({w * c.impulse.n, w * c.impulse.t}, u, c.mu);
+    share.push_back({r, static_cast<int>(k)});
+    total += r;
+  }
+  std::sort(share.rbegin(), share.rend());
+  std::vector<int> parent(velocity.size());
+  for (std::size_t b = 0; b < parent.size(); b++) parent[b] = static_cast<int>(b);
+  const auto root = [&](int b) {
+    while (parent[b] != b) b = parent[b] = parent[parent[b]];
+    return b;
+  };
+  double sum = 0.0;
+  std::size_t count = 0, on_world = 0;
+  std::vector<int> bodies;
+  while (count < share.size() && sum < 0.9 * total) {
+    const cd::Contact& c = contacts[share[count].second];
+    sum += share[count++].first;
+    on_world += c.body_a == 0 || c.body_b == 0;
+    if (c.body_a > 0) bodies.push_back(c.body_a);
+    if (c.body_b > 0) bodies.push_back(c.body_b);
+    if (c.body_a > 0 && c.body_b > 0) parent[root(c.body_a)] = root(c.body_b);
+  }
+  std::map<int, int> clusters;
+  std::sort(bodies.begin(), bodies.end());
+  bodies.erase(std::unique(bodies.begin(), bodies.end()), bodies.end());
+  for (const int b : bodies) clusters[root(b)]++;
+  int largest = 0;
+  for (const auto& [r, n] : clusters) largest = std::max(largest, n);
+  return "90 % of the residual in " + std::to_string(count) + " of " + std::to_string(contacts.size()) + " contacts (" +
+         std::to_string(on_world) + " on the world), " + std::to_string(clusters.size()) + " clusters, largest " +
+         std::to_string(largest) + " bodies";
 }
 
 struct Solved {
@@ -222,19 +287,37 @@ class HistoryWriter : public cd::SweepObserver {
   int next_row_ = 1;
 };
 
-Solved solve(const cd::ContactProblem& problem, const cd::SolverSettings& settings, cd::SweepObserver* observer,
-             Solved* into = nullptr, bool cold = false)
+Solved solve(const cd::ContactProblem& problem, const NamedSetting& setting, cd::SweepObserver* observer,
+             Solved* into = nullptr)
 {
   Solved local;
   Solved& run = into ? *into : local;
   run.contacts = problem.contacts;
-  if (cold)
+  if (setting.shuffle > 0) {
+    std::mt19937_64 rng(setting.shuffle);
+    std::shuffle(run.contacts.begin(), run.contacts.end(), rng);
+  }
+  if (setting.cold)
     for (cd::Contact& c : run.contacts) c.impulse = {};
   run.velocity = problem.free_velocity;
   cd::apply_impulses(run.contacts, run.velocity);
-  cd::GaussSeidel solver(settings);
+  cd::GaussSeidel solver(setting.settings);
   solver.observe(observer);
   run.report = solver.solve(run.contacts, run.velocity);
+  for (int round = 0; round < setting.block_rounds && !run.report.converged; round++) {
+    const std::vector<int> block =
+        cd::block_around(run.contacts, static_cast<int>(run.velocity.size()),
+                         cd::residual_carriers(run.contacts, run.velocity, 0.9, 16), setting.block_hops, 400);
+    const cd::BlockSolve exact = cd::solve_block(run.contacts, run.velocity, block);
+    const cd::SolveReport more = solver.solve(run.contacts, run.velocity);
+    std::cerr << "    block of " << block.size() << " contacts: unsolved clusters " << exact.unsolved << " of "
+              << exact.clusters << ", " << exact.pivots << " pivots; then " << more.iterations << " sweeps, norm "
+              << more.residual << "\n";
+    run.report.iterations += more.iterations;
+    run.report.contact_updates += more.contact_updates;
+    run.report.residual = more.residual;
+    run.report.converged = more.converged;
+  }
   return run;
 }
 
@@ -250,11 +333,13 @@ int run(const Options& o)
   solves << "problem,setting,contacts,sweeps,local_solves_per_contact,converged,final_norm,natural_map,rms_error";
   for (std::size_t k = 0; k + 1 < o.band_edges.size(); k++)
     solves << ",rms_" << o.band_edges[k] << "_" << o.band_edges[k + 1];
-  solves << ",stalled_sweeps,reference_sweeps,reference_norm,reference_natural_map\n";
+  solves << ",stalled_sweeps,block_solves,cold_restarts,reference_sweeps,reference_norm,reference_natural_map\n";
   history << "problem,setting,sweeps,local_solves_per_contact,norm,natural_map,rms_error,switches,stalled_sweeps\n";
   for (const std::string& path : o.problems) {
     const cd::ContactProblem problem = cd::read_problem(path);
-    const Solved reference = solve(problem, o.reference, nullptr);
+    NamedSetting reference_setting;
+    reference_setting.settings = o.reference;
+    const Solved reference = solve(problem, reference_setting, nullptr);
     ErrorMeasure errors{o, problem, &reference.velocity};
     const double reference_map = natural_map(reference.contacts, reference.velocity);
     std::cerr << base_name(path) << ": " << problem.contacts.size() << " contacts; reference "
@@ -263,16 +348,18 @@ int run(const Options& o)
     for (const NamedSetting& s : o.settings) {
       Solved run;
       HistoryWriter writer(history, base_name(path) + "," + s.name, errors, run);
-      solve(problem, s.settings, &writer, &run, s.cold);
+      solve(problem, s, &writer, &run);
       const double contacts = std::max<double>(1.0, static_cast<double>(run.contacts.size()));
       solves << base_name(path) << ',' << s.name << ',' << run.contacts.size() << ',' << run.report.iterations << ','
              << run.report.contact_updates / contacts << ',' << run.report.converged << ',' << run.report.residual
              << ',' << natural_map(run.contacts, run.velocity);
       for (const double e : errors.rms_errors(run.velocity)) solves << ',' << e;
-      solves << ',' << run.report.stalled_sweeps << ',' << reference.report.iterations << ','
-             << reference.report.residual << ',' << reference_map << '\n';
+      solves << ',' << run.report.stalled_sweeps << ',' << run.report.block_solves << ',' << run.report.cold_restarts
+             << ',' << reference.report.iterations << ',' << reference.report.residual << ',' << reference_map << '\n';
       std::cerr << "  " << s.name << ": " << run.report.iterations << " sweeps, converged " << run.report.converged
-                << ", rms error " << errors.rms_errors(run.velocity)[0] << "\n";
+                << ", rms error " << errors.rms_errors(run.velocity)[0] << "; "
+                << residual_spread(run.contacts, run.velocity) << "; largest p_n / median "
+                << impulse_spread(run.contacts) << "\n";
     }
   }
   return 0;

@@ -103,6 +103,19 @@ inline WorldImpulse world_impulse(const Contact& c, Local2 p)
   return {p.n * c.normal_x - p.t * c.normal_y, p.n * c.normal_y + p.t * c.normal_x};
 }
 
+// Adds the impulse dp (on a; -dp on b) to both bodies. A tangential impulse spins both disks
+// the same way: its lever arms are -r_a n on a and +r_b n on b, with opposite forces.
+inline void apply_impulse(const Contact& c, Local2 dp, BodyVelocity& a, BodyVelocity& b)
+{
+  const WorldImpulse p = world_impulse(c, dp);
+  a.vx += c.inv_mass_a * p.x;
+  a.vy += c.inv_mass_a * p.y;
+  a.spin -= c.spin_gain_a * dp.t;
+  b.vx -= c.inv_mass_b * p.x;
+  b.vy -= c.inv_mass_b * p.y;
+  b.spin -= c.spin_gain_b * dp.t;
+}
+
 // The frame of a candidate contact: bodies, normal, levers and gap; no mechanics yet.
 Contact contact_frame(const ContactGeometry& geometry);
 

@@ -7,24 +7,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "cd/block_solve.h"
 #include "cd/refusal.h"
 
 namespace cd {
 
 namespace {
-
-// Adds the impulse dp (on a; -dp on b) to both bodies. A tangential impulse spins both disks
-// the same way: its lever arms are -r_a n on a and +r_b n on b, with opposite forces.
-inline void apply_impulse(const Contact& c, Local2 dp, BodyVelocity& a, BodyVelocity& b)
-{
-  const WorldImpulse p = world_impulse(c, dp);
-  a.vx += c.inv_mass_a * p.x;
-  a.vy += c.inv_mass_a * p.y;
-  a.spin -= c.spin_gain_a * dp.t;
-  b.vx -= c.inv_mass_b * p.x;
-  b.vy -= c.inv_mass_b * p.y;
-  b.spin -= c.spin_gain_b * dp.t;
-}
 
 // The normal part of apply_impulse alone: what a frictionless contact applies. It reads and
 // writes no spin.
@@ -350,6 +338,7 @@ class StallRescue {
   // After a full sweep that did not end the solve: true if a stall was met and the sweeps change.
   bool act(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, SolveReport& report)
   {
+    if (sweeping_.stall_block > 0) return act_by_blocks(contacts, velocity, report);
     const double relaxation = sweeping_.relaxation * sweeping_.stall_relaxation;
     if (relaxation < min_relaxation || !watch_.stalled(contacts, report.iterations)) return false;
     if (stalls_ > 0) {
@@ -358,11 +347,38 @@ class StallRescue {
       ++report.cold_restarts;
     }
     ++stalls_;
-    sweeping_.relaxation = relaxation;
-    sweeping_.acceleration = Acceleration::none;
+    relax_unaccelerated(relaxation);
     watch_.start(contacts, report.iterations);
     return true;
   }
+
+ private:
+  // stall_block > 0: the first stall relaxes the sweeps; every stall solves the block around the
+  // residual's carriers exactly, one shared body further out each time, up to stall_block.
+  bool act_by_blocks(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, SolveReport& report)
+  {
+    if (!watch_.stalled(contacts, report.iterations)) return false;
+    if (++stalls_ == 1) relax_unaccelerated(sweeping_.relaxation * sweeping_.stall_relaxation);
+    const int hops = std::min(stalls_, sweeping_.stall_block);
+    const std::vector<int> seeds = residual_carriers(contacts, velocity, carried_share, max_carriers);
+    solve_block(contacts, velocity, block_around(contacts, static_cast<int>(velocity.size()), seeds, hops, max_block));
+    if (exchange_) exchange_->share_velocities();
+    ++report.block_solves;
+    watch_.start(contacts, report.iterations);
+    return true;
+  }
+
+  void relax_unaccelerated(double relaxation)
+  {
+    sweeping_.relaxation = relaxation;
+    sweeping_.acceleration = Acceleration::none;
+  }
+
+  // The block's seeds: the contacts carrying this share of the residual, at most max_carriers of
+  // them; the block, at most max_block contacts (Lemke's work grows as the cube of a cluster's).
+  static constexpr double carried_share = 0.9;
+  static constexpr int max_carriers = 16;
+  static constexpr int max_block = 200;
 
  private:
   // The weakest relaxation the ladder goes to: below it a sweep barely moves.
@@ -451,8 +467,9 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
     if (joining && looks_for_joining(full_sweeps, converged) && joining->join(converged))
       work.change_sq.resize(contacts.size(), std::numeric_limits<double>::infinity());
     else if (converged) return report;
-    // After a restart from zero every contact changes: all are active.
-    if (rescue.act(contacts, velocity, report) && report.cold_restarts > 0)
+    // After a restart from zero or a block solve, contacts the full sweep left quiet may change:
+    // all are active.
+    if (rescue.act(contacts, velocity, report) && (report.cold_restarts > 0 || report.block_solves > 0))
       std::fill(work.change_sq.begin(), work.change_sq.end(), std::numeric_limits<double>::infinity());
     select_active(work, contacts, change.quiet_change_sq(settings_.norm, settings_.tolerance, quiet_fraction));
     conjugate.restart(report.residual < previous_full_residual);
@@ -488,6 +505,7 @@ std::string check(const SolverSettings& settings)
     return refusal("stall_coherence", "in (0,1)", settings.stall_coherence);
   if (!(settings.stall_relaxation > 0.0 && settings.stall_relaxation <= 1.0))
     return refusal("stall_relaxation", "in (0,1]", settings.stall_relaxation);
+  if (settings.stall_block < 0) return refusal("stall_block", ">= 0", settings.stall_block);
   return {};
 }
 

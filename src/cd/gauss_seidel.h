@@ -45,11 +45,16 @@ struct SolverSettings {
   // less than stall_coherence times the sum of the sweeps' changes (they went back and forth: a
   // cycle, not a slow drift) goes on relaxed by w = stall_relaxation and unaccelerated; each
   // further stall starts it again from zero impulses, relaxed by w once more (w^2, w^3, ..., not
-  // below 0.1). 0: no rescue. The defaults were chosen on the corpus of hard steps
+  // below 0.1; stall_block below says what replaces the restarts). 0: no rescue. The defaults were chosen on the corpus of hard steps
   // (doc/stalls.md): every mu 2 cycle rescued, no mu 0.5 step touched.
   int stall_window = 100;
   double stall_coherence = 0.3;
   double stall_relaxation = 0.7;
+  // How the rescue goes on after its first stall. > 0: at every stall, the contacts carrying
+  // the residual and those reached through up to stall_block shared bodies (1 at the first
+  // stall, one more at each next) are solved exactly (cd/block_solve.h) and the sweeps go on.
+  // 0: each further stall starts the solve again from zero impulses, relaxed by w once more.
+  int stall_block = 3;
 };
 
 // Empty if the settings can run, else one line naming the setting as the fix's keyword and its

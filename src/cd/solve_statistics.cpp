@@ -13,6 +13,7 @@ void SolveStatistics::record(const SolveReport& step)
   counts_.unconverged += step.converged ? 0 : 1;
   counts_.rescued += step.stalled_sweeps > 0 ? 1 : 0;
   counts_.restarted += step.cold_restarts > 0 ? 1 : 0;
+  counts_.block_solved += step.block_solves > 0 ? 1 : 0;
   counts_.largest_final_norm = std::max(counts_.largest_final_norm, step.residual);
 }
 
@@ -51,10 +52,12 @@ std::string describe(const SolveSummary& s)
   char line[320];
   std::snprintf(line, sizeof(line),
                 "%lld steps, %lld unconverged (%.3g %%), largest final norm %.3g, sweeps per step median %d, "
-                "99th percentile %d, max %d, %lld rescued from a stall (%lld started again from zero)",
+                "99th percentile %d, max %d, %lld rescued from a stall (%lld started again from zero, %lld by exact "
+                "block solves)",
                 static_cast<long long>(s.steps), static_cast<long long>(s.unconverged),
                 100.0 * s.unconverged_fraction(), s.largest_final_norm, s.median_sweeps, s.p99_sweeps, s.max_sweeps,
-                static_cast<long long>(s.rescued), static_cast<long long>(s.restarted));
+                static_cast<long long>(s.rescued), static_cast<long long>(s.restarted),
+                static_cast<long long>(s.block_solved));
   return line;
 }
 

@@ -13,9 +13,10 @@ namespace cd {
 
 struct SolveSummary {
   std::int64_t steps = 0;
-  std::int64_t unconverged = 0;  // steps whose solve met the cap
-  std::int64_t rescued = 0;      // steps whose solve stalled and went on relaxed
-  std::int64_t restarted = 0;    // of those, steps whose relaxed sweeps stalled too: started again from zero
+  std::int64_t unconverged = 0;   // steps whose solve met the cap
+  std::int64_t rescued = 0;       // steps whose solve stalled and went on relaxed
+  std::int64_t restarted = 0;     // of those, steps whose relaxed sweeps stalled too: started again from zero
+  std::int64_t block_solved = 0;  // of those, steps whose rescue solved blocks of contacts exactly
   double largest_final_norm = 0.0;
   int median_sweeps = 0;
   int p99_sweeps = 0;  // the smallest count that 99 % of the steps did not exceed
@@ -36,7 +37,8 @@ class SolveStatistics {
 };
 
 // One line: "N steps, U unconverged (F %), largest final norm R, sweeps per step median M,
-// 99th percentile P, max X, S rescued from a stall (C started again from zero)".
+// 99th percentile P, max X, S rescued from a stall (C started again from zero, B by exact block
+// solves)".
 std::string describe(const SolveSummary& summary);
 
 }  // namespace cd

@@ -19,6 +19,7 @@ struct SolveReport {
   bool converged = true;
   int stalled_sweeps = 0;  // sweeps made after a stall was detected (GaussSeidel's stall rescue)
   int cold_restarts = 0;   // times the rescue dropped the impulses and started again from zero
+  int block_solves = 0;    // times the rescue solved the contacts around the residual exactly
 };
 
 // What a domain-decomposed run does between the sweeps of one rank: after every sweep it

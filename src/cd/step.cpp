@@ -66,6 +66,7 @@ SolveReport solve_step(ContactSolver& solver, StepContacts& contacts, BodySet& b
     report.contact_updates += more.contact_updates;
     report.stalled_sweeps += more.stalled_sweeps;
     report.cold_restarts += more.cold_restarts;
+    report.block_solves += more.block_solves;
     report.residual = more.residual;
     report.converged = more.converged;
   }

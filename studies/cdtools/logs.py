@@ -137,7 +137,7 @@ SOLVER_LINE = re.compile(
     r"Fix contact/dynamics \S+ solver: (?P<steps>\d+) steps, (?P<unconverged>\d+) unconverged \([^)]*\), "
     r"largest final norm (?P<largest_final_norm>[^,]+), sweeps per step median (?P<sweeps_median>\d+), "
     r"99th percentile (?P<sweeps_p99>\d+), max (?P<sweeps_max>\d+), (?P<rescued>\d+) rescued from a stall"
-    r"(?: \((?P<restarted>\d+) started again from zero\))?")
+    r"(?: \((?P<restarted>\d+) started again from zero(?:, (?P<block_solved>\d+) by exact block solves)?\))?")
 
 
 def solver_health(path):
@@ -173,7 +173,8 @@ def merged_solver_health(healths):
         return None
     if len(recorded) == 1:
         return dict(recorded[0], legs=1, legs_unrecorded=len(healths) - 1)
-    merged = {key: sum(h.get(key, 0) for h in recorded) for key in ("steps", "unconverged", "rescued", "restarted")}
+    merged = {key: sum(h.get(key, 0) for h in recorded)
+              for key in ("steps", "unconverged", "rescued", "restarted", "block_solved")}
     merged["largest_final_norm"] = max(h["largest_final_norm"] for h in recorded)
     merged["sweeps_max"] = max(h["sweeps_max"] for h in recorded)
     merged["sweeps_p99"] = max(h["sweeps_p99"] for h in recorded)

@@ -239,8 +239,11 @@ def check_solver_health(work):
     first = logs.solver_health(write(work, "first.log", "Step Time\n" + line.replace("2000 steps", "10 steps")
                                      + line))
     check(first == dict(steps=2000, unconverged=3, unconverged_fraction=0.0015, largest_final_norm=0.00247,
-                        sweeps_median=138, sweeps_p99=900, sweeps_max=1000, rescued=4, restarted=1),
+                        sweeps_median=138, sweeps_p99=900, sweeps_max=1000, rescued=4, restarted=1, block_solved=0),
           f"the last line: {first}")
+    blocks = logs.solver_health(write(work, "blocks.log",
+                                      line.replace("from zero)", "from zero, 3 by exact block solves)")))
+    check(blocks["restarted"] == 1 and blocks["block_solved"] == 3, f"a line with block solves: {blocks}")
     older = logs.solver_health(write(work, "older.log", line.split(" (1 started")[0] + "\n"))
     check(older["rescued"] == 4 and older["restarted"] == 0, f"a line without restarts: {older}")
     check(logs.solver_health(write(work, "none.log", "Step Time\n")) is None, "a log without the line")

@@ -97,6 +97,7 @@ TEST(StallRescue, ForcedStallsGoOnRelaxedThenFromZeroMoreRelaxed)
   settings.stall_window = window;
   settings.stall_coherence = 1.0 - 1e-15;
   settings.stall_relaxation = 0.6;
+  settings.stall_block = 0;  // the ladder of restarts from zero
   const cd::SolveReport report = cd::solve_gauss_seidel(rescued.contacts, rescued.bodies.velocity, settings);
   const int plain_sweeps = report.iterations - report.stalled_sweeps;
   EXPECT_EQ(report.iterations, cap);
@@ -223,6 +224,7 @@ TEST(SolveStatistics, CountsAndNearestRankQuantiles)
     step.converged = sweeps != 200;
     step.stalled_sweeps = sweeps > 190 ? 5 : 0;
     step.cold_restarts = sweeps > 197 ? 1 : 0;
+    step.block_solves = sweeps > 195 && sweeps <= 197 ? 2 : 0;
     statistics.record(step);
   }
   const cd::SolveSummary s = statistics.summary();
@@ -230,13 +232,15 @@ TEST(SolveStatistics, CountsAndNearestRankQuantiles)
   EXPECT_EQ(s.unconverged, 1);
   EXPECT_EQ(s.rescued, 10);
   EXPECT_EQ(s.restarted, 3);
+  EXPECT_EQ(s.block_solved, 2);
   EXPECT_DOUBLE_EQ(s.largest_final_norm, 3e-3);
   EXPECT_EQ(s.median_sweeps, 100);  // the 100th of 200
   EXPECT_EQ(s.p99_sweeps, 198);     // the 198th of 200
   EXPECT_EQ(s.max_sweeps, 200);
   EXPECT_EQ(cd::describe(s),
             "200 steps, 1 unconverged (0.5 %), largest final norm 0.003, sweeps per step median 100, 99th "
-            "percentile 198, max 200, 10 rescued from a stall (3 started again from zero)");
+            "percentile 198, max 200, 10 rescued from a stall (3 started again from zero, 2 by exact block "
+            "solves)");
   statistics.clear();
   EXPECT_EQ(statistics.summary().steps, 0);
 }

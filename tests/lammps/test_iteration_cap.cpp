@@ -67,7 +67,8 @@ TEST(IterationCap, TheRunEndsWithItsSolverLineAndSavesTheStepAtTheCap)
       << text;
   EXPECT_NE(
       text.find(
-          "sweeps per step median 2, 99th percentile 2, max 2, 0 rescued from a stall (0 started again from zero)"),
+          "sweeps per step median 2, 99th percentile 2, max 2, 0 rescued from a stall (0 started again from zero, 0 by "
+          "exact block solves)"),
       std::string::npos);
   const cd::ContactProblem problem = cd::read_problem(prefix + ".1.cdp");
   ASSERT_EQ(problem.contacts.size(), 1u);

@@ -169,12 +169,19 @@ TEST_F(SeveralRanks, CyclesOfActiveSweepsGiveTheSameVelocities)
   expect_one_rank_velocities("acceleration conjugate full_sweep_every 8");
 }
 
-// The stall rescue made to act at the end of the first window of two sweeps (a coherence that
-// only sweeps changing nothing would pass): each rank decides on the net change and path summed
-// over all ranks, and the relaxed solve reaches the 1-rank solution.
+// The stall rescue made to act at the end of every window of two sweeps (a coherence that only
+// sweeps changing nothing would pass): each rank decides on the net change and path summed over
+// all ranks, solves the blocks around its own contacts' residual and shares the velocities they
+// change; the solve reaches the 1-rank solution.
 TEST_F(SeveralRanks, AStallRescueReachesTheOneRankSolution)
 {
   expect_one_rank_velocities("stall_window 2 stall_coherence 0.999999");
+}
+
+// The same with the rescue's restarts from zero impulses instead of block solves.
+TEST_F(SeveralRanks, AStallRescueByRestartsReachesTheOneRankSolution)
+{
+  expect_one_rank_velocities("stall_window 2 stall_coherence 0.999999 stall_block 0");
 }
 
 // Over 100 steps of landing grains, collisions amplify the solver differences by a few

@@ -1,0 +1,205 @@
+// The exact block solve of the stall rescue: Lemke's method on complementarity problems whose
+// solutions are known in closed form (and on one that has none), the block's contacts against
+// Gauss–Seidel converged to round-off, other contacts left alone, and the rescue that ends with
+// block solves converging where forced stalls interrupt it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "cd/block_solve.h"
+#include "cd/lemke.h"
+#include "cd/problem_file.h"
+#include "pile.h"
+
+namespace {
+
+// w = M z + q at the answer, and the three conditions of complementarity.
+void expect_complementary(const std::vector<double>& M, const std::vector<double>& q, const std::vector<double>& z)
+{
+  const std::size_t n = q.size();
+  for (std::size_t i = 0; i < n; i++) {
+    double w = q[i];
+    for (std::size_t j = 0; j < n; j++) w += M[i * n + j] * z[j];
+    EXPECT_GE(z[i], -1e-12) << "z_" << i;
+    EXPECT_GE(w, -1e-12) << "w_" << i;
+    EXPECT_NEAR(w * z[i], 0.0, 1e-12) << "w_" << i << " z_" << i;
+  }
+}
+
+// M = I: z = max(-q, 0) component by component.
+TEST(Lemke, IdentityGivesTheNegativePartOfQ)
+{
+  const std::vector<double> M{1, 0, 0, 0, 1, 0, 0, 0, 1}, q{-1.0, 2.0, -3.0};
+  std::vector<double> z;
+  ASSERT_TRUE(cd::solve_lcp_lemke(M, q, z, 100).solved);
+  EXPECT_NEAR(z[0], 1.0, 1e-14);
+  EXPECT_EQ(z[1], 0.0);
+  EXPECT_NEAR(z[2], 3.0, 1e-14);
+}
+
+// A positive definite 2x2 with both constraints active: 2 z1 + z2 = 5, z1 + 2 z2 = 6, so
+// z = (4/3, 7/3); with q_2 = +6 only the first: z = (5/2, 0).
+TEST(Lemke, PositiveDefiniteProblemsInClosedForm)
+{
+  const std::vector<double> M{2, 1, 1, 2};
+  std::vector<double> z;
+  ASSERT_TRUE(cd::solve_lcp_lemke(M, {-5.0, -6.0}, z, 100).solved);
+  EXPECT_NEAR(z[0], 4.0 / 3.0, 1e-14);
+  EXPECT_NEAR(z[1], 7.0 / 3.0, 1e-14);
+  ASSERT_TRUE(cd::solve_lcp_lemke(M, {-5.0, 6.0}, z, 100).solved);
+  EXPECT_NEAR(z[0], 2.5, 1e-14);
+  EXPECT_EQ(z[1], 0.0);
+}
+
+// A singular M (two rows alike, a tie in every ratio test): any z1 + z2 = 1 solves it; the
+// lexicographic rule must end at one of them.
+TEST(Lemke, DegenerateProblemEndsAtASolution)
+{
+  const std::vector<double> M{1, 1, 1, 1}, q{-1.0, -1.0};
+  std::vector<double> z;
+  ASSERT_TRUE(cd::solve_lcp_lemke(M, q, z, 100).solved);
+  EXPECT_NEAR(z[0] + z[1], 1.0, 1e-14);
+  expect_complementary(M, q, z);
+}
+
+// w = -z - 1 >= 0 has no z >= 0: Lemke ends on a ray and says so.
+TEST(Lemke, AProblemWithoutSolutionEndsUnsolved)
+{
+  std::vector<double> z;
+  EXPECT_FALSE(cd::solve_lcp_lemke({-1.0}, {-1.0}, z, 100).solved);
+}
+
+double law_residual(const cd::Contact& c, const std::vector<cd::BodyVelocity>& velocity)
+{
+  const cd::Local2 u = cd::law_velocity(c, velocity[c.body_a], velocity[c.body_b]);
+  const double w = c.delassus.nn;
+  return std::sqrt(cd::natural_map_residual_squared({w * c.impulse.n, w * c.impulse.t}, u, c.mu));
+}
+
+std::vector<int> all_of(const std::vector<cd::Contact>& contacts)
+{
+  std::vector<int> block(contacts.size());
+  for (std::size_t k = 0; k < block.size(); k++) block[k] = static_cast<int>(k);
+  return block;
+}
+
+// The whole pile as one block (mu 0.5, restitution 0.5: impacts, rests and openings) against
+// Gauss–Seidel at a tolerance of 1e-13. A block solve is a proximal step of weight 1e-4 W_ii
+// towards the block's exact answer (cd/block_solve.h); four of them reach it to round-off: the
+// same body velocities to 1e-9 m/s (the grains move at ~0.05 m/s), and the Coulomb law met by
+// every contact.
+TEST(BlockSolve, TheWholePileAgreesWithGaussSeidelConvergedToRoundOff)
+{
+  Pile exact = make_pile(0.5, 0.5);
+  Pile swept = exact;
+  cd::apply_impulses(swept.contacts, swept.bodies.velocity);
+  cd::SolverSettings tight;
+  tight.tolerance = 1e-13;
+  tight.max_iterations = 100000;
+  ASSERT_TRUE(cd::solve_gauss_seidel(swept.contacts, swept.bodies.velocity, tight).converged);
+
+  cd::apply_impulses(exact.contacts, exact.bodies.velocity);
+  for (int step = 0; step < 4; step++) {
+    const cd::BlockSolve block = cd::solve_block(exact.contacts, exact.bodies.velocity, all_of(exact.contacts));
+    EXPECT_EQ(block.unsolved, 0);
+    EXPECT_GE(block.clusters, 1);
+  }
+  for (std::size_t b = 1; b < exact.bodies.velocity.size(); b++) {
+    EXPECT_NEAR(exact.bodies.velocity[b].vx, swept.bodies.velocity[b].vx, 1e-9) << "body " << b;
+    EXPECT_NEAR(exact.bodies.velocity[b].vy, swept.bodies.velocity[b].vy, 1e-9) << "body " << b;
+    EXPECT_NEAR(exact.bodies.velocity[b].spin, swept.bodies.velocity[b].spin, 1e-8) << "body " << b;
+  }
+  for (const cd::Contact& c : exact.contacts) EXPECT_LT(law_residual(c, exact.bodies.velocity), 1e-12);
+}
+
+// A block of every other contact at mu 2, solved (four proximal steps): its contacts meet the law
+// at the others' frozen impulses, and the others keep theirs to the bit.
+TEST(BlockSolve, SolvesItsContactsAndLeavesTheOthersAlone)
+{
+  Pile pile = make_pile(2.0, 2.0);
+  cd::apply_impulses(pile.contacts, pile.bodies.velocity);
+  std::vector<int> block;
+  for (std::size_t k = 0; k < pile.contacts.size(); k += 2) block.push_back(static_cast<int>(k));
+  const std::vector<cd::Contact> before = pile.contacts;
+  for (int step = 0; step < 4; step++)
+    EXPECT_EQ(cd::solve_block(pile.contacts, pile.bodies.velocity, block).unsolved, 0);
+  for (std::size_t k = 0; k < pile.contacts.size(); k++) {
+    if (k % 2 == 0) {
+      EXPECT_LT(law_residual(pile.contacts[k], pile.bodies.velocity), 1e-12) << "contact " << k;
+    } else {
+      EXPECT_EQ(pile.contacts[k].impulse.n, before[k].impulse.n);
+      EXPECT_EQ(pile.contacts[k].impulse.t, before[k].impulse.t);
+    }
+  }
+}
+
+// block_around: the seed, then the contacts sharing a mobile body with it, then theirs; the
+// world (body 0) links nothing; the size cap holds.
+TEST(BlockSolve, BlockAroundGrowsThroughSharedBodiesOnly)
+{
+  cd::Contact on_floor, ab, bc, cd_, floor_d;
+  on_floor.body_a = 1, on_floor.body_b = 0;  // 0: grain 1 on the world
+  ab.body_a = 1, ab.body_b = 2;              // 1
+  bc.body_a = 2, bc.body_b = 3;              // 2
+  cd_.body_a = 3, cd_.body_b = 4;            // 3
+  floor_d.body_a = 5, floor_d.body_b = 0;    // 4: another grain on the world
+  const std::vector<cd::Contact> contacts{on_floor, ab, bc, cd_, floor_d};
+  EXPECT_EQ(cd::block_around(contacts, 6, {0}, 0, 10), (std::vector<int>{0}));
+  EXPECT_EQ(cd::block_around(contacts, 6, {0}, 1, 10), (std::vector<int>{0, 1}));
+  EXPECT_EQ(cd::block_around(contacts, 6, {0}, 3, 10), (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(cd::block_around(contacts, 6, {0}, 3, 2), (std::vector<int>{0, 1}));
+}
+
+// Stalls forced at the end of windows of 5 sweeps (a coherence only a window whose sweeps change
+// nothing can stay above), 23 sweeps at tolerance 0: from the first stall on, every window ends
+// in a block solve, none starts the solve from zero, and the mu 2 pile ends on the Coulomb law.
+TEST(StallRescue, ForcedStallsEndInBlockSolvesNotRestarts)
+{
+  Pile pile = make_pile(2.0, 2.0);
+  cd::apply_impulses(pile.contacts, pile.bodies.velocity);
+  cd::SolverSettings settings;
+  settings.tolerance = 0.0;
+  settings.max_iterations = 23;
+  settings.stall_window = 5;
+  settings.stall_coherence = 1.0 - 1e-15;
+  settings.stall_block = 3;
+  const cd::SolveReport report = cd::solve_gauss_seidel(pile.contacts, pile.bodies.velocity, settings);
+  const int first_stall = report.iterations - report.stalled_sweeps;
+  EXPECT_EQ(report.iterations, 23);
+  EXPECT_EQ(first_stall % 5, 0) << "a stall is found where a window ends";
+  EXPECT_GE(report.block_solves, 2);
+  EXPECT_EQ(report.block_solves, (23 - first_stall) / 5 + 1);
+  EXPECT_EQ(report.cold_restarts, 0);
+  for (const cd::Contact& c : pile.contacts) EXPECT_LT(law_residual(c, pile.bodies.velocity), 1e-9);
+}
+
+// A step of the mu 2, 28 degree chute (layer reading, 45 d, 4601 contacts) that the run met at the
+// 1e4 cap twice (tests/data/trapped_mu2_28deg.cdp, saved by save_problems from the 28 degree
+// replica): the deck's sweeps with the block rescue converge it within a few hundred sweeps;
+// with restarts from zero instead it stays unconverged at the cap, as it did in the run.
+TEST(StallRescue, ATrappedChuteStepConvergesByBlocksWhereRestartsDoNot)
+{
+  const cd::ContactProblem problem = cd::read_problem(CD_TEST_DATA "/trapped_mu2_28deg.cdp");
+  cd::SolverSettings deck;
+  deck.tolerance = 1e-3;
+  deck.max_iterations = 10000;
+  deck.acceleration = cd::Acceleration::conjugate;
+  const auto solve = [&](int stall_block) {
+    std::vector<cd::Contact> contacts = problem.contacts;
+    std::vector<cd::BodyVelocity> velocity = problem.free_velocity;
+    cd::apply_impulses(contacts, velocity);
+    cd::SolverSettings settings = deck;
+    settings.stall_block = stall_block;
+    return cd::solve_gauss_seidel(contacts, velocity, settings);
+  };
+  const cd::SolveReport blocks = solve(3);
+  EXPECT_TRUE(blocks.converged);
+  EXPECT_LT(blocks.iterations, 1000);
+  EXPECT_GE(blocks.block_solves, 1);
+  const cd::SolveReport restarts = solve(0);
+  EXPECT_FALSE(restarts.converged);
+  EXPECT_GE(restarts.cold_restarts, 1);
+}
+
+}  // namespace
