@@ -14,19 +14,10 @@ namespace cdref {
 using cdpost::Curve;
 using cdpost::CurveStyle;
 using cdpost::Figure;
+using cdpost::make_curve;
 using cdpost::Panel;
 
 namespace {
-
-Curve curve(const std::string& title, CurveStyle style, std::vector<double> x, std::vector<double> y)
-{
-  Curve c;
-  c.title = title;
-  c.style = style;
-  c.x = std::move(x);
-  c.y = std::move(y);
-  return c;
-}
 
 // A panel of the comparison, its key outside the plot on the right (a key for every run).
 Panel keyed_panel(const std::string& title, const std::string& x_label, const std::string& y_label)
@@ -55,13 +46,13 @@ Figure spectra_figure(const std::vector<const ComparedRun*>& runs, const std::st
         lo = std::min(lo, s.amplitude[k]);
         hi = std::max(hi, s.amplitude[k]);
       }
-    panel.curves.push_back(curve(r->label, CurveStyle::Lines, f, a));
+    panel.curves.push_back(make_curve(r->label, CurveStyle::Lines, f, a));
   }
   if (hi > 0)
     for (const auto* r : runs)
       if (r->f_contact_hz)
-        panel.curves.push_back(curve("f_c " + r->label + " = " + short_number(*r->f_contact_hz) + " Hz",
-                                     CurveStyle::Lines, {*r->f_contact_hz, *r->f_contact_hz}, {lo, hi}));
+        panel.curves.push_back(make_curve("f_c " + r->label + " = " + short_number(*r->f_contact_hz) + " Hz",
+                                          CurveStyle::Lines, {*r->f_contact_hz, *r->f_contact_hz}, {lo, hi}));
   return {name, title, {panel}, 1200, 650};
 }
 
@@ -100,11 +91,11 @@ Figure peaks_figure(const Comparison& c)
   if (k_to_f && kmax > 0) {
     std::vector<double> k{kmin / 2, kmax * 2};
     panel.curves.push_back(
-        curve("sqrt(2k/m)/(2 pi)", CurveStyle::Lines, k, {*k_to_f * std::sqrt(k[0]), *k_to_f * std::sqrt(k[1])}));
+        make_curve("sqrt(2k/m)/(2 pi)", CurveStyle::Lines, k, {*k_to_f * std::sqrt(k[0]), *k_to_f * std::sqrt(k[1])}));
     for (const auto& r : c.runs)
       if (r.model == "rigid" && r.flow_peak)
-        panel.curves.push_back(curve(r.label + ": flow-band peak", CurveStyle::Lines, k,
-                                     {r.flow_peak->frequency_hz, r.flow_peak->frequency_hz}));
+        panel.curves.push_back(make_curve(r.label + ": flow-band peak", CurveStyle::Lines, k,
+                                          {r.flow_peak->frequency_hz, r.flow_peak->frequency_hz}));
   }
   return {"peaks_vs_k", "Where the spectral peaks sit as k changes", {panel}, 1100, 650};
 }
@@ -139,7 +130,7 @@ Figure bulk_figure(const Comparison& c)
       auto v = result_value(r, names[i]);
       if (!v) continue;
       if (r.model == "rigid" || !r.k_reduced) {
-        p.curves.push_back(curve(r.label, CurveStyle::Lines, {kmin / 2, kmax * 2}, {*v, *v}));
+        p.curves.push_back(make_curve(r.label, CurveStyle::Lines, {kmin / 2, kmax * 2}, {*v, *v}));
         continue;
       }
       auto& g = groups[code_name(r.code) + " " + r.model];
@@ -161,7 +152,7 @@ Figure profiles_figure(const Comparison& c)
   for (const auto& r : c.runs)
     if (r.analysis.profile)
       panel.curves.push_back(
-          curve(r.label, CurveStyle::LinesPoints, r.analysis.profile->u_reduced, r.analysis.profile->z_d));
+          make_curve(r.label, CurveStyle::LinesPoints, r.analysis.profile->u_reduced, r.analysis.profile->z_d));
   return {"profiles", "u(z) of every run", {panel}, 1100, 700};
 }
 
@@ -177,7 +168,7 @@ Figure u_t_figure(const Comparison& c)
       t.push_back(s.time_s[i] / u.reduced_time_s());
       v.push_back(s.u_flow_mps[i] / u.reduced_velocity_mps());
     }
-    panel.curves.push_back(curve(r.label, CurveStyle::Lines, t, v));
+    panel.curves.push_back(make_curve(r.label, CurveStyle::Lines, t, v));
   }
   return {"u_t", "U(t) of every run", {panel}, 1100, 600};
 }
@@ -200,7 +191,7 @@ Figure cost_figure(const Comparison& c)
       if (!r.k_reduced) {
         if (kmax > 0)
           panel.curves.push_back(
-              curve(r.label + " " + metric, CurveStyle::Lines, {kmin / 2, kmax * 2}, {*cost, *cost}));
+              make_curve(r.label + " " + metric, CurveStyle::Lines, {kmin / 2, kmax * 2}, {*cost, *cost}));
         continue;
       }
       groups[code_name(r.code) + " " + r.model].push_back({*r.k_reduced, *cost});
@@ -212,7 +203,7 @@ Figure cost_figure(const Comparison& c)
         k.push_back(x);
         cost.push_back(y);
       }
-      panel.curves.push_back(curve(name + " " + metric, CurveStyle::LinesPoints, k, cost));
+      panel.curves.push_back(make_curve(name + " " + metric, CurveStyle::LinesPoints, k, cost));
     }
   }
   return {"cost", "Cost of each model", {panel}, 1100, 600};

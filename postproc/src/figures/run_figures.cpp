@@ -15,16 +15,6 @@ namespace cdpost {
 
 namespace {
 
-Curve line_curve(const std::string& title, CurveStyle style, std::vector<double> x, std::vector<double> y)
-{
-  Curve curve;
-  curve.title = title;
-  curve.style = style;
-  curve.x = std::move(x);
-  curve.y = std::move(y);
-  return curve;
-}
-
 std::vector<double> reduced(const std::vector<double>& values, double scale)
 {
   std::vector<double> out;
@@ -44,10 +34,10 @@ Figure time_series_figure(const RunAnalysis& run)
   u.y_label = "velocity / sqrt(g d)";
   u.x_band = band;
   u.curves.push_back(
-      line_curve("U(t), grains with z > 0", CurveStyle::Lines, t, reduced(s.u_flow_mps, units.reduced_velocity_mps())));
+      make_curve("U(t), grains with z > 0", CurveStyle::Lines, t, reduced(s.u_flow_mps, units.reduced_velocity_mps())));
   if (s.u_all_mps)
     u.curves.push_back(
-        line_curve("u(t), all grains", CurveStyle::Lines, t, reduced(*s.u_all_mps, units.reduced_velocity_mps())));
+        make_curve("u(t), all grains", CurveStyle::Lines, t, reduced(*s.u_all_mps, units.reduced_velocity_mps())));
   u.origin_y = 0.5;
   u.height = 0.5;
   Panel v;
@@ -56,7 +46,7 @@ Figure time_series_figure(const RunAnalysis& run)
   v.y_label = "v / sqrt(g d)";
   v.x_band = band;
   v.key = "off";
-  v.curves.push_back(line_curve("v(t)", CurveStyle::Lines, t, reduced(s.v_flow_mps, units.reduced_velocity_mps())));
+  v.curves.push_back(make_curve("v(t)", CurveStyle::Lines, t, reduced(s.v_flow_mps, units.reduced_velocity_mps())));
   v.height = 0.5;
   return {"u_t", "u(t), U(t) and v(t) of the run", {u, v}, 900, 800};
 }
@@ -72,12 +62,12 @@ Figure spectrum_figure(const RunAnalysis& run)
   // A spectrum of a changing flow reads like any other: the panel says so where it is seen.
   if (!run.window_stationary)
     panel.title = "NOT STATIONARY (" + run.window_drift.substr(0, run.window_drift.find(',')) + "): " + panel.title;
-  panel.curves.push_back(line_curve("A(f)", CurveStyle::Lines, run.spectrum.frequency_hz, run.spectrum.amplitude));
-  Curve peak = line_curve("peak f = " + format_estimate(run.peak.frequency_hz, run.peak.frequency_error_hz) + " Hz",
+  panel.curves.push_back(make_curve("A(f)", CurveStyle::Lines, run.spectrum.frequency_hz, run.spectrum.amplitude));
+  Curve peak = make_curve("peak f = " + format_estimate(run.peak.frequency_hz, run.peak.frequency_error_hz) + " Hz",
                           CurveStyle::Points, {run.peak.frequency_hz}, {run.peak.amplitude});
   panel.curves.push_back(peak);
   if (const auto* a_mean = run.results.find("A_mean"))
-    panel.curves.push_back(line_curve(
+    panel.curves.push_back(make_curve(
         "A_mean (f >= " + format_estimate(run.settings.high_frequency_hz, std::nullopt) + " Hz)", CurveStyle::Lines,
         {run.settings.high_frequency_hz, run.spectrum.frequency_hz.back()}, {a_mean->value, a_mean->value}));
   return {"spectrum", "Spectrum of v(t) over the " + window_name(run), {panel}};
@@ -106,22 +96,22 @@ std::optional<Panel> creep_inset(const VelocityProfile& p, const std::optional<C
   inset.origin_y = 0.1;
   inset.width = 0.45;
   inset.height = 0.45;
-  Curve outside = line_curve("u(z)", CurveStyle::Points, other_u, other_z);
+  Curve outside = make_curve("u(z)", CurveStyle::Points, other_u, other_z);
   outside.line_type = 1;
   outside.point_type = 6;  // open circles
   if (!other_u.empty()) inset.curves.push_back(outside);
   if (resolved) {
-    Curve inside = line_curve("u(z), fit range", CurveStyle::Points, fitted_u, fitted_z);
+    Curve inside = make_curve("u(z), fit range", CurveStyle::Points, fitted_u, fitted_z);
     inside.line_type = 1;
     inset.curves.push_back(inside);
     std::vector<double> z{creep->z_low, creep->z_high}, u;
     for (double zi : z) u.push_back(creep->u0->value * std::exp(zi / creep->lambda->value));
-    inset.curves.push_back(line_curve("lambda fit", CurveStyle::Lines, u, z));
+    inset.curves.push_back(make_curve("lambda fit", CurveStyle::Lines, u, z));
   }
   if (creep && creep->floor) {
     const double bottom = std::min(p.z_d.front(), p.z_d.back());
     for (double multiple : {1.0, kFloorMultiple}) {
-      Curve floor = line_curve(multiple == 1 ? "floor" : "10 x floor", CurveStyle::Lines,
+      Curve floor = make_curve(multiple == 1 ? "floor" : "10 x floor", CurveStyle::Lines,
                                std::vector<double>(2, multiple * creep->floor->value), {bottom, 0.0});
       floor.dashed = true;
       floor.line_type = 3;
@@ -146,12 +136,12 @@ Figure profile_figure(const RunAnalysis& run)
     (above ? u_above : u_layer).push_back(p.u_reduced[i]);
     (above ? z_above : z_layer).push_back(p.z_d[i]);
   }
-  Curve layer = line_curve("u(z)", CurveStyle::Points, u_layer, z_layer);
+  Curve layer = make_curve("u(z)", CurveStyle::Points, u_layer, z_layer);
   layer.line_type = 1;
   main.curves.push_back(layer);
   if (!u_above.empty()) {
     Curve surface =
-        line_curve("u(z) above h: dilute surface, few grains, not fitted", CurveStyle::Points, u_above, z_above);
+        make_curve("u(z) above h: dilute surface, few grains, not fitted", CurveStyle::Points, u_above, z_above);
     surface.line_type = 1;
     surface.point_type = 6;  // open circles
     main.curves.push_back(surface);
@@ -163,7 +153,7 @@ Figure profile_figure(const RunAnalysis& run)
       u.push_back(bagnold_velocity(*run.bagnold, zi));
     }
     Curve fit =
-        line_curve("Bagnold fit, h = " + format_estimate(run.bagnold->h, std::nullopt) + " d", CurveStyle::Lines, u, z);
+        make_curve("Bagnold fit, h = " + format_estimate(run.bagnold->h, std::nullopt) + " d", CurveStyle::Lines, u, z);
     fit.line_type = 2;
     main.curves.push_back(fit);
   }
@@ -189,7 +179,7 @@ Figure depth_figure(const RunAnalysis& run)
   for (size_t i = 0; i < shown; ++i) {
     const auto& layer =
         run.layers[run.layers.size() - 1 - i * (run.layers.size() - 1) / std::max<size_t>(1, shown - 1)];
-    spectra.curves.push_back(line_curve("z = " + format_estimate(layer.z_d, std::nullopt) + " d", CurveStyle::Lines,
+    spectra.curves.push_back(make_curve("z = " + format_estimate(layer.z_d, std::nullopt) + " d", CurveStyle::Lines,
                                         layer.spectrum.frequency_hz, layer.spectrum.amplitude));
   }
   Panel decay;
@@ -203,7 +193,7 @@ Figure depth_figure(const RunAnalysis& run)
     z.push_back(layer.z_d);
     a.push_back(layer.amplitude_at_f);
   }
-  decay.curves.push_back(line_curve("A(f, z)", CurveStyle::LinesPoints, z, a));
+  decay.curves.push_back(make_curve("A(f, z)", CurveStyle::LinesPoints, z, a));
   return {"spectra_depth", "Depth-resolved spectra of v(t)", {spectra, decay}, 900, 900};
 }
 

@@ -9,6 +9,16 @@
 
 namespace cdpost {
 
+Curve make_curve(const std::string& title, CurveStyle style, std::vector<double> x, std::vector<double> y)
+{
+  Curve curve;
+  curve.title = title;
+  curve.style = style;
+  curve.x = std::move(x);
+  curve.y = std::move(y);
+  return curve;
+}
+
 namespace {
 
 std::string quoted(const std::string& text)

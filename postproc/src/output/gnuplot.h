@@ -27,6 +27,9 @@ struct Curve {
   bool dashed = false;  // Lines, LinesBand
 };
 
+// The curve through (x, y) drawn in `style`, titled in the key.
+Curve make_curve(const std::string& title, CurveStyle style, std::vector<double> x, std::vector<double> y);
+
 // A curve of one friction coefficient (a series' figures, the source drawn over them).
 struct FrictionCurve {
   double mu = 0;
