@@ -266,6 +266,9 @@ class StallWatch {
     if (window_ > 0) path_ += std::sqrt(change.sum_change_sq);
   }
 
+  // True if a window ends at this sweep count (stalled() then decides on it).
+  bool ends(int iterations) const { return window_ > 0 && iterations - start_ >= window_; }
+
   // After a full sweep: true if the window just ended has stalled; else a new window starts
   // when one has ended.
   bool stalled(const std::vector<Contact>& contacts, int iterations)
@@ -355,9 +358,15 @@ class StallRescue {
  private:
   // stall_block > 0: the first stall relaxes the sweeps; every stall solves the block around the
   // residual's carriers exactly, one shared body further out each time, up to stall_block.
+  // Once stalled, a window that does not halve the norm is a stall too: relaxed sweeps can drift
+  // on a plateau that the coherence test no longer sees as a cycle.
   bool act_by_blocks(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, SolveReport& report)
   {
-    if (!watch_.stalled(contacts, report.iterations)) return false;
+    const bool window_ends = watch_.ends(report.iterations);
+    bool stalled = watch_.stalled(contacts, report.iterations);
+    if (window_ends && stalls_ > 0 && !(report.residual <= 0.5 * window_residual_)) stalled = true;
+    if (window_ends) window_residual_ = report.residual;
+    if (!stalled) return false;
     if (++stalls_ == 1) relax_unaccelerated(sweeping_.relaxation * sweeping_.stall_relaxation);
     const int hops = std::min(stalls_, sweeping_.stall_block);
     const std::vector<int> seeds = residual_carriers(contacts, velocity, carried_share, max_carriers);
@@ -383,6 +392,7 @@ class StallRescue {
  private:
   // The weakest relaxation the ladder goes to: below it a sweep barely moves.
   static constexpr double min_relaxation = 0.1;
+  double window_residual_ = 0.0;  // the norm where the current window started (block rescue)
   StallWatch watch_;
   SolverSettings sweeping_;
   SweepExchange* exchange_;

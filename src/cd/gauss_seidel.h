@@ -52,7 +52,8 @@ struct SolverSettings {
   double stall_relaxation = 0.7;
   // How the rescue goes on after its first stall. > 0: at every stall, the contacts carrying
   // the residual and those reached through up to stall_block shared bodies (1 at the first
-  // stall, one more at each next) are solved exactly (cd/block_solve.h) and the sweeps go on.
+  // stall, one more at each next) are solved exactly (cd/block_solve.h) and the sweeps go on;
+  // once stalled, a window that does not halve the norm is a stall too.
   // 0: each further stall starts the solve again from zero impulses, relaxed by w once more.
   int stall_block = 3;
 };

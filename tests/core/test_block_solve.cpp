@@ -202,4 +202,25 @@ TEST(StallRescue, ATrappedChuteStepConvergesByBlocksWhereRestartsDoNot)
   EXPECT_GE(restarts.cold_restarts, 1);
 }
 
+// A step of the same chute at 10 s (4550 contacts) whose first stall, relaxed, drifts on a plateau
+// of 2e-3 that the coherence test no longer sees as a cycle: with the deck's cycles of 8 sweeps
+// it needs the windows that do not halve the norm counted as stalls (it stayed at the cap after
+// one block solve before they were).
+TEST(StallRescue, ARelaxedPlateauAfterAStallEndsInMoreBlockSolves)
+{
+  const cd::ContactProblem problem = cd::read_problem(CD_TEST_DATA "/trapped_after_relaxation_mu2_28deg.cdp");
+  std::vector<cd::Contact> contacts = problem.contacts;
+  std::vector<cd::BodyVelocity> velocity = problem.free_velocity;
+  cd::apply_impulses(contacts, velocity);
+  cd::SolverSettings deck;
+  deck.tolerance = 1e-3;
+  deck.max_iterations = 10000;
+  deck.acceleration = cd::Acceleration::conjugate;
+  deck.full_sweep_every = 8;
+  const cd::SolveReport report = cd::solve_gauss_seidel(contacts, velocity, deck);
+  EXPECT_TRUE(report.converged) << report.iterations << " sweeps";
+  EXPECT_LT(report.iterations, 2000);
+  EXPECT_GE(report.block_solves, 2);
+}
+
 }  // namespace
