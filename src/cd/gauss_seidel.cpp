@@ -388,8 +388,6 @@ class StallRescue {
   static constexpr double carried_share = 0.9;
   static constexpr int max_carriers = 16;
   static constexpr int max_block = 200;
-
- private:
   // The weakest relaxation the ladder goes to: below it a sweep barely moves.
   static constexpr double min_relaxation = 0.1;
   double window_residual_ = 0.0;  // the norm where the current window started (block rescue)
