@@ -175,29 +175,18 @@ double impulse_spread(const std::vector<cd::Contact>& contacts)
 // in how many clusters (contacts linked by a shared mobile body) they lie.
 std::string residual_spread(const std::vector<cd::Contact>& contacts, const std::vector<cd::BodyVelocity>& velocity)
 {
-  std::vector<std::pair<double, int>> share;
-  double total = 0.0;
-  for (std::size_t k = 0; k < contacts.size(); k++) {
-    const cd::Contact& c = contacts[k];
-    const cd::Local2 u = cd::law_velocity(c, velocity[c.body_a], velocity[c.body_b]);
-    const double w = c.delassus.nn;
-    const double r = cd::natural_map_residual_squared({w * c.impulse.n, w * c.impulse.t}, u, c.mu);
-    share.push_back({r, static_cast<int>(k)});
-    total += r;
-  }
-  std::sort(share.rbegin(), share.rend());
+  const std::vector<int> carriers = cd::residual_carriers(contacts, velocity, 0.9, static_cast<int>(contacts.size()));
   std::vector<int> parent(velocity.size());
   for (std::size_t b = 0; b < parent.size(); b++) parent[b] = static_cast<int>(b);
   const auto root = [&](int b) {
     while (parent[b] != b) b = parent[b] = parent[parent[b]];
     return b;
   };
-  double sum = 0.0;
-  std::size_t count = 0, on_world = 0;
+  const std::size_t count = carriers.size();
+  std::size_t on_world = 0;
   std::vector<int> bodies;
-  while (count < share.size() && sum < 0.9 * total) {
-    const cd::Contact& c = contacts[share[count].second];
-    sum += share[count++].first;
+  for (const int k : carriers) {
+    const cd::Contact& c = contacts[k];
     on_world += c.body_a == 0 || c.body_b == 0;
     if (c.body_a > 0) bodies.push_back(c.body_a);
     if (c.body_b > 0) bodies.push_back(c.body_b);
