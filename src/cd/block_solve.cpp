@@ -210,6 +210,13 @@ std::vector<int> residual_carriers(const std::vector<Contact>& contacts, const s
   return carriers;
 }
 
+int block_budget(int stall_window, std::size_t contact_count, int seeds)
+{
+  constexpr int largest_block = 200;
+  const double work_budget = std::cbrt(static_cast<double>(stall_window) * static_cast<double>(contact_count));
+  return std::clamp(static_cast<int>(work_budget), seeds, std::max(seeds, largest_block));
+}
+
 std::vector<int> block_around(const std::vector<Contact>& contacts, int body_count, const std::vector<int>& seeds,
                               int hops, int max_size)
 {

@@ -12,6 +12,7 @@
 // (cd/lemke.h) solves it.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "cd/contact.h"
@@ -39,6 +40,14 @@ BlockSolve solve_block(std::vector<Contact>& contacts, std::vector<BodyVelocity>
 // largest first, at most `max_count`.
 std::vector<int> residual_carriers(const std::vector<Contact>& contacts, const std::vector<BodyVelocity>& velocity,
                                    double share, int max_count);
+
+// The most contacts a rescue's block may hold in a solve of `contact_count` contacts whose stall
+// window is `stall_window` sweeps: Lemke's work on a block of m contacts (about 50 ns m^3 on the
+// chute's trapped steps) stays within that of the window's sweeps (about 50 ns per contact and
+// sweep), (stall_window contact_count)^(1/3), at least `seeds` and at most 200 (the dense
+// tableau's memory). A chute of 4 800 contacts gets 78; a rank's 190 contacts of a 2-rank cell
+// 26, where blocks of up to 200 made the run 1.8 times slower (doc/stalls.md).
+int block_budget(int stall_window, std::size_t contact_count, int seeds);
 
 // The block around `seeds` (indices into `contacts`): the seeds and every contact reached from
 // them through `hops` shared bodies (the world, body 0, links nothing), at most `max_size`

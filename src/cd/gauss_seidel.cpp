@@ -370,7 +370,9 @@ class StallRescue {
     if (++stalls_ == 1) relax_unaccelerated(sweeping_.relaxation * sweeping_.stall_relaxation);
     const int hops = std::min(stalls_, sweeping_.stall_block);
     const std::vector<int> seeds = residual_carriers(contacts, velocity, carried_share, max_carriers);
-    solve_block(contacts, velocity, block_around(contacts, static_cast<int>(velocity.size()), seeds, hops, max_block));
+    solve_block(contacts, velocity,
+                block_around(contacts, static_cast<int>(velocity.size()), seeds, hops,
+                             block_budget(sweeping_.stall_window, contacts.size(), max_carriers)));
     if (exchange_) exchange_->share_velocities();
     ++report.block_solves;
     watch_.start(contacts, report.iterations);
@@ -384,10 +386,9 @@ class StallRescue {
   }
 
   // The block's seeds: the contacts carrying this share of the residual, at most max_carriers of
-  // them; the block, at most max_block contacts (Lemke's work grows as the cube of a cluster's).
+  // them; the block as cd::block_budget allows.
   static constexpr double carried_share = 0.9;
   static constexpr int max_carriers = 16;
-  static constexpr int max_block = 200;
   // The weakest relaxation the ladder goes to: below it a sweep barely moves.
   static constexpr double min_relaxation = 0.1;
   double window_residual_ = 0.0;  // the norm where the current window started (block rescue)

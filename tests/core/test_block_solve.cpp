@@ -151,6 +151,17 @@ TEST(BlockSolve, BlockAroundGrowsThroughSharedBodiesOnly)
   EXPECT_EQ(cd::block_around(contacts, 6, {0}, 3, 2), (std::vector<int>{0, 1}));
 }
 
+// The block's budget: Lemke's cubic work within the stall window's sweeps, (window contacts)^(1/3),
+// never below the seeds nor above 200.
+TEST(BlockSolve, BlockBudgetKeepsLemkeWithinTheWindowsSweeps)
+{
+  EXPECT_EQ(cd::block_budget(100, 4800, 16), 78);  // 480 000^(1/3) = 78.3
+  EXPECT_EQ(cd::block_budget(100, 190, 16), 26);   // 19 000^(1/3) = 26.7
+  EXPECT_EQ(cd::block_budget(100, 10, 16), 16);    // the seeds, whatever the cost
+  EXPECT_EQ(cd::block_budget(100, 1000000, 16), 200);
+  EXPECT_EQ(cd::block_budget(100, 10, 300), 300);  // more seeds than the ceiling: all of them
+}
+
 // Stalls forced at the end of windows of 5 sweeps (a coherence only a window whose sweeps change
 // nothing can stay above), 23 sweeps at tolerance 0: from the first stall on, every window ends
 // in a block solve, none starts the solve from zero, and the mu 2 pile ends on the Coulomb law.
