@@ -1,14 +1,17 @@
 #!/usr/bin/env python3
-"""LAMMPS's 2D pour, rigid (inputs/examples/in.pour_rigid) and soft (in.pour_granular), one after
-the other, REPEATS times: CPU time (user + system) and wall time of each run, their medians, and the
-final packing of the last run of each: grains, pile height h (twice the grains' mean height, exact
-for a uniformly filled layer), packing fraction phi = sum pi r^2 / (box width x h), the largest and
-mean overlap of touching pairs and of grains on the walls (in mean diameters), kinetic energy.
+"""LAMMPS's 2D pour, soft (inputs/examples/in.pour_granular: the original's gran/hertz/history at
+k 4e5, dt 1e-4) and rigid (inputs/examples/in.pour_rigid), at matched restitution: the original's
+damping (gamma_n 100, e 0.97-1.00 by its law) against rigid e 0.99, and gamma_n 6000 (e 0.5 for two
+grains of the mean size at speed 3) against rigid e 0.5. Runs one after the other, REPEATS times:
+CPU time (user + system) and wall time of each run, their medians, and the final packing of the
+last run of each: grains, pile height h (twice the grains' mean height, exact for a uniformly
+filled layer), packing fraction phi = sum pi r^2 / (box width x h), the largest and mean overlap of
+touching pairs and of grains on the walls (in mean diameters), kinetic energy.
 
     bench/pour_side_by_side.py [--lmp build/lmp_cd] [--repeats 3] [--duration 25] [--out DIR]
 
-Run it under one nice level for both (e.g. nice -n 15 bench/pour_side_by_side.py): each run is
-alone on the machine's load, the two decks in turn. Prints a Markdown table.
+Run it under one nice level for both (e.g. nice -n 15 bench/pour_side_by_side.py) on an otherwise
+idle machine. Prints a Markdown table.
 """
 
 import argparse
@@ -25,17 +28,21 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.
 from cdtools.lammps_files import read_dump  # noqa: E402
 
 TOP = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir)
-DECKS = {"soft (GRANULAR, Hertz k = 4e5, dt 1e-4)": "in.pour_granular",
-         "rigid (contact/dynamics, dt 0.009)": "in.pour_rigid"}
+# (restitution, soft deck's -vars, rigid deck's -vars)
+MATCHED = [("0.99", {"gamma_n": "100"}, {"e": "0.99"}),
+           ("0.5", {"gamma_n": "6000"}, {"e": "0.5"})]
+DECKS = {"soft": "in.pour_granular", "rigid": "in.pour_rigid"}
 WIDTH = 100.0  # the decks' box width
 
 
-def timed_run(lmp, deck, duration, folder):
+def timed_run(lmp, deck, variables, duration, folder):
     """(CPU s, wall s, the run's printed POUR line) of one run in `folder`."""
     os.makedirs(folder, exist_ok=True)
+    arguments = [word for name, value in dict(variables, duration=duration).items()
+                 for word in ("-var", name, str(value))]
     before, start = resource.getrusage(resource.RUSAGE_CHILDREN), time.monotonic()
-    result = subprocess.run([lmp, "-in", os.path.join(TOP, "inputs", "examples", deck), "-var", "duration",
-                             str(duration), "-log", "log.lammps", "-screen", "none"], cwd=folder)
+    result = subprocess.run([lmp, "-in", os.path.join(TOP, "inputs", "examples", deck)] + arguments +
+                            ["-log", "log.lammps", "-screen", "none"], cwd=folder)
     wall = time.monotonic() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if result.returncode != 0:
@@ -87,25 +94,31 @@ def main():
     parser.add_argument("--out", default=None)
     args = parser.parse_args()
     out = args.out or tempfile.mkdtemp(prefix="pour_side_by_side.")
-    runs = {name: [] for name in DECKS}
+    runs = {}
     for repeat in range(args.repeats):
-        for name, deck in DECKS.items():
-            folder = os.path.join(out, f"{deck}.{repeat + 1}")
-            runs[name].append(timed_run(args.lmp, deck, args.duration, folder) + (folder,))
-            cpu, wall = runs[name][-1][:2]
-            print(f"{deck} run {repeat + 1}: CPU {cpu:.2f} s, wall {wall:.1f} s", flush=True)
-    print(f"\n| {'run':40} | CPU s (median of {args.repeats}) | wall s | grains | h (d) | phi | "
+        for restitution, soft_vars, rigid_vars in MATCHED:
+            for model, variables in (("soft", soft_vars), ("rigid", rigid_vars)):
+                folder = os.path.join(out, f"{model}_e{restitution}.{repeat + 1}")
+                result = timed_run(args.lmp, DECKS[model], variables, args.duration, folder) + (folder,)
+                runs.setdefault((restitution, model), []).append(result)
+                print(f"{model} e {restitution} run {repeat + 1}: CPU {result[0]:.2f} s, wall {result[1]:.1f} s",
+                      flush=True)
+    print(f"\n| e | run | -var | CPU s (median of {args.repeats}) | wall s | grains | h (d) | phi | "
           "largest overlap, pairs (d) | mean overlap (d) | largest on a wall (d) | kinetic energy |")
-    print("|" + "---|" * 10)
-    for name, results in runs.items():
-        cpu = statistics.median(r[0] for r in results)
-        wall = statistics.median(r[1] for r in results)
-        final = packing(results[-1][3])
-        print(f"| {name:40} | {cpu:.2f} | {wall:.1f} | {final['grains']} | {final['h_d']:.2f} | {final['phi']:.4f} | "
-              f"{final['pair_max']:.2e} | {final['pair_mean']:.2e} | {final['wall_max']:.2e} | "
-              f"{results[-1][2]['ke']:.3g} |")
-    soft, rigid = (statistics.median(r[0] for r in results) for results in runs.values())
-    print(f"\nrigid / soft CPU time: {rigid / soft:.3f}   (runs in {out})")
+    print("|" + "---|" * 12)
+    for restitution, soft_vars, rigid_vars in MATCHED:
+        for model, variables in (("soft", soft_vars), ("rigid", rigid_vars)):
+            results = runs[(restitution, model)]
+            final = packing(results[-1][3])
+            setting = " ".join(f"{k} {v}" for k, v in variables.items())
+            print(f"| {restitution} | {model} | {setting} | {statistics.median(r[0] for r in results):.2f} | "
+                  f"{statistics.median(r[1] for r in results):.1f} | {final['grains']} | {final['h_d']:.2f} | "
+                  f"{final['phi']:.4f} | {final['pair_max']:.2e} | {final['pair_mean']:.2e} | "
+                  f"{final['wall_max']:.2e} | {results[-1][2]['ke']:.3g} |")
+    for restitution, _, _ in MATCHED:
+        soft, rigid = (statistics.median(r[0] for r in runs[(restitution, m)]) for m in ("soft", "rigid"))
+        print(f"e {restitution}: rigid / soft CPU time {rigid / soft:.3f}")
+    print(f"(runs in {out})")
 
 
 if __name__ == "__main__":
