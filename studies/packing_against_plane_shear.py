@@ -32,7 +32,9 @@ from cdtools.text import markdown_table, number, with_error
 SERIES = os.path.join(TOP, "results", "series")
 READINGS = (("count", os.path.join(SERIES, "flow_rules", "runs.csv")),
             ("layer", os.path.join(SERIES, "layer_flow_rules", "runs.csv")))
-PLANE_SHEAR = {0.5: os.path.join(TOP, "results", "plane_shear", "plane_shear_mu0.5.csv")}
+# The plane-shear phi(I) at each of the chute's frictions, solved to 1e-4 (doc/plane_shear_results.md).
+PLANE_SHEAR = {mu: os.path.join(TOP, "results", "plane_shear", f"plane_shear_mu{mu:g}_1e-4.csv")
+               for mu in (0.05, 0.5, 2.0)}
 LITERATURE = os.path.join(TOP, "results", "plane_shear", "packing_literature.csv")
 SOURCE = os.path.join(TOP, "results", "source.csv")
 
@@ -124,9 +126,10 @@ def figure(readings, plane_shear, literature, source, stem):
             plots.append(f"'-' using 1:2 with points pt {6 + r} lc {c + 1} title '{reading}: mu = {number(mu)}'")
             data.append(gnuplot_data([(p[4], p[3]) for p in points if p[1] == mu]))
     for mu, points in sorted(plane_shear.items()):
-        plots.append(f"'-' using 1:3:2 with xerrorbars pt 5 lc 'black' title 'plane shear, mu = {number(mu)}'")
+        colour = frictions.index(mu) + 1 if mu in frictions else "'black'"
+        plots.append(f"'-' using 1:3:2 with xerrorbars pt 5 lc {colour} title 'plane shear, mu = {number(mu)}'")
         data.append(gnuplot_data(points))
-        plots.append("'-' using 1:3 with lines lc 'black' notitle")
+        plots.append(f"'-' using 1:3 with lines lc {colour} notitle")
         data.append(gnuplot_data(points))
     for c, mu in enumerate(frictions):
         if mu in source:
