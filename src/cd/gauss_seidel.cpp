@@ -370,11 +370,12 @@ class StallRescue {
     if (++stalls_ == 1) relax_unaccelerated(sweeping_.relaxation * sweeping_.stall_relaxation);
     const int hops = std::min(stalls_, sweeping_.stall_block);
     const std::vector<int> seeds = residual_carriers(contacts, velocity, carried_share, max_carriers);
-    solve_block(contacts, velocity,
-                block_around(contacts, static_cast<int>(velocity.size()), seeds, hops,
-                             block_budget(sweeping_.stall_window, contacts.size(), max_carriers)));
+    const std::vector<int> block = block_around(contacts, static_cast<int>(velocity.size()), seeds, hops,
+                                                block_budget(sweeping_.stall_window, contacts.size(), max_carriers));
+    solve_block(contacts, velocity, block);
     if (exchange_) exchange_->share_velocities();
     ++report.block_solves;
+    report.largest_block = std::max(report.largest_block, static_cast<int>(block.size()));
     watch_.start(contacts, report.iterations);
     return true;
   }

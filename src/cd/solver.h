@@ -20,6 +20,7 @@ struct SolveReport {
   int stalled_sweeps = 0;  // sweeps made after a stall was detected (GaussSeidel's stall rescue)
   int cold_restarts = 0;   // times the rescue dropped the impulses and started again from zero
   int block_solves = 0;    // times the rescue solved the contacts around the residual exactly
+  int largest_block = 0;   // the most contacts one of those block solves held
 };
 
 // What a domain-decomposed run does between the sweeps of one rank: after every sweep it

@@ -67,6 +67,7 @@ SolveReport solve_step(ContactSolver& solver, StepContacts& contacts, BodySet& b
     report.stalled_sweeps += more.stalled_sweeps;
     report.cold_restarts += more.cold_restarts;
     report.block_solves += more.block_solves;
+    report.largest_block = std::max(report.largest_block, more.largest_block);
     report.residual = more.residual;
     report.converged = more.converged;
   }

@@ -232,6 +232,10 @@ TEST(StallRescue, ARelaxedPlateauAfterAStallEndsInMoreBlockSolves)
   EXPECT_TRUE(report.converged) << report.iterations << " sweeps";
   EXPECT_LT(report.iterations, 2000);
   EXPECT_GE(report.block_solves, 2);
+  // Its blocks stay within the budget, (100 x 4550)^(1/3) = 76 contacts (up to 200 they held 129).
+  EXPECT_EQ(cd::block_budget(deck.stall_window, contacts.size(), 16), 76);
+  EXPECT_LE(report.largest_block, 76);
+  EXPECT_GE(report.largest_block, 16);
 }
 
 }  // namespace
