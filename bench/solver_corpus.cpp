@@ -7,7 +7,8 @@
 //                 --setting NAME "key=value ..." [--setting ...] PROBLEM.cdp ...
 //
 // Keys of a setting (cd::SolverSettings): tolerance, max_iterations, relaxation, acceleration
-// (none|conjugate), full_sweep_every, stall_window, stall_coherence, stall_relaxation; and
+// (none|conjugate), full_sweep_every, stall_window, stall_coherence, stall_relaxation, stall_block,
+// stall_block_every; and
 // cold (yes|no): start from zero impulses instead of the step's warm start.
 //
 // Error measures, each over the mobile bodies or contacts of the problem:
@@ -89,6 +90,7 @@ cd::SolverSettings parse_setting(const std::string& text, cd::SolverSettings set
     else if (key == "stall_coherence") settings.stall_coherence = number(key, value);
     else if (key == "stall_relaxation") settings.stall_relaxation = number(key, value);
     else if (key == "stall_block") settings.stall_block = static_cast<int>(number(key, value));
+    else if (key == "stall_block_every") settings.stall_block_every = static_cast<int>(number(key, value));
     else if (key == "shuffle" && named) named->shuffle = static_cast<unsigned>(number(key, value));
     else if (key == "block_rounds" && named) named->block_rounds = static_cast<int>(number(key, value));
     else if (key == "block_hops" && named) named->block_hops = static_cast<int>(number(key, value));
@@ -322,7 +324,8 @@ int run(const Options& o)
   solves << "problem,setting,contacts,sweeps,local_solves_per_contact,converged,final_norm,natural_map,rms_error";
   for (std::size_t k = 0; k + 1 < o.band_edges.size(); k++)
     solves << ",rms_" << o.band_edges[k] << "_" << o.band_edges[k + 1];
-  solves << ",stalled_sweeps,block_solves,cold_restarts,reference_sweeps,reference_norm,reference_natural_map\n";
+  solves << ",stalled_sweeps,block_solves,kept_block_solves,cold_restarts,reference_sweeps,reference_norm,reference_"
+            "natural_map\n";
   history << "problem,setting,sweeps,local_solves_per_contact,norm,natural_map,rms_error,switches,stalled_sweeps\n";
   for (const std::string& path : o.problems) {
     const cd::ContactProblem problem = cd::read_problem(path);
@@ -343,8 +346,9 @@ int run(const Options& o)
              << run.report.contact_updates / contacts << ',' << run.report.converged << ',' << run.report.residual
              << ',' << natural_map(run.contacts, run.velocity);
       for (const double e : errors.rms_errors(run.velocity)) solves << ',' << e;
-      solves << ',' << run.report.stalled_sweeps << ',' << run.report.block_solves << ',' << run.report.cold_restarts
-             << ',' << reference.report.iterations << ',' << reference.report.residual << ',' << reference_map << '\n';
+      solves << ',' << run.report.stalled_sweeps << ',' << run.report.block_solves << ','
+             << run.report.kept_block_solves << ',' << run.report.cold_restarts << ',' << reference.report.iterations
+             << ',' << reference.report.residual << ',' << reference_map << '\n';
       std::cerr << "  " << s.name << ": " << run.report.iterations << " sweeps, converged " << run.report.converged
                 << ", rms error " << errors.rms_errors(run.velocity)[0] << "; "
                 << residual_spread(run.contacts, run.velocity) << "; largest p_n / median "

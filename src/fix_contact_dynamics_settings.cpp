@@ -151,6 +151,8 @@ void SettingsParser::parse_value(const std::string& keyword, const char* value)
     step.solver.stall_relaxation = number_for("stall_relaxation", value, error);
   } else if (keyword == "stall_block") {
     step.solver.stall_block = integer_for("stall_block", value, error);
+  } else if (keyword == "stall_block_every") {
+    step.solver.stall_block_every = integer_for("stall_block_every", value, error);
   } else if (keyword == "full_sweep_every") {
     step.solver.full_sweep_every = integer_for("full_sweep_every", value, error);
   } else if (keyword == "join") {

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The erodible bed against the solver's tolerance (doc/bed.md): the runs.
 
-One layer-reading deposition (L 45 d, seed 20261122, the published series' own) serves every run:
+One layer-reading deposition (L 45 d, seed 20261122, the published series' own) serves every run
+but the length/ jobs, which rain their own cells:
 
     floor/tol<T>_<order>        the packing at rest: mu 0.5, gravity tilted to 12 deg (below
                                 the flow threshold), tolerance T, 0.6 s from the tilt (T 1e-3,
@@ -11,6 +12,11 @@ One layer-reading deposition (L 45 d, seed 20261122, the published series' own) 
     flow/mu<mu>_theta<theta>/tol<T>_<order>
                                 continued from the start's chute.restart for 1.2 s at
                                 tolerance T, the deck's defaults otherwise
+    length/L<L>/start, length/L<L>/tol<T>_<order>
+                                the creep against the cell length (doc/creep.md): the L
+                                series' cell (count reading, mu 0.5, 22 deg) at L 45 and 102 d,
+                                each from its own deposition (seed 20261122), a start and
+                                continuations as above
 
 with <order> fixed, or shuffle<seed> (the contact order shuffled by that seed): replicas of one
 setting from one state. Every job runs in legs (legs/NN, one lmp_cd each); started again with
@@ -53,6 +59,8 @@ START = dict(tolerance="1e-2", duration="6")
 CONTINUATION_SECONDS = 1.2
 TOLERANCES = ("1e-3", "1e-4")
 ORDERS = ("fixed", "shuffle1", "shuffle2")
+LENGTH_FLOW = dict(reading="count", seed="20261122", mu="0.5", theta="22")
+LENGTHS = ("102", "45")
 
 
 def order_variables(order):
@@ -73,8 +81,19 @@ class Job:
 
     def start_file(self, out):
         if self.origin == "deposition":
-            return os.path.join(out, "deposition", "deposition.restart")
+            return os.path.join(deposition_folder(out, self.vars), "deposition.restart")
         return os.path.join(out, self.origin, "chute.restart")
+
+
+def deposition_folder(out, variables):
+    """The study's own cell rains into deposition/, another cell into deposition_L<L>_<reading>/."""
+    if all(variables[key] == value for key, value in CELL.items()):
+        return os.path.join(out, "deposition")
+    return os.path.join(out, f"deposition_L{variables['L']}_{variables['reading']}")
+
+
+def cell_variables(variables):
+    return {key: variables[key] for key in ("reading", "L", "seed")}
 
 
 def plan():
@@ -101,6 +120,16 @@ def plan():
                 variables = dict(CELL, mu=mu, theta=theta, tolerance=tolerance, duration=f"{end:g}",
                                  max_iterations="100000", **order_variables(order))
                 jobs.append(Job(f"flow/mu{mu}_theta{theta}/tol{tolerance}_{order}", variables, start))
+    for length in LENGTHS:
+        flow = dict(LENGTH_FLOW, L=length)
+        start = f"length/L{length}/start"
+        jobs.append(Job(start, dict(flow, **START), "deposition"))
+        end = float(START["duration"]) + CONTINUATION_SECONDS
+        for tolerance in TOLERANCES:
+            for order in ORDERS:
+                variables = dict(flow, tolerance=tolerance, duration=f"{end:g}", max_iterations="100000",
+                                 **order_variables(order))
+                jobs.append(Job(f"length/L{length}/tol{tolerance}_{order}", variables, start))
     return jobs
 
 
@@ -134,12 +163,13 @@ def cpu_seconds(folder):
     return sum(read_progress(os.path.join(leg, "log.lammps")).cpu for leg in legs(folder))
 
 
-def run_deposition(out, args):
-    folder = os.path.join(out, "deposition")
-    if os.path.exists(os.path.join(folder, "deposition.restart")):
+def run_deposition(out, variables, args):
+    """The cell of variables rained once (a second runner waits for the first's)."""
+    folder = deposition_folder(out, variables)
+    if os.path.exists(os.path.join(folder, "deposition.restart")) or not claim(folder):
         return
-    os.makedirs(folder, exist_ok=True)
-    command = args.pin + lmp_command(args.lmp, deck_copy(out), dict(CELL, stage="deposition"), screen="none")
+    command = args.pin + lmp_command(args.lmp, deck_copy(out), dict(cell_variables(variables), stage="deposition"),
+                                     screen="none")
     subprocess.run(command, cwd=folder, check=True)
 
 
@@ -171,7 +201,7 @@ def run_job(job, args):
         print(f"{job.name}: run by another runner", flush=True)
         return
     duration = float(job.vars["duration"])
-    origin_done = os.path.join(args.out, job.origin, "DONE" if job.origin != "deposition" else "deposition.restart")
+    origin_done = job.start_file(args.out) if job.origin == "deposition" else os.path.join(args.out, job.origin, "DONE")
     while not os.path.exists(origin_done):    # run by another runner of the study (another core)
         print(f"{job.name}: waiting for {job.origin}", flush=True)
         time.sleep(60)
@@ -205,7 +235,7 @@ def collect(job, args):
     flow.time and solver.time, each leg's command and LAMMPS timers, and for a continuation
     cdpost's results over the windows studies/bed_profiles.py averages (--flow-from 0.4 s on)."""
     folder, kept = job.folder(args.out), os.path.join(args.collect, job.name)
-    if not os.path.exists(os.path.join(folder, "DONE")) or job.name.startswith("start/"):
+    if not os.path.exists(os.path.join(folder, "DONE")) or "start" in job.name.split("/"):
         return
     os.makedirs(kept, exist_ok=True)
     for name in KEPT_FILES:
@@ -219,7 +249,7 @@ def collect(job, args):
     if job.name.startswith("flow/") and args.cdpost:
         end = float(job.vars["duration"])
         command = [args.cdpost, "run", folder, "--t-start", f"{end - CONTINUATION_SECONDS + 0.4:g}",
-                   "--t-end", f"{end:g}", "--segment", "0.4", "--cell-length", CELL["L"],
+                   "--t-end", f"{end:g}", "--segment", "0.4", "--cell-length", job.vars["L"],
                    "--out", os.path.join(folder, "post")]
         if subprocess.run(command, stdout=subprocess.DEVNULL).returncode == 0:
             os.makedirs(os.path.join(kept, "post"), exist_ok=True)
@@ -255,8 +285,9 @@ def main(argv=None):
         for job in jobs:
             collect(job, args)
         return
-    run_deposition(args.out, args)
     for job in jobs:
+        if job.origin == "deposition":
+            run_deposition(args.out, job.vars, args)
         run_job(job, args)
 
 

@@ -17,10 +17,11 @@ struct SolveReport {
   double contact_updates = 0.0;  // local solves over all sweeps
   double residual = 0.0;         // the stopping norm at the end
   bool converged = true;
-  int stalled_sweeps = 0;  // sweeps made after a stall was detected (GaussSeidel's stall rescue)
-  int cold_restarts = 0;   // times the rescue dropped the impulses and started again from zero
-  int block_solves = 0;    // times the rescue solved the contacts around the residual exactly
-  int largest_block = 0;   // the most contacts one of those block solves held
+  int stalled_sweeps = 0;     // sweeps made after a stall was detected (GaussSeidel's stall rescue)
+  int cold_restarts = 0;      // times the rescue dropped the impulses and started again from zero
+  int block_solves = 0;       // times the rescue solved the contacts around the residual exactly
+  int largest_block = 0;      // the most contacts one of those block solves held
+  int kept_block_solves = 0;  // times the rescue solved its kept block again between stalls
 };
 
 // What a domain-decomposed run does between the sweeps of one rank: after every sweep it

@@ -68,6 +68,7 @@ SolveReport solve_step(ContactSolver& solver, StepContacts& contacts, BodySet& b
     report.cold_restarts += more.cold_restarts;
     report.block_solves += more.block_solves;
     report.largest_block = std::max(report.largest_block, more.largest_block);
+    report.kept_block_solves += more.kept_block_solves;
     report.residual = more.residual;
     report.converged = more.converged;
   }

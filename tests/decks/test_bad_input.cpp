@@ -68,6 +68,7 @@ const BadCase bad_cases[] = {
     {"stall_coherence_of_one", with_fix("0.5 0.5 stall_coherence 1"), "stall_coherence must be in (0,1), got 1"},
     {"stall_relaxation_zero", with_fix("0.5 0.5 stall_relaxation 0"), "stall_relaxation must be in (0,1], got 0"},
     {"negative_stall_block", with_fix("0.5 0.5 stall_block -1"), "stall_block must be >= 0, got -1"},
+    {"negative_stall_block_every", with_fix("0.5 0.5 stall_block_every -2"), "stall_block_every must be >= 0, got -2"},
     {"save_problems_without_prefix", with_fix("0.5 0.5 save_problems 100"),
      "save_problems needs 2 values: sweeps prefix"},
     {"save_problems_negative", with_fix("0.5 0.5 save_problems -5 hard"), "save_problems sweeps must be >= 0, got -5"},

@@ -178,6 +178,14 @@ TEST_F(SeveralRanks, AStallRescueReachesTheOneRankSolution)
   expect_one_rank_velocities("stall_window 2 stall_coherence 0.999999");
 }
 
+// The same with the kept block asked for two sweeps after each stall's block: one rank solves it
+// (42 times on this step), several ranks leave it to the stalls' blocks, and both reach the
+// same solution.
+TEST_F(SeveralRanks, AKeptBlockOnOneRankReachesTheSolutionSeveralRanksFindWithoutIt)
+{
+  expect_one_rank_velocities("stall_window 4 stall_coherence 0.999999 stall_block_every 2");
+}
+
 // The same with the rescue's restarts from zero impulses instead of block solves.
 TEST_F(SeveralRanks, AStallRescueByRestartsReachesTheOneRankSolution)
 {
