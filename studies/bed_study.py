@@ -246,7 +246,7 @@ def collect(job, args):
         with open(os.path.join(leg, "log.lammps")) as log, \
                 open(os.path.join(kept, "legs", os.path.basename(leg), "timers.txt"), "w") as timers:
             timers.writelines(line for line in log if re.match(r"Loop time of|.*% CPU use|Total wall time", line))
-    if job.name.startswith("flow/") and args.cdpost:
+    if job.name.startswith(("flow/", "length/")) and args.cdpost:
         end = float(job.vars["duration"])
         command = [args.cdpost, "run", folder, "--t-start", f"{end - CONTINUATION_SECONDS + 0.4:g}",
                    "--t-end", f"{end:g}", "--segment", "0.4", "--cell-length", job.vars["L"],
