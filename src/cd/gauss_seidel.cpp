@@ -343,7 +343,7 @@ class StallRescue {
   // solved exactly again every SolverSettings::stall_block_every sweeps, on one rank only. On
   // several, the ranks would solve theirs at once, each with the others' impulses frozen: with
   // forced stalls the 2-rank test cell then sat at a norm of 5e-9 for 10^5 sweeps, where one
-  // rank converges in 90 and the stalls' blocks alone in 62 (tests/lammps/test_mpi.cpp).
+  // rank converges in 90 and the stalls' blocks alone in 62 (doc/stalls.md).
   void solve_kept_block(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, SolveReport& report)
   {
     const int every = sweeping_.stall_block_every;
