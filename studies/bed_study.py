@@ -13,7 +13,7 @@ but the length/ jobs, which rain their own cells:
                                 continued from the start's chute.restart for 1.2 s at
                                 tolerance T, the deck's defaults otherwise
     length/L<L>/start, length/L<L>/tol<T>_<order>
-                                the creep against the cell length (doc/creep.md): the L
+                                the creep against the cell length (doc/bed.md): the L
                                 series' cell (count reading, mu 0.5, 22 deg) at L 45 and 102 d,
                                 each from its own deposition (seed 20261122), a start and
                                 continuations as above

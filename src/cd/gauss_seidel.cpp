@@ -347,9 +347,7 @@ class StallRescue {
   void solve_kept_block(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, SolveReport& report)
   {
     const int every = sweeping_.stall_block_every;
-    if (exchange_ || sweeping_.stall_block == 0 || every == 0 || stalls_ == 0 ||
-        report.iterations - last_kept_solve_ < every)
-      return;
+    if (kept_.empty() || every == 0 || report.iterations - last_kept_solve_ < every) return;
     solve_block(contacts, velocity, kept_);
     ++report.kept_block_solves;
     last_kept_solve_ = report.iterations;
@@ -389,7 +387,7 @@ class StallRescue {
     const std::vector<int> seeds = residual_carriers(contacts, velocity, carried_share, max_carriers);
     const int budget = block_budget(sweeping_.stall_window, contacts.size(), max_carriers);
     const std::vector<int> block = block_around(contacts, static_cast<int>(velocity.size()), seeds, hops, budget);
-    keep(block, budget);
+    if (!exchange_) keep(block, budget);
     solve_block(contacts, velocity, block);
     if (exchange_) exchange_->share_velocities();
     ++report.block_solves;
@@ -420,7 +418,7 @@ class StallRescue {
   // The weakest relaxation the ladder goes to: below it a sweep barely moves.
   static constexpr double min_relaxation = 0.1;
   double window_residual_ = 0.0;  // the norm where the current window started (block rescue)
-  std::vector<int> kept_;         // the kept block (contact indices, sorted)
+  std::vector<int> kept_;         // the kept block (contact indices, sorted); empty on several ranks
   int last_kept_solve_ = 0;       // the sweep count at the last solve of a block
   StallWatch watch_;
   SolverSettings sweeping_;
