@@ -104,8 +104,10 @@ inline WorldImpulse world_impulse(const Contact& c, Local2 p)
 }
 
 // Adds the impulse dp (on a; -dp on b) to both bodies. A tangential impulse spins both disks
-// the same way: its lever arms are -r_a n on a and +r_b n on b, with opposite forces.
-inline void apply_impulse(const Contact& c, Local2 dp, BodyVelocity& a, BodyVelocity& b)
+// the same way: its lever arms are -r_a n on a and +r_b n on b, with opposite forces. Always
+// inlined: the sweep's inner loop calls it, and GCC left it a call once the sweep had eight kinds
+// (the 45 d chute 1.3 times slower).
+[[gnu::always_inline]] inline void apply_impulse(const Contact& c, Local2 dp, BodyVelocity& a, BodyVelocity& b)
 {
   const WorldImpulse p = world_impulse(c, dp);
   a.vx += c.inv_mass_a * p.x;

@@ -53,16 +53,28 @@ inline Local2 accelerated(Contact& c, Local2 p, double beta)
   return pushed;
 }
 
+// law_velocity, whose tangential bias is not zero only where an image slides across a deforming
+// box's side: without such images (sliding_images false) the sweep leaves that add off the
+// local solve's dependency chain, which cost ordinary boxes 3 % of the sweep.
+template <bool sliding_images>
+inline Local2 swept_law_velocity(const Contact& c, const BodyVelocity& a, const BodyVelocity& b)
+{
+  if constexpr (sliding_images) return law_velocity(c, a, b);
+  const Local2 u = relative_velocity(c, a, b);
+  return {u.n + c.velocity_bias.n, u.t};
+}
+
 // Exact local solve of one contact with every other impulse frozen, in the accumulated-impulse
 // form: the impulse that would stop the contact is the current one minus W^-1 (u + b), with u
 // the relative velocity that already includes the contact's own impulse. The norm records the
 // local solve's change, before any acceleration.
-template <ConvergenceNorm norm, bool conjugate>
-inline double update_frictional(Contact& c, BodyVelocity* velocity, double relaxation, double beta, SweepChange& change)
+template <ConvergenceNorm norm, bool conjugate, bool sliding_images>
+[[gnu::always_inline]] inline double update_frictional(Contact& c, BodyVelocity* velocity, double relaxation,
+                                                       double beta, SweepChange& change)
 {
   BodyVelocity& a = velocity[c.body_a];
   BodyVelocity& b = velocity[c.body_b];
-  const Local2 u = law_velocity(c, a, b);
+  const Local2 u = swept_law_velocity<sliding_images>(c, a, b);
   const Local2 stick{c.impulse.n - c.delassus.inverse_nn * u.n, c.impulse.t - c.delassus.inverse_tt * u.t};
   const Local2 local = solve_coulomb_disk(stick, c.mu);
   const Local2 solved = relaxed(local, c.impulse, relaxation);
@@ -80,8 +92,8 @@ inline double update_frictional(Contact& c, BodyVelocity* velocity, double relax
 // update_frictional for mu = 0, where p_t stays 0 (warm_start drops a carried one): the
 // normal velocity and the normal impulse; no tangential solve, no spin.
 template <ConvergenceNorm norm, bool conjugate>
-inline double update_frictionless(Contact& c, BodyVelocity* velocity, double relaxation, double beta,
-                                  SweepChange& change)
+[[gnu::always_inline]] inline double update_frictionless(Contact& c, BodyVelocity* velocity, double relaxation,
+                                                         double beta, SweepChange& change)
 {
   BodyVelocity& a = velocity[c.body_a];
   BodyVelocity& b = velocity[c.body_b];
@@ -109,45 +121,54 @@ namespace {
 // The local solve of one contact, its kind chosen per contact: a branch per contact rather
 // than one sweep per kind serves scenes that mix mu = 0 with friction (mu/types, rough walls).
 // Returns |W dp|^2 of the local solve.
-template <ConvergenceNorm norm, bool conjugate>
-inline double update_contact(Contact& c, BodyVelocity* velocity, bool shortcut, double relaxation, double beta,
-                             SweepChange& change)
+template <class Kind>
+[[gnu::always_inline]] inline double update_contact(Contact& c, BodyVelocity* velocity, bool shortcut,
+                                                    double relaxation, double beta, SweepChange& change)
 {
-  if (shortcut && c.mu == 0.0) return update_frictionless<norm, conjugate>(c, velocity, relaxation, beta, change);
-  return update_frictional<norm, conjugate>(c, velocity, relaxation, beta, change);
+  if (shortcut && c.mu == 0.0)
+    return update_frictionless<Kind::norm, Kind::conjugate>(c, velocity, relaxation, beta, change);
+  return update_frictional<Kind::norm, Kind::conjugate, Kind::sliding_images>(c, velocity, relaxation, beta, change);
 }
 
-template <ConvergenceNorm norm_, bool conjugate_>
+template <ConvergenceNorm norm_, bool conjugate_, bool sliding_images_>
 struct SweepKind {
   static constexpr ConvergenceNorm norm = norm_;
   static constexpr bool conjugate = conjugate_;
+  static constexpr bool sliding_images = sliding_images_;
 };
 
-// Calls loop(SweepKind<norm, conjugate>{}) for the settings' norm and acceleration, so that
-// the sweep loops are compiled once per kind. The loops copy the settings they read into
-// locals: a store to a velocity could otherwise alias them and force a reload per contact.
-template <class Loop>
+template <bool sliding_images, class Loop>
 SweepChange for_kind(const SolverSettings& settings, Loop loop)
 {
   const bool quadratic = settings.norm == ConvergenceNorm::quadratic;
   if (settings.acceleration == Acceleration::conjugate)
-    return quadratic ? loop(SweepKind<ConvergenceNorm::quadratic, true>{})
-                     : loop(SweepKind<ConvergenceNorm::maximum, true>{});
-  return quadratic ? loop(SweepKind<ConvergenceNorm::quadratic, false>{})
-                   : loop(SweepKind<ConvergenceNorm::maximum, false>{});
+    return quadratic ? loop(SweepKind<ConvergenceNorm::quadratic, true, sliding_images>{})
+                     : loop(SweepKind<ConvergenceNorm::maximum, true, sliding_images>{});
+  return quadratic ? loop(SweepKind<ConvergenceNorm::quadratic, false, sliding_images>{})
+                   : loop(SweepKind<ConvergenceNorm::maximum, false, sliding_images>{});
+}
+
+// Calls loop(SweepKind<norm, conjugate, sliding_images>{}) for the settings' norm and
+// acceleration and the contacts' images, so that the sweep loops are compiled once per kind.
+// The loops copy the settings they read into locals: a store to a velocity could otherwise
+// alias them and force a reload per contact.
+template <class Loop>
+SweepChange for_kind(const SolverSettings& settings, bool sliding_images, Loop loop)
+{
+  return sliding_images ? for_kind<true>(settings, loop) : for_kind<false>(settings, loop);
 }
 
 // A sweep over [first, last); with `change_sq`, each contact's |W dp|^2 lands in it.
 SweepChange sweep_measuring(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings,
-                            double beta, double* change_sq)
+                            bool sliding_images, double beta, double* change_sq)
 {
-  return for_kind(settings, [&](auto kind) {
+  return for_kind(settings, sliding_images, [&](auto kind) {
     using Kind = decltype(kind);
     const bool shortcut = settings.frictionless_shortcut;
     const double w = settings.relaxation;
     SweepChange change;
     for (Contact* c = first; c != last; ++c) {
-      const double changed = update_contact<Kind::norm, Kind::conjugate>(*c, velocity, shortcut, w, beta, change);
+      const double changed = update_contact<Kind>(*c, velocity, shortcut, w, beta, change);
       if (change_sq) change_sq[c - first] = changed;
     }
     return change;
@@ -156,24 +177,35 @@ SweepChange sweep_measuring(Contact* first, Contact* last, BodyVelocity* velocit
 
 // A sweep over the listed contacts, in the list's order.
 SweepChange sweep_listed(Contact* contacts, const std::vector<int>& listed, BodyVelocity* velocity,
-                         const SolverSettings& settings, double beta)
+                         const SolverSettings& settings, bool sliding_images, double beta)
 {
-  return for_kind(settings, [&](auto kind) {
+  return for_kind(settings, sliding_images, [&](auto kind) {
     using Kind = decltype(kind);
     const bool shortcut = settings.frictionless_shortcut;
     const double w = settings.relaxation;
     SweepChange change;
-    for (const int k : listed)
-      update_contact<Kind::norm, Kind::conjugate>(contacts[k], velocity, shortcut, w, beta, change);
+    for (const int k : listed) update_contact<Kind>(contacts[k], velocity, shortcut, w, beta, change);
     return change;
   });
+}
+
+// True if some contact's law velocity has a tangential bias (an image sliding across the side
+// of a deforming box).
+bool has_sliding_images(const Contact* first, const Contact* last)
+{
+  return std::any_of(first, last, [](const Contact& c) { return c.velocity_bias.t != 0.0; });
+}
+
+bool has_sliding_images(const std::vector<Contact>& contacts)
+{
+  return has_sliding_images(contacts.data(), contacts.data() + contacts.size());
 }
 
 }  // namespace
 
 SweepChange sweep(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings, double beta)
 {
-  return sweep_measuring(first, last, velocity, settings, beta, nullptr);
+  return sweep_measuring(first, last, velocity, settings, has_sliding_images(first, last), beta, nullptr);
 }
 
 SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const SolverSettings& settings,
@@ -340,17 +372,19 @@ class StallRescue {
   }
 
   // After a full sweep that did not end the solve, once a block rescue has begun: the kept block
-  // solved exactly again every SolverSettings::stall_block_every sweeps, on one rank only. On
-  // several, the ranks would solve theirs at once, each with the others' impulses frozen: with
-  // forced stalls the 2-rank test cell then sat at a norm of 5e-9 for 10^5 sweeps, where one
-  // rank converges in 90 and the stalls' blocks alone in 62 (doc/stalls.md).
+  // solved exactly again every SolverSettings::stall_block_every sweeps. Several ranks solve
+  // theirs at once, as they do the stalls' blocks, and share the velocities they changed.
   void solve_kept_block(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, SolveReport& report)
   {
     const int every = sweeping_.stall_block_every;
-    if (kept_.empty() || every == 0 || report.iterations - last_kept_solve_ < every) return;
-    solve_block(contacts, velocity, kept_);
-    ++report.kept_block_solves;
+    // The same on every rank: the sweep count and the block solves are.
+    if (report.block_solves == 0 || every == 0 || report.iterations - last_kept_solve_ < every) return;
     last_kept_solve_ = report.iterations;
+    if (!kept_.empty()) {
+      solve_block(contacts, velocity, kept_);
+      ++report.kept_block_solves;
+    }
+    if (exchange_) exchange_->share_velocities();
   }
 
   // After a full sweep that did not end the solve: true if a stall was met and the sweeps change.
@@ -387,7 +421,7 @@ class StallRescue {
     const std::vector<int> seeds = residual_carriers(contacts, velocity, carried_share, max_carriers);
     const int budget = block_budget(sweeping_.stall_window, contacts.size(), max_carriers);
     const std::vector<int> block = block_around(contacts, static_cast<int>(velocity.size()), seeds, hops, budget);
-    if (!exchange_) keep(block, budget);
+    keep(block, budget);
     solve_block(contacts, velocity, block);
     if (exchange_) exchange_->share_velocities();
     ++report.block_solves;
@@ -418,7 +452,7 @@ class StallRescue {
   // The weakest relaxation the ladder goes to: below it a sweep barely moves.
   static constexpr double min_relaxation = 0.1;
   double window_residual_ = 0.0;  // the norm where the current window started (block rescue)
-  std::vector<int> kept_;         // the kept block (contact indices, sorted); empty on several ranks
+  std::vector<int> kept_;         // the kept block (contact indices, sorted)
   int last_kept_solve_ = 0;       // the sweep count at the last solve of a block
   StallWatch watch_;
   SolverSettings sweeping_;
@@ -441,9 +475,9 @@ void select_active(GaussSeidel::CycleWorkspace& work, const std::vector<Contact>
 
 // A sweep over the active contacts, its sums completed by the quiet contacts' scale.
 SweepChange sweep_active(const GaussSeidel::CycleWorkspace& work, std::vector<Contact>& contacts,
-                         BodyVelocity* velocity, const SolverSettings& settings, double beta)
+                         BodyVelocity* velocity, const SolverSettings& settings, bool sliding_images, double beta)
 {
-  SweepChange change = sweep_listed(contacts.data(), work.active, velocity, settings, beta);
+  SweepChange change = sweep_listed(contacts.data(), work.active, velocity, settings, sliding_images, beta);
   change.merge(work.quiet);
   return change;
 }
@@ -462,14 +496,17 @@ SolveReport GaussSeidel::solve_in_full_sweeps(std::vector<Contact>& contacts, st
   SolveReport report;
   ConjugateBeta conjugate;
   StallRescue rescue(settings_, stall_, exchange, contacts);
+  bool sliding_images = has_sliding_images(contacts);
   double beta = 0.0;
   while (report.iterations < settings_.max_iterations) {
-    SweepChange change = sweep(contacts, velocity, rescue.sweeping(), beta);
+    SweepChange change = sweep_measuring(contacts.data(), contacts.data() + contacts.size(), velocity.data(),
+                                         rescue.sweeping(), sliding_images, beta, nullptr);
     if (exchange) exchange->after_sweep(change);
     const bool converged = count_sweep(report, change, contacts.size(), settings_);
     rescue.add_sweep(change, report);
     if (observer_) observer_->after_full_sweep(report);
     const bool joined = joining && looks_for_joining(report.iterations, converged) && joining->join(converged);
+    if (joined) sliding_images = has_sliding_images(contacts);
     if (converged && !joined) return report;
     rescue.solve_kept_block(contacts, velocity, report);
     if (rescue.act(contacts, velocity, report)) beta = 0.0;
@@ -490,21 +527,25 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
   SolveReport report;
   ConjugateBeta conjugate;
   StallRescue rescue(settings_, stall_, exchange, contacts);
+  bool sliding_images = has_sliding_images(contacts);
   double previous_full_residual = std::numeric_limits<double>::infinity();
   for (int full_sweeps = 1; report.iterations < settings_.max_iterations; full_sweeps++) {
     // The full sweep records no conjugate direction: the first active sweep, unpushed, does.
     SolverSettings full_sweep = rescue.sweeping();
     full_sweep.acceleration = Acceleration::none;
     SweepChange change = sweep_measuring(contacts.data(), contacts.data() + contacts.size(), velocity.data(),
-                                         full_sweep, 0.0, work.change_sq.data());
+                                         full_sweep, sliding_images, 0.0, work.change_sq.data());
     if (exchange) exchange->after_sweep(change);
     const bool converged = count_sweep(report, change, contacts.size(), settings_);
     rescue.add_sweep(change, report);
     if (observer_) observer_->after_full_sweep(report);
     // Contacts that join are active in the cycle: they have not been swept yet.
-    if (joining && looks_for_joining(full_sweeps, converged) && joining->join(converged))
+    if (joining && looks_for_joining(full_sweeps, converged) && joining->join(converged)) {
       work.change_sq.resize(contacts.size(), std::numeric_limits<double>::infinity());
-    else if (converged) return report;
+      sliding_images = has_sliding_images(contacts);
+    } else if (converged) {
+      return report;
+    }
     rescue.solve_kept_block(contacts, velocity, report);
     // After a restart from zero or a block solve, contacts the full sweep left quiet may change:
     // all are active.
@@ -515,7 +556,8 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
     previous_full_residual = report.residual;
     double beta = 0.0;
     for (int k = 1; k < settings_.full_sweep_every && report.iterations < settings_.max_iterations; k++) {
-      SweepChange active_change = sweep_active(work, contacts, velocity.data(), rescue.sweeping(), beta);
+      SweepChange active_change =
+          sweep_active(work, contacts, velocity.data(), rescue.sweeping(), sliding_images, beta);
       if (exchange) exchange->after_sweep(active_change);
       const bool active_converged = count_sweep(report, active_change, work.active.size(), settings_);
       rescue.add_sweep(active_change, report);
