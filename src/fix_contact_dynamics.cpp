@@ -482,6 +482,7 @@ void FixContactDynamics::gather_bodies()
 void FixContactDynamics::LammpsHost::collect_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
                                                    cd::StepContacts& contacts)
 {
+  if (!std::isfinite(from_margin)) fix.overlaps.begin_look();
   fix.collect_grain_pairs(reach, from_margin, to_margin, contacts);
   fix.collect_wall_pairs(reach, from_margin, to_margin, contacts);
 }
@@ -517,6 +518,7 @@ void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double 
     if (body_j == 1 + i)
       error->one(FLERR, "Fix contact/dynamics: atom {} touches its own periodic image; the cell is too short",
                  atom->tag[i]);
+    overlaps.watch_pair(i, j);
     const cd::PairKey key = pair_key(i, j);
     cd::ContactGeometry geometry = cd::disk_disk_geometry(1 + i, disk_i, body_j, disk_j);
     geometry.image_vx = image_vx;
@@ -551,6 +553,7 @@ void FixContactDynamics::collect_wall_pairs(const cd::PairReach& reach, double f
     for (int w = 0; w < static_cast<int>(settings.walls.size()); w++) {
       const auto touch = cd::wall_contact(settings.walls[w], 1 + i, disk, reach_i + to_margin, step_box);
       if (!touch || !reach.wall_in_look(1 + i, touch->geometry.gap, from_margin)) continue;
+      overlaps.watch_wall(i, w);
       const cd::PairKey key{i, wall_partner(w, touch->part)};
       contacts.offer(touch->geometry, settings.walls[w].law, key, impulses->carried(key));
     }
@@ -705,21 +708,31 @@ void FixContactDynamics::unpack_reverse_comm(int n, int* list, double* buf)
 }
 
 // The contact part of the pressure tensor, (1 / (A dt)) cd::branch_impulse_sums, as LAMMPS's
-// pair virial: into the output vector (xx, yy, xy, yx) and, summed per rank, the fix's virial
-// (energy units) for compute pressure.
+// pair virial: summed per rank into the fix's virial (energy units) for compute pressure when
+// asked for; outputs 13-16 (xx, yy, xy, yx) are summed over the ranks when read (contact_stress).
 void FixContactDynamics::tally_contact_stress()
 {
+  contact_stress_scale = domain->xprd * domain->yprd * update->dt;
+  contact_stress_measured = false;
+  if (!vflag_global) return;
   const cd::BranchImpulseSums sums = cd::branch_impulse_sums(contact_step.contacts());
-  double local[4] = {sums.xx, sums.yy, sums.xy, sums.yx};  // m N s
   const double dt = update->dt;
-  if (vflag_global) {
-    virial[0] += local[0] / dt;
-    virial[1] += local[1] / dt;
-    virial[3] += local[2] / dt;
+  virial[0] += sums.xx / dt;
+  virial[1] += sums.yy / dt;
+  virial[3] += sums.xy / dt;
+}
+
+// Outputs 13-16 of the last step, measured at most once; called on every rank.
+double FixContactDynamics::contact_stress(int component)
+{
+  if (!contact_stress_measured) {
+    const cd::BranchImpulseSums sums = cd::branch_impulse_sums(contact_step.contacts());
+    double local[4] = {sums.xx, sums.yy, sums.xy, sums.yx};  // m N s
+    MPI_Allreduce(local, contact_pressure, 4, MPI_DOUBLE, MPI_SUM, world);
+    for (double& value : contact_pressure) value = contact_stress_scale > 0.0 ? value / contact_stress_scale : 0.0;
+    contact_stress_measured = true;
   }
-  MPI_Allreduce(local, contact_pressure, 4, MPI_DOUBLE, MPI_SUM, world);
-  const double area = domain->xprd * domain->yprd;
-  for (double& value : contact_pressure) value /= area * dt;
+  return contact_pressure[component];
 }
 
 // One row per loaded contact, at the predicted configuration (before the corrector): atom IDs
@@ -769,10 +782,10 @@ double FixContactDynamics::compute_vector(int n)
     case 9: return total_steps;
     case 10: return full_sweep_work;
     case 11: return last_report.solves;
-    case 12: return contact_pressure[0];
-    case 13: return contact_pressure[1];
-    case 14: return contact_pressure[2];
-    case 15: return contact_pressure[3];
+    case 12:
+    case 13:
+    case 14:
+    case 15: return contact_stress(n - 12);
   }
   return 0.0;
 }

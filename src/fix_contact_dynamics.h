@@ -93,6 +93,8 @@ class FixContactDynamics : public Fix {
   std::vector<cd::BodyVelocity> ghost_reference;      // ghost velocities at the last forward comm
   ShearedCell sheared_cell{lmp};                      // the box as the step meets it, its images if it deforms
   double contact_pressure[4] = {0.0, 0.0, 0.0, 0.0};  // xx, yy, xy, yx over all ranks (N/m in 2D SI)
+  double contact_stress_scale = 0.0;                  // area times dt of the last step
+  bool contact_stress_measured = true;                // contact_pressure holds the last step's
   bool distributed = false;                           // more than one rank: exchange every sweep
   cd::MoreauJeanStep contact_step;                    // the core's step: pairs, order, warm start, solve
   cd::SolveReport last_report;
@@ -135,6 +137,7 @@ class FixContactDynamics : public Fix {
   void forward(ForwardField field);
   cd::Disk disk_at_solve(int i) const;
   void tally_contact_stress();
+  double contact_stress(int component);
   void map_bodies();
   void gather_bodies();
   cd::BodyVelocity velocity_change_of_ghost(int ghost) const;

@@ -1,6 +1,9 @@
 // Overlaps among the grains of fix contact/dynamics and with its walls, at the positions now:
 // the warning at a run's start (rigid contacts keep the overlaps grains were created with) and
-// outputs 5 and 6, measured when read and at most once a step.
+// outputs 5 and 6, measured when read and at most once a step. Within a step they are measured
+// over the pairs and walls the step looked at: the look reaches as far as the solved velocities
+// move the grains (cd::PairReach), so no other pair can overlap at its end; anywhere else (a read
+// before the first step, between runs) over every listed pair.
 #pragma once
 
 #include <vector>
@@ -22,6 +25,10 @@ class OverlapGauge : protected Pointers {
     list_ = list;
     groupbit_ = groupbit;
   }
+  // The step's look begins (its first pass): the pairs and walls watched so far are forgotten.
+  void begin_look();
+  void watch_pair(int i, int j) { watched_pairs_.push_back({i, j}); }
+  void watch_wall(int i, int wall) { watched_walls_.push_back({i, wall}); }
   // At a run's start: a warning if contacts overlap by more than a hundredth of a diameter;
   // the outputs are measured anew.
   void warn_initial(const cd::PeriodicBox& box, double mean_diameter);
@@ -34,12 +41,24 @@ class OverlapGauge : protected Pointers {
  private:
   template <class Visit>
   void for_each_overlap(const cd::PeriodicBox& box, Visit&& visit) const;
+  template <class Visit>
+  void for_each_watched_overlap(const cd::PeriodicBox& box, Visit&& visit) const;
+  template <class Visit>
+  void visit_if_overlapping(int i, int j, Visit&& visit) const;
+  template <class Visit>
+  void visit_if_on_wall(int i, const cd::Wall& wall, const cd::PeriodicBox& box, Visit&& visit) const;
+
+  struct AtomPair {
+    int i, j;  // atom indices; for a wall, j is the wall's number
+  };
 
   const std::vector<cd::Wall>& walls_;
   const NeighList* list_ = nullptr;
   int groupbit_ = 0;
   double deepest_ = 0.0, mean_ = 0.0;
   bigint measured_at_ = -1;  // the step they were measured at; -1: not yet this run
+  std::vector<AtomPair> watched_pairs_, watched_walls_;
+  bigint looked_at_ = -1;  // the step whose look filled them
 };
 
 }  // namespace LAMMPS_NS
