@@ -26,6 +26,8 @@ usage: reference/run_comparison.sh [options] OUT
   --rigid-dt S         rigid time step (default 1e-5)
   --rigid-skin N       rigid neighbour skin in d (default 0.3; a grain may move half of it in a step)
   --rigid-acceleration A  rigid sweeps: none or conjugate (default none; the fix's acceleration)
+  --rigid-extra "K V .."  more fix contact/dynamics keywords for the rigid runs, e.g. "full_sweep_every 8"
+                       (the chute deck's cycles); they name the runs (rigid-tolT-K_V)
   --rigid-parts N      run each rigid flow as N restarted parts of flow/N (default 1): keeps
                        each lmp_cd process short; the parts' outputs are appended
   --soft-parts N       the same for the soft flows, LAMMPS GRANULAR and LIGGGHTS (default 1):
@@ -50,7 +52,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 top=$(cd "$here/.." && pwd)
 build=${BUILD_DIR:-$top/build}
 mu=0.5 theta=24 cells=16 grains=320 bed_walls=10
-overlaps="1e-2 1e-3 1e-4" codes="granular liggghts" hertz="1e-3" rigid_tolerances="1e-3" rigid_dt=1e-5 rigid_skin=0.3 rigid_acceleration=none rigid_parts=1 soft_parts=1
+overlaps="1e-2 1e-3 1e-4" codes="granular liggghts" hertz="1e-3" rigid_tolerances="1e-3" rigid_dt=1e-5 rigid_skin=0.3 rigid_acceleration=none rigid_extra="" rigid_parts=1 soft_parts=1
 deposit=0.2 deposit_overlap=1e-4 settle=0.05 flow=1.0 sample=1e-4 segment=0.25 read_only=0 compare_args=""
 lmp=lmp liggghts=liggghts lmp_cd=$build/lmp_cd cdref=""
 out=""
@@ -68,6 +70,7 @@ while [ $# -gt 0 ]; do
     --rigid-dt) rigid_dt=$2; shift 2 ;;
     --rigid-skin) rigid_skin=$2; shift 2 ;;
     --rigid-acceleration) rigid_acceleration=$2; shift 2 ;;
+    --rigid-extra) rigid_extra=$2; shift 2 ;;
     --rigid-parts) rigid_parts=$2; shift 2 ;;
     --soft-parts) soft_parts=$2; shift 2 ;;
     --deposit) deposit=$2; shift 2 ;;
@@ -189,10 +192,12 @@ packing=(-var data ../../packing.data -var settle "$settle")
 rigid_flow=$(awk -v f="$flow" -v n="$rigid_parts" 'BEGIN { print f / n }')
 soft_flow=$(awk -v f="$flow" -v n="$soft_parts" 'BEGIN { print f / n }')
 soft=(-var mu "$mu" -var theta "$theta" -var bed_walls "$bed_walls" -var flow "$soft_flow" -var sample_max "$sample")
+rigid_suffix=${rigid_extra:+-$(echo "$rigid_extra" | tr ' ' '_')}
 for tolerance in $rigid_tolerances; do
-  run_parts "rigid-tol$tolerance" "$rigid_parts" "$lmp_cd" "$here/in.chute_rigid" log.lammps \
+  run_parts "rigid-tol$tolerance$rigid_suffix" "$rigid_parts" "$lmp_cd" "$here/in.chute_rigid" log.lammps \
     -var mu "$mu" -var theta "$theta" -var bed_walls "$bed_walls" -var flow "$rigid_flow" -var sample_max "$sample" \
-    -var tolerance "$tolerance" -var dt "$rigid_dt" -var skin "$rigid_skin" -var acceleration "$rigid_acceleration"
+    -var tolerance "$tolerance" -var dt "$rigid_dt" -var skin "$rigid_skin" -var acceleration "$rigid_acceleration" \
+    -var solver_extra "$rigid_extra"
 done
 for overlap in $overlaps; do
   for code in $codes; do
