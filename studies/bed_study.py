@@ -14,7 +14,7 @@ but the length/ jobs, which rain their own cells:
                                 tolerance T, the deck's defaults otherwise
     length/L<L>/start, length/L<L>/tol<T>_<order>
                                 the creep against the cell length (doc/bed.md): the L
-                                series' cell (count reading, mu 0.5, 22 deg) at L 45 and 102 d,
+                                series' cell (count reading, mu 0.5, 22 deg) at L 45, 102 and 152 d,
                                 each from its own deposition (seed 20261122), a start and
                                 continuations as above
 
@@ -60,7 +60,7 @@ CONTINUATION_SECONDS = 1.2
 TOLERANCES = ("1e-3", "1e-4")
 ORDERS = ("fixed", "shuffle1", "shuffle2")
 LENGTH_FLOW = dict(reading="count", seed="20261122", mu="0.5", theta="22")
-LENGTHS = ("102", "45")
+LENGTHS = ("102", "45", "152")
 
 
 def order_variables(order):

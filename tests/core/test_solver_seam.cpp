@@ -4,6 +4,7 @@
 // the run statistics' counts and quantiles.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -53,6 +54,29 @@ TEST(RelaxedNorm, StopsWhereThePlainSweepWouldChangeNoMoreThanTheTolerance)
   EXPECT_EQ(report.iterations, 11);
   EXPECT_NEAR(report.residual, std::pow(0.5, 10) / (1.0 - std::pow(0.5, 11)), 1e-12);
   EXPECT_NEAR(landing.velocity[1].vy, -std::pow(0.5, 11), 1e-12);
+}
+
+// An image sliding across a deforming box's side gives the contact law a tangential bias
+// (Contact::velocity_bias.t). Every kind of sweep (plain, conjugate, in cycles) must carry it: the
+// landing disk, pressed with p_n = 1 N s, sticks (|p_t| = 0.2 / W_tt < 0.5 p_n) with its law
+// velocity at rest, so its own tangential velocity is the image's -0.2 m/s. A sweep compiled
+// without the bias (ordinary boxes) would leave it at 0.
+TEST(SlidingImages, TheTangentialBiasReachesEveryKindOfSweep)
+{
+  for (const cd::Acceleration acceleration : {cd::Acceleration::none, cd::Acceleration::conjugate})
+    for (const int full_sweep_every : {1, 8}) {
+      Landing landing = make_landing();
+      landing.contacts[0].velocity_bias.t = 0.2;
+      cd::SolverSettings settings;
+      settings.tolerance = 1e-12;
+      settings.acceleration = acceleration;
+      settings.full_sweep_every = full_sweep_every;
+      ASSERT_TRUE(cd::solve_gauss_seidel(landing.contacts, landing.velocity, settings).converged);
+      const cd::Contact& c = landing.contacts[0];
+      EXPECT_NEAR(cd::law_velocity(c, landing.velocity[1], landing.velocity[0]).t, 0.0, 1e-9);
+      EXPECT_NEAR(cd::relative_velocity(c, landing.velocity[1], landing.velocity[0]).t, -0.2, 1e-9);
+      EXPECT_LT(std::abs(c.impulse.t), 0.5 * c.impulse.n);
+    }
 }
 
 cd::SolverSettings pile_settings()
