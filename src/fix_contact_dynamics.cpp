@@ -333,7 +333,7 @@ void FixContactDynamics::final_integrate()
   save_hard_problem();  // heights at x_m, before the corrector moves the atoms
   loaded_contacts = report.loaded_contacts;
   store_impulses();
-  tally_contact_stress();
+  contact_stress.after_step(contact_step.contacts(), vflag_global ? virial : nullptr);
   fill_local_output();
   write_back_motion();
   reduce_step_outputs();
@@ -707,34 +707,6 @@ void FixContactDynamics::unpack_reverse_comm(int n, int* list, double* buf)
   }
 }
 
-// The contact part of the pressure tensor, (1 / (A dt)) cd::branch_impulse_sums, as LAMMPS's
-// pair virial: summed per rank into the fix's virial (energy units) for compute pressure when
-// asked for; outputs 13-16 (xx, yy, xy, yx) are summed over the ranks when read (contact_stress).
-void FixContactDynamics::tally_contact_stress()
-{
-  contact_stress_scale = domain->xprd * domain->yprd * update->dt;
-  contact_stress_measured = false;
-  if (!vflag_global) return;
-  const cd::BranchImpulseSums sums = cd::branch_impulse_sums(contact_step.contacts());
-  const double dt = update->dt;
-  virial[0] += sums.xx / dt;
-  virial[1] += sums.yy / dt;
-  virial[3] += sums.xy / dt;
-}
-
-// Outputs 13-16 of the last step, measured at most once; called on every rank.
-double FixContactDynamics::contact_stress(int component)
-{
-  if (!contact_stress_measured) {
-    const cd::BranchImpulseSums sums = cd::branch_impulse_sums(contact_step.contacts());
-    double local[4] = {sums.xx, sums.yy, sums.xy, sums.yx};  // m N s
-    MPI_Allreduce(local, contact_pressure, 4, MPI_DOUBLE, MPI_SUM, world);
-    for (double& value : contact_pressure) value = contact_stress_scale > 0.0 ? value / contact_stress_scale : 0.0;
-    contact_stress_measured = true;
-  }
-  return contact_pressure[component];
-}
-
 // One row per loaded contact, at the predicted configuration (before the corrector): atom IDs
 // (0 for a wall), wall number (0 for a pair of atoms), p_n, p_t, the contact point midway
 // across the gap.
@@ -785,7 +757,7 @@ double FixContactDynamics::compute_vector(int n)
     case 12:
     case 13:
     case 14:
-    case 15: return contact_stress(n - 12);
+    case 15: return contact_stress.component(n - 12);
   }
   return 0.0;
 }

@@ -23,6 +23,7 @@ FixStyle(contact/dynamics,FixContactDynamics);
 #include "fix.h"
 #include "fix_contact_dynamics_impulse_store.h"
 #include "fix_contact_dynamics_obstacles.h"
+#include "fix_contact_dynamics_contact_stress.h"
 #include "fix_contact_dynamics_overlaps.h"
 #include "fix_contact_dynamics_settings.h"
 #include "fix_contact_dynamics_sheared_cell.h"
@@ -85,20 +86,18 @@ class FixContactDynamics : public Fix {
 
   // --- per-step state ---
   class NeighList* list = nullptr;
-  double covered_radius = 0.0;                        // largest radius the neighbour/ghost cutoff was set for
-  double mean_diameter = 0.0;                         // of the group at natoms_surveyed atoms (m)
-  bigint natoms_surveyed = -1;                        // atom count at the last survey_group
-  cd::BodySet bodies;                                 // world, owned atoms, then ghosts owned elsewhere
-  std::vector<int> body_of_atom;                      // body of every owned and ghost atom this step
-  std::vector<cd::BodyVelocity> ghost_reference;      // ghost velocities at the last forward comm
-  ShearedCell sheared_cell{lmp};                      // the box as the step meets it, its images if it deforms
-  double contact_pressure[4] = {0.0, 0.0, 0.0, 0.0};  // xx, yy, xy, yx over all ranks (N/m in 2D SI)
-  double contact_stress_scale = 0.0;                  // area times dt of the last step
-  bool contact_stress_measured = true;                // contact_pressure holds the last step's
-  bool distributed = false;                           // more than one rank: exchange every sweep
-  cd::MoreauJeanStep contact_step;                    // the core's step: pairs, order, warm start, solve
+  double covered_radius = 0.0;                    // largest radius the neighbour/ghost cutoff was set for
+  double mean_diameter = 0.0;                     // of the group at natoms_surveyed atoms (m)
+  bigint natoms_surveyed = -1;                    // atom count at the last survey_group
+  cd::BodySet bodies;                             // world, owned atoms, then ghosts owned elsewhere
+  std::vector<int> body_of_atom;                  // body of every owned and ghost atom this step
+  std::vector<cd::BodyVelocity> ghost_reference;  // ghost velocities at the last forward comm
+  ShearedCell sheared_cell{lmp};                  // the box as the step meets it, its images if it deforms
+  bool distributed = false;                       // more than one rank: exchange every sweep
+  cd::MoreauJeanStep contact_step;                // the core's step: pairs, order, warm start, solve
   cd::SolveReport last_report;
   cd::SolveStatistics run_statistics;                               // this run's steps, reported at its end (post_run)
+  ContactStressGauge contact_stress{lmp};                           // outputs 13-16, the virial
   OverlapGauge overlaps{lmp, settings.walls};                       // outputs 5 and 6, the warning at a run's start
   double solved_contacts_total = 0.0, loaded_contacts_total = 0.0;  // over all ranks
   double full_sweep_work = 0.0;  // the step's local solves over all ranks / solved contacts
@@ -136,8 +135,6 @@ class FixContactDynamics : public Fix {
   void place_obstacles();
   void forward(ForwardField field);
   cd::Disk disk_at_solve(int i) const;
-  void tally_contact_stress();
-  double contact_stress(int component);
   void map_bodies();
   void gather_bodies();
   cd::BodyVelocity velocity_change_of_ghost(int ghost) const;

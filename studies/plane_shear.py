@@ -3,7 +3,7 @@
 cell at fixed area) run at several packing fractions, each giving one inertial number.
 
     studies/plane_shear.py [--phis 0.70,0.74,0.77,0.79,0.80,0.81] [--side 32] [--strain 10]
-                           [--mu 0.5] [--tolerance 1e-3] [--out runs/plane_shear]
+                           [--mu 0.5] [--tolerance 1e-3] [--max-iterations 10000] [--out runs/plane_shear]
 
 For each phi: I = rate d / sqrt(P_yy / rho) and mu = -P_xy / P_yy, from the pressure tensor of
 compute pressure (the fix's contact stress plus the kinetic part of compute temp/deform) over the
@@ -72,6 +72,7 @@ def main():
     parser.add_argument("--strain", type=float, default=10.0, help="shear strain of a run (half averaged)")
     parser.add_argument("--mu", default="0.5", help="contact friction while shearing")
     parser.add_argument("--tolerance", default="1e-3", help="the fix's tolerance while shearing")
+    parser.add_argument("--max-iterations", default="10000", help="the fix's cap of sweeps per solve while shearing")
     parser.add_argument("--out", default=os.path.join(run.TOP, "runs", "plane_shear"))
     parser.add_argument("--lmp", default=run.BUILT_LMP_CD)
     args = parser.parse_args()
@@ -79,7 +80,8 @@ def main():
     rows = []
     for phi in args.phis.split(","):
         folder = os.path.join(args.out, f"phi_{phi}")
-        variables = {"phi": phi, "side": args.side, "strain": args.strain, "mu": args.mu, "tolerance": args.tolerance}
+        variables = {"phi": phi, "side": args.side, "strain": args.strain, "mu": args.mu, "tolerance": args.tolerance,
+                     "max_iterations": args.max_iterations}
         seconds = run.run_checked(run.lmp_command(args.lmp, DECK, variables, screen="none"), folder)
         rows.append(measure(folder))
         print(f"phi {phi}: I {rows[-1]['I']:.4g} mu {rows[-1]['mu']:.4g} ({seconds:.0f} s)", flush=True)

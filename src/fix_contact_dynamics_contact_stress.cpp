@@ -1,0 +1,31 @@
+#include "fix_contact_dynamics_contact_stress.h"
+
+#include "domain.h"
+#include "update.h"
+
+using namespace LAMMPS_NS;
+
+void ContactStressGauge::after_step(const cd::StepContacts& contacts, double* virial)
+{
+  contacts_ = &contacts;
+  area_dt_ = domain->xprd * domain->yprd * update->dt;
+  measured_ = false;
+  if (!virial) return;
+  const cd::BranchImpulseSums sums = cd::branch_impulse_sums(contacts);
+  const double dt = update->dt;
+  virial[0] += sums.xx / dt;
+  virial[1] += sums.yy / dt;
+  virial[3] += sums.xy / dt;
+}
+
+double ContactStressGauge::component(int k)
+{
+  if (!measured_ && contacts_) {
+    const cd::BranchImpulseSums sums = cd::branch_impulse_sums(*contacts_);
+    double local[4] = {sums.xx, sums.yy, sums.xy, sums.yx};  // m N s
+    MPI_Allreduce(local, pressure_, 4, MPI_DOUBLE, MPI_SUM, world);
+    for (double& value : pressure_) value = area_dt_ > 0.0 ? value / area_dt_ : 0.0;
+    measured_ = true;
+  }
+  return pressure_[k];
+}
