@@ -2,8 +2,8 @@
 // the warning at a run's start (rigid contacts keep the overlaps grains were created with) and
 // outputs 5 and 6, measured when read and at most once a step. Within a step they are measured
 // over the pairs and walls the step looked at: the look reaches as far as the solved velocities
-// move the grains (cd::PairReach), so no other pair can overlap at its end; anywhere else (a read
-// before the first step, between runs) over every listed pair.
+// move the grains (cd::PairReach), so no other pair can overlap at its end; a read before a run's
+// first step goes over every listed pair.
 #pragma once
 
 #include <vector>
