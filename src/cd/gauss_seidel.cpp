@@ -278,8 +278,9 @@ bool count_sweep(SolveReport& report, const SweepChange& change, std::size_t upd
 // 1, a cycle's near 0: below stall_coherence the solve has stalled.
 class StallWatch {
  public:
-  StallWatch(const SolverSettings& settings, GaussSeidel::StallWorkspace& work, SweepExchange* exchange)
-      : window_(settings.stall_window), coherence_(settings.stall_coherence), work_(work), exchange_(exchange)
+  // Windows of `window` sweeps (0: none), the impulses at their start kept in `window_start`.
+  StallWatch(int window, double coherence, std::vector<Local2>& window_start, SweepExchange* exchange)
+      : window_(window), coherence_(coherence), window_start_(window_start), exchange_(exchange)
   {
   }
 
@@ -287,8 +288,8 @@ class StallWatch {
   void start(const std::vector<Contact>& contacts, int iterations)
   {
     if (window_ == 0) return;
-    work_.window_start.resize(contacts.size());
-    for (std::size_t k = 0; k < contacts.size(); k++) work_.window_start[k] = contacts[k].impulse;
+    window_start_.resize(contacts.size());
+    for (std::size_t k = 0; k < contacts.size(); k++) window_start_[k] = contacts[k].impulse;
     start_ = iterations;
     path_ = 0.0;
   }
@@ -301,6 +302,8 @@ class StallWatch {
 
   // True if a window ends at this sweep count (stalled() then decides on it).
   bool ends(int iterations) const { return window_ > 0 && iterations - start_ >= window_; }
+  // The sweep count its window started at.
+  int started() const { return start_; }
 
   // After a full sweep: true if the window just ended has stalled; else a new window starts
   // when one has ended.
@@ -320,7 +323,7 @@ class StallWatch {
   {
     double sum = 0.0;
     for (std::size_t k = 0; k < contacts.size(); k++) {
-      const Local2 before = k < work_.window_start.size() ? work_.window_start[k] : Local2{};
+      const Local2 before = k < window_start_.size() ? window_start_[k] : Local2{};
       const Local2 moved =
           contacts[k].delassus.times({contacts[k].impulse.n - before.n, contacts[k].impulse.t - before.t});
       sum += moved.n * moved.n + moved.t * moved.t;
@@ -330,7 +333,7 @@ class StallWatch {
 
   int window_;
   double coherence_;
-  GaussSeidel::StallWorkspace& work_;
+  std::vector<Local2>& window_start_;
   SweepExchange* exchange_;
   int start_ = 0;
   double path_ = 0.0;
@@ -356,9 +359,13 @@ class StallRescue {
  public:
   StallRescue(const SolverSettings& settings, GaussSeidel::StallWorkspace& work, SweepExchange* exchange,
               const std::vector<Contact>& contacts)
-      : watch_(settings, work, exchange), sweeping_(settings), exchange_(exchange)
+      : watch_(settings.stall_window, settings.stall_coherence, work.window_start, exchange),
+        slow_watch_(slow_windows * settings.stall_window, settings.stall_coherence, work.slow_window_start, exchange),
+        sweeping_(settings),
+        exchange_(exchange)
   {
     watch_.start(contacts, 0);
+    slow_watch_.start(contacts, 0);
   }
 
   // The settings the next sweeps run with.
@@ -368,6 +375,7 @@ class StallRescue {
   void add_sweep(const SweepChange& change, SolveReport& report)
   {
     watch_.add_sweep(change);
+    slow_watch_.add_sweep(change);
     report.stalled_sweeps += stalls_ > 0;
   }
 
@@ -408,13 +416,15 @@ class StallRescue {
   // stall_block > 0: the first stall relaxes the sweeps; every stall solves the block around the
   // residual's carriers exactly, one shared body further out each time, up to stall_block.
   // Once stalled, a window that does not halve the norm is a stall too: relaxed sweeps can drift
-  // on a plateau that the coherence test no longer sees as a cycle.
+  // on a plateau that the coherence test no longer sees as a cycle. So is a cycle slower
+  // than the window (cycles_slowly), stalled before or not.
   bool act_by_blocks(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, SolveReport& report)
   {
     const bool window_ends = watch_.ends(report.iterations);
     bool stalled = watch_.stalled(contacts, report.iterations);
     if (window_ends && stalls_ > 0 && !(report.residual <= 0.5 * window_residual_)) stalled = true;
     if (window_ends) window_residual_ = report.residual;
+    if (cycles_slowly(contacts, report)) stalled = true;
     if (!stalled) return false;
     if (++stalls_ == 1) relax_unaccelerated(sweeping_.relaxation * sweeping_.stall_relaxation);
     const int hops = std::min(stalls_, sweeping_.stall_block);
@@ -428,7 +438,24 @@ class StallRescue {
     report.largest_block = std::max(report.largest_block, static_cast<int>(block.size()));
     last_kept_solve_ = report.iterations;
     watch_.start(contacts, report.iterations);
+    slow_watch_.start(contacts, report.iterations);
     return true;
+  }
+
+  // After a full sweep: true if a slow window (slow_windows stall windows) has just ended with
+  // no new lowest norm in it and its impulses gone back and forth (the coherence test on it). A
+  // cycle slower than the stall window looks coherent within it (a chute step at 1e-4: the norm
+  // between 1.5e-4 and 8e-4 for 8 000 sweeps, 3 to 15 contacts switching a sweep, no stall
+  // seen); a slow drift keeps its direction, and a solve that still reaches lower norms is left
+  // alone.
+  bool cycles_slowly(const std::vector<Contact>& contacts, const SolveReport& report)
+  {
+    if (!(report.residual >= lowest_residual_)) lowest_residual_ = report.residual, lowest_at_ = report.iterations;
+    if (!slow_watch_.ends(report.iterations)) return false;
+    const bool progressed = lowest_at_ > slow_watch_.started();
+    const bool went_back_and_forth = slow_watch_.stalled(contacts, report.iterations);
+    if (went_back_and_forth && progressed) slow_watch_.start(contacts, report.iterations);
+    return went_back_and_forth && !progressed;
   }
 
   // The kept block: the union of the stalls' blocks while it fits the budget, else the newest.
@@ -451,10 +478,16 @@ class StallRescue {
   static constexpr int max_carriers = 16;
   // The weakest relaxation the ladder goes to: below it a sweep barely moves.
   static constexpr double min_relaxation = 0.1;
+  // The slow window of cycles_slowly, in stall windows.
+  static constexpr int slow_windows = 10;
   double window_residual_ = 0.0;  // the norm where the current window started (block rescue)
-  std::vector<int> kept_;         // the kept block (contact indices, sorted)
-  int last_kept_solve_ = 0;       // the sweep count at the last solve of a block
+  // The lowest norm of the full sweeps so far, and the sweep count it was met at.
+  double lowest_residual_ = std::numeric_limits<double>::infinity();
+  int lowest_at_ = 0;
+  std::vector<int> kept_;    // the kept block (contact indices, sorted)
+  int last_kept_solve_ = 0;  // the sweep count at the last solve of a block
   StallWatch watch_;
+  StallWatch slow_watch_;
   SolverSettings sweeping_;
   SweepExchange* exchange_;
   int stalls_ = 0;

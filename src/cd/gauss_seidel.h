@@ -43,7 +43,8 @@ struct SolverSettings {
   int full_sweep_every = 1;
   // The stall rescue (StallRescue): a solve whose impulses moved, over stall_window sweeps, by
   // less than stall_coherence times the sum of the sweeps' changes (they went back and forth: a
-  // cycle, not a slow drift) goes on relaxed by w = stall_relaxation and unaccelerated; each
+  // cycle, not a slow drift), or with stall_block > 0 did so over ten windows that brought no new
+  // lowest norm (a slower cycle), goes on relaxed by w = stall_relaxation and unaccelerated; each
   // further stall starts it again from zero impulses, relaxed by w once more (w^2, w^3, ..., not
   // below 0.1; stall_block below says what replaces the restarts). 0: no rescue. The defaults were chosen on the corpus of hard steps
   // (doc/stalls.md): every mu 2 cycle rescued, no mu 0.5 step touched.
@@ -105,9 +106,11 @@ class GaussSeidel : public ContactSolver {
     std::vector<int> active;        // the contacts that full sweep left changing, in sweep order
     SweepChange quiet;              // the others' share of the norm's scale
   };
-  // The stall test's record: the impulses at the start of its window.
+  // The stall tests' records: the impulses at the start of their windows (stall_window sweeps,
+  // and ten times as many for cycles slower than that).
   struct StallWorkspace {
     std::vector<Local2> window_start;
+    std::vector<Local2> slow_window_start;
   };
 
  private:

@@ -295,4 +295,20 @@ TEST(StallRescue, AKeptBlockConvergesAStepThatStallBlocksAloneDoNot)
   EXPECT_GE(kept_in_cycles.kept_block_solves, 10);
 }
 
+// A step of the plane shear at mu 2, phi 0.76, tolerance 1e-4 (1 450 contacts; the fix's
+// defaults, plain sweeps, cap 1e4) whose norm went from 1.1e-3 at sweep 1 411 back to 3.6e-3 at
+// 3 669 and stayed above that to the cap, no contact switching and no window seen as a cycle: a
+// cycle slower than the window. Ten windows without a new lowest norm make it a stall, and one
+// block solve converges it.
+TEST(StallRescue, ASolveThatMakesNoProgressForTenWindowsHasStalled)
+{
+  cd::SolverSettings fix_defaults;
+  fix_defaults.tolerance = 1e-4;
+  fix_defaults.max_iterations = 10000;
+  const cd::SolveReport report = solve_saved_step(CD_TEST_DATA "/slow_cycle_plane_shear_mu2_1e-4.cdp", fix_defaults);
+  EXPECT_TRUE(report.converged) << report.iterations << " sweeps, norm " << report.residual;
+  EXPECT_LT(report.iterations, 3000);
+  EXPECT_GE(report.block_solves, 1);
+}
+
 }  // namespace
