@@ -298,9 +298,9 @@ TEST(StallRescue, AKeptBlockConvergesAStepThatStallBlocksAloneDoNot)
 // A step of the plane shear at mu 2, phi 0.76, tolerance 1e-4 (1 450 contacts; the fix's
 // defaults, plain sweeps, cap 1e4) whose norm went from 1.1e-3 at sweep 1 411 back to 3.6e-3 at
 // 3 669 and stayed above that to the cap, no contact switching and no window seen as a cycle: a
-// cycle slower than the window. Ten windows without a new lowest norm make it a stall, and one
-// block solve converges it.
-TEST(StallRescue, ASolveThatMakesNoProgressForTenWindowsHasStalled)
+// cycle slower than the window. Ten windows with no new lowest norm and a path that went back
+// and forth make it a stall, and one block solve converges it.
+TEST(StallRescue, ACycleSlowerThanTheWindowIsAStall)
 {
   cd::SolverSettings fix_defaults;
   fix_defaults.tolerance = 1e-4;
