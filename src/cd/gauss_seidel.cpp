@@ -360,7 +360,8 @@ class StallRescue {
   StallRescue(const SolverSettings& settings, GaussSeidel::StallWorkspace& work, SweepExchange* exchange,
               const std::vector<Contact>& contacts)
       : watch_(settings.stall_window, settings.stall_coherence, work.window_start, exchange),
-        slow_watch_(slow_windows * settings.stall_window, settings.stall_coherence, work.slow_window_start, exchange),
+        slow_watch_(settings.stall_block > 0 ? slow_windows * settings.stall_window : 0, settings.stall_coherence,
+                    work.slow_window_start, exchange),
         sweeping_(settings),
         exchange_(exchange)
   {
@@ -487,7 +488,7 @@ class StallRescue {
   std::vector<int> kept_;    // the kept block (contact indices, sorted)
   int last_kept_solve_ = 0;  // the sweep count at the last solve of a block
   StallWatch watch_;
-  StallWatch slow_watch_;
+  StallWatch slow_watch_;  // cycles_slowly's; none with stall_block 0, whose restarts do not use it
   SolverSettings sweeping_;
   SweepExchange* exchange_;
   int stalls_ = 0;
