@@ -214,7 +214,7 @@ def run_job(job, args):
         start = newest_restart(folder) or job.start_file(args.out)
         leg = os.path.join(folder, "legs", f"{len(legs(folder)):02d}")
         os.makedirs(leg)
-        variables = dict(job.vars, stage="flow", start=start)
+        variables = {**job.vars, **args.extra, "stage": "flow", "start": start}
         command = args.pin + lmp_command(args.lmp, deck_copy(args.out), variables, screen="none")
         with open(os.path.join(leg, "command.sh"), "w") as script:
             script.write("#!/bin/sh\ncd " + shlex.quote(leg) + " && " + shlex.join(command) + "\n")
@@ -267,7 +267,17 @@ def options(argv=None):
     parser.add_argument("--collect", metavar="DIR",
                         help="run nothing: copy the small outputs of the finished jobs into DIR (e.g. results/bed)")
     parser.add_argument("--cdpost", default=BUILT_CDPOST, help="cdpost for --collect ('' for none)")
+    parser.add_argument("--var", action="append", default=[], metavar="NAME=VALUE",
+                        help="a deck variable of every flow leg, over the study's (repeatable), e.g. skin=2")
     args = parser.parse_args(argv)
+    args.extra = {}
+    for pair in args.var:
+        name, sign, value = pair.partition("=")
+        if not sign or not name or not value:
+            parser.error(f"--var {pair}: must be NAME=VALUE")
+        if name in ("stage", "start", "duration"):
+            parser.error(f"--var {pair}: {name} is the study's own")
+        args.extra[name] = value
     args.out = os.path.abspath(args.out)
     args.pin = ["taskset", "-c", str(args.core)] if args.core is not None else []
     return args

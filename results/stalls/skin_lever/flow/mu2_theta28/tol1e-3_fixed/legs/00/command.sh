@@ -1,0 +1,2 @@
+#!/bin/sh
+cd /work/runs/bed_mu2_skin2/flow/mu2_theta28/tol1e-3_fixed/legs/00 && taskset -c 0 /work/main/build/lmp_cd -in /work/runs/bed_mu2_skin2/in.chute -log log.lammps -screen none -var reading layer -var L 45 -var seed 20261122 -var mu 2 -var theta 28 -var tolerance 1e-3 -var duration 7.2 -var max_iterations 100000 -var order fixed -var stage flow -var start /work/runs/bed_mu2_skin2/start/mu2_theta28/chute.restart
