@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstddef>
 #include <unordered_map>
+#include <utility>
 
+#include "cd/friction_states.h"
 #include "cd/lemke.h"
 
 namespace cd {
@@ -60,10 +62,6 @@ BlockDelassus block_delassus(const std::vector<Contact>& contacts, const std::ve
   return w;
 }
 
-}  // namespace
-
-namespace {
-
 // A cluster with a loop of contacts is hyperstatic: its impulses are fixed only up to a
 // self-stress that moves nothing, and Lemke's path may end anywhere along it. The block's law
 // therefore acts on u + rho (p - p_k), rho = proximal W_ii per contact and p_k the impulses before
@@ -73,6 +71,49 @@ namespace {
 // then on (doc/stalls.md); 1e-4 converges the corpus as the exact solve does, 1e-2 leaves 3 of
 // 112 steps at the cap.
 constexpr double proximal = 1e-4;
+
+}  // namespace
+
+BlockProblem block_problem(const std::vector<Contact>& contacts, const std::vector<BodyVelocity>& velocity,
+                           const std::vector<int>& block)
+{
+  BlockDelassus w = block_delassus(contacts, block);
+  const std::size_t m = w.m, n = 4 * m;
+  BlockProblem problem;
+  problem.M.assign(n * n, 0.0);
+  problem.q.assign(n, 0.0);
+  problem.mu.resize(m);
+  std::vector<double>& M = problem.M;
+  std::vector<double>& q = problem.q;
+  const auto cell = [&](std::size_t row, std::size_t column) -> double& { return M[row * n + column]; };
+  for (std::size_t i = 0; i < m; i++) {
+    const Contact& ci = contacts[block[i]];
+    Local2 affine = law_velocity(ci, velocity[ci.body_a], velocity[ci.body_b]);
+    for (std::size_t j = 0; j < m; j++) {
+      const Local2 pj = contacts[block[j]].impulse;
+      const double wnn = w.at(w.nn, i, j), wnt = w.at(w.nt, i, j), wtn = w.at(w.tn, i, j), wtt = w.at(w.tt, i, j);
+      affine.n -= wnn * pj.n + wnt * pj.t;
+      affine.t -= wtn * pj.n + wtt * pj.t;
+      cell(i, j) = wnn, cell(i, m + j) = wnt, cell(i, 2 * m + j) = -wnt;
+      cell(m + i, j) = wtn, cell(m + i, m + j) = wtt, cell(m + i, 2 * m + j) = -wtt;
+      cell(2 * m + i, j) = -wtn, cell(2 * m + i, m + j) = -wtt, cell(2 * m + i, 2 * m + j) = wtt;
+    }
+    const double rho_n = proximal * ci.delassus.nn, rho_t = proximal * ci.delassus.tt;
+    affine.n -= rho_n * ci.impulse.n;
+    affine.t -= rho_t * ci.impulse.t;
+    cell(i, i) += rho_n;
+    cell(m + i, m + i) += rho_t, cell(m + i, 2 * m + i) -= rho_t;
+    cell(2 * m + i, m + i) -= rho_t, cell(2 * m + i, 2 * m + i) += rho_t;
+    cell(m + i, 3 * m + i) = 1.0;
+    cell(2 * m + i, 3 * m + i) = 1.0;
+    cell(3 * m + i, i) = ci.mu, cell(3 * m + i, m + i) = -1.0, cell(3 * m + i, 2 * m + i) = -1.0;
+    q[i] = affine.n, q[m + i] = affine.t, q[2 * m + i] = -affine.t;
+    problem.mu[i] = ci.mu;
+  }
+  return problem;
+}
+
+namespace {
 
 // An answer whose impulses still exceed this many times the cluster's scale (its largest
 // impulse before, or the largest impulse change a local solve would make, |W_ii^-1 u|) is refused.
@@ -107,47 +148,44 @@ double cluster_scale(const std::vector<Contact>& contacts, const std::vector<Bod
   return scale;
 }
 
-// One cluster's LCP (cd/block_solve.h) solved by Lemke; true if it was and its answer holds no
-// runaway self-stress, and then its impulses and the velocities are changed.
+// The cluster's problem solved by its contacts' states, from those the sweeps left (the fast
+// path: cd/friction_states.h); true if that ended.
+bool solved_by_states(const std::vector<Contact>& contacts, const std::vector<int>& block, const BlockProblem& problem,
+                      std::vector<Local2>& answer)
+{
+  constexpr int max_solves = 12;
+  std::vector<FrictionState> states(block.size());
+  for (std::size_t i = 0; i < block.size(); i++) states[i] = state_of(contacts[block[i]].impulse, problem.mu[i]);
+  StatesSolve solve = solve_by_states(problem.M, problem.q, problem.mu, std::move(states), max_solves);
+  if (solve.solved) answer = std::move(solve.answer);
+  return solve.solved;
+}
+
+// The cluster's complementarity problem solved by Lemke; true if it ended at a solution.
+bool solved_by_lemke(const BlockProblem& problem, std::vector<Local2>& answer, int& pivots)
+{
+  const std::size_t n = problem.q.size(), m = n / 4;
+  std::vector<double> z;
+  const LemkeResult lemke = solve_lcp_lemke(problem.M, problem.q, z, static_cast<int>(10 * n + 100));
+  pivots += lemke.pivots;
+  if (!lemke.solved) return false;
+  answer.resize(m);
+  for (std::size_t i = 0; i < m; i++) answer[i] = {z[i], std::max(z[m + i], 0.0) - std::max(z[2 * m + i], 0.0)};
+  return true;
+}
+
+// One cluster's LCP (cd/block_solve.h) solved by its contacts' states, or else by Lemke; true if
+// it was and its answer holds no runaway self-stress, and then its impulses and the velocities
+// are changed.
 bool solve_cluster(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const std::vector<int>& block,
                    int& pivots)
 {
-  BlockDelassus w = block_delassus(contacts, block);
-  const std::size_t m = w.m, n = 4 * m;
-  // Unknowns: p_n (0..m), p_+ (m..2m), p_- (2m..3m), s (3m..4m).
-  std::vector<double> M(n * n, 0.0), q(n, 0.0);
-  const auto cell = [&](std::size_t row, std::size_t column) -> double& { return M[row * n + column]; };
-  for (std::size_t i = 0; i < m; i++) {
-    const Contact& ci = contacts[block[i]];
-    Local2 affine = law_velocity(ci, velocity[ci.body_a], velocity[ci.body_b]);
-    for (std::size_t j = 0; j < m; j++) {
-      const Local2 pj = contacts[block[j]].impulse;
-      const double wnn = w.at(w.nn, i, j), wnt = w.at(w.nt, i, j), wtn = w.at(w.tn, i, j), wtt = w.at(w.tt, i, j);
-      affine.n -= wnn * pj.n + wnt * pj.t;
-      affine.t -= wtn * pj.n + wtt * pj.t;
-      cell(i, j) = wnn, cell(i, m + j) = wnt, cell(i, 2 * m + j) = -wnt;
-      cell(m + i, j) = wtn, cell(m + i, m + j) = wtt, cell(m + i, 2 * m + j) = -wtt;
-      cell(2 * m + i, j) = -wtn, cell(2 * m + i, m + j) = -wtt, cell(2 * m + i, 2 * m + j) = wtt;
-    }
-    const double rho_n = proximal * ci.delassus.nn, rho_t = proximal * ci.delassus.tt;
-    affine.n -= rho_n * ci.impulse.n;
-    affine.t -= rho_t * ci.impulse.t;
-    cell(i, i) += rho_n;
-    cell(m + i, m + i) += rho_t, cell(m + i, 2 * m + i) -= rho_t;
-    cell(2 * m + i, m + i) -= rho_t, cell(2 * m + i, 2 * m + i) += rho_t;
-    cell(m + i, 3 * m + i) = 1.0;
-    cell(2 * m + i, 3 * m + i) = 1.0;
-    cell(3 * m + i, i) = ci.mu, cell(3 * m + i, m + i) = -1.0, cell(3 * m + i, 2 * m + i) = -1.0;
-    q[i] = affine.n, q[m + i] = affine.t, q[2 * m + i] = -affine.t;
-  }
-  std::vector<double> z;
-  const LemkeResult lemke = solve_lcp_lemke(M, q, z, static_cast<int>(10 * n + 100));
-  pivots += lemke.pivots;
-  if (!lemke.solved) return false;
-  std::vector<Local2> answer(m);
+  const BlockProblem problem = block_problem(contacts, velocity, block);
+  const std::size_t m = block.size();
+  std::vector<Local2> answer;
+  if (!solved_by_states(contacts, block, problem, answer) && !solved_by_lemke(problem, answer, pivots)) return false;
   const double limit = largest_impulse_growth * cluster_scale(contacts, velocity, block);
-  for (std::size_t i = 0; i < m; i++)
-    answer[i] = on_cone(z[i], std::max(z[m + i], 0.0) - std::max(z[2 * m + i], 0.0), contacts[block[i]].mu);
+  for (std::size_t i = 0; i < m; i++) answer[i] = on_cone(answer[i].n, answer[i].t, contacts[block[i]].mu);
   for (const Local2& p : answer)
     if (!(impulse_size(p) <= limit)) return false;
   for (std::size_t i = 0; i < m; i++) {

@@ -8,8 +8,9 @@
 // two sides p_t = p_+ - p_-, and the sliding speed s:
 //   u_n >= 0 ⊥ p_n >= 0,   s + u_t >= 0 ⊥ p_+ >= 0,   s - u_t >= 0 ⊥ p_- >= 0,
 //   mu p_n - p_+ - p_- >= 0 ⊥ s >= 0,
-// with u the law velocity (cd::law_velocity), affine in the block's impulses. Lemke's method
-// (cd/lemke.h) solves it.
+// with u the law velocity (cd::law_velocity), affine in the block's impulses. The contacts'
+// states from the sweeps' iterate mostly fix its answer (cd/friction_states.h); Lemke's method
+// (cd/lemke.h) solves what they do not.
 #pragma once
 
 #include <cstddef>
@@ -24,6 +25,15 @@ struct BlockSolve {
   int unsolved = 0;  // clusters left on a ray, at the pivot cap or refused (their impulses kept)
   int pivots = 0;
 };
+
+// A block's complementarity problem (above), the law acting on u + rho (p - p_k) (solve_block):
+// M 4m x 4m row-major over (p_n, p_+, p_-, s) of its m contacts in block order, q the law
+// velocities at zero block impulses (u_n, u_t, -u_t, 0), and the contacts' frictions.
+struct BlockProblem {
+  std::vector<double> M, q, mu;
+};
+BlockProblem block_problem(const std::vector<Contact>& contacts, const std::vector<BodyVelocity>& velocity,
+                           const std::vector<int>& block);
 
 // Solves the block's contacts (indices into `contacts`) with every other impulse frozen, and
 // applies the change of their impulses to `velocity`. The law acts on u + rho (p - p_k), with p_k

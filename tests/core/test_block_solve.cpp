@@ -4,10 +4,12 @@
 // block solves converging where forced stalls interrupt it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "cd/block_solve.h"
+#include "cd/friction_states.h"
 #include "cd/lemke.h"
 #include "cd/problem_file.h"
 #include "pile.h"
@@ -111,6 +113,47 @@ TEST(BlockSolve, TheWholePileAgreesWithGaussSeidelConvergedToRoundOff)
     EXPECT_NEAR(exact.bodies.velocity[b].spin, swept.bodies.velocity[b].spin, 1e-8) << "body " << b;
   }
   for (const cd::Contact& c : exact.contacts) EXPECT_LT(law_residual(c, exact.bodies.velocity), 1e-12);
+}
+
+TEST(FrictionStates, StateOfAnImpulse)
+{
+  EXPECT_EQ(cd::state_of({0.0, 0.0}, 2.0), cd::FrictionState::open);
+  EXPECT_EQ(cd::state_of({-1e-9, 0.0}, 2.0), cd::FrictionState::open);
+  EXPECT_EQ(cd::state_of({1.0, 1.9}, 2.0), cd::FrictionState::stick);
+  EXPECT_EQ(cd::state_of({1.0, 2.0}, 2.0), cd::FrictionState::slide_positive);
+  EXPECT_EQ(cd::state_of({1.0, -2.0}, 2.0), cd::FrictionState::slide_negative);
+}
+
+// The pile at mu 0.5 and 2, its contacts as one block after 20 sweeps from zero: solved by the
+// contacts' states from those the sweeps left, the answer Lemke finds to 1e-9 of the impulses'
+// scale; from every contact guessed open the states still end (closing contacts slide against
+// their tangential velocity).
+TEST(FrictionStates, AgreeWithLemkeOnThePilesBlock)
+{
+  for (const double mu : {0.5, 2.0}) {
+    Pile pile = make_pile(mu, mu);
+    cd::apply_impulses(pile.contacts, pile.bodies.velocity);
+    cd::SolverSettings twenty;
+    twenty.max_iterations = 20;
+    cd::solve_gauss_seidel(pile.contacts, pile.bodies.velocity, twenty);
+    const std::vector<int> block = all_of(pile.contacts);
+    const cd::BlockProblem problem = cd::block_problem(pile.contacts, pile.bodies.velocity, block);
+    std::vector<double> z;
+    ASSERT_TRUE(cd::solve_lcp_lemke(problem.M, problem.q, z, 10000).solved);
+    const std::size_t m = block.size();
+    double scale = 0.0;
+    for (std::size_t i = 0; i < m; i++) scale = std::max(scale, z[i]);
+    std::vector<cd::FrictionState> swept(m), open(m, cd::FrictionState::open);
+    for (std::size_t i = 0; i < m; i++) swept[i] = cd::state_of(pile.contacts[i].impulse, mu);
+    for (const auto& guess : {swept, open}) {
+      const cd::StatesSolve by_states = cd::solve_by_states(problem.M, problem.q, problem.mu, guess, 50);
+      ASSERT_TRUE(by_states.solved) << "mu " << mu;
+      for (std::size_t i = 0; i < m; i++) {
+        EXPECT_NEAR(by_states.answer[i].n, z[i], 1e-9 * scale) << "mu " << mu << " contact " << i;
+        EXPECT_NEAR(by_states.answer[i].t, z[m + i] - z[2 * m + i], 1e-9 * scale) << "mu " << mu << " contact " << i;
+      }
+    }
+  }
 }
 
 // A block of every other contact at mu 2, solved (four proximal steps): its contacts meet the law
@@ -269,17 +312,18 @@ TEST(BlockSolve, AnswersLieOnTheCone)
   EXPECT_GT(solved, 1000);
 }
 
-// The same step at tolerance 1e-4, every sweep full: blocks solved only at stalls are undone by
-// the sweeps between them and the solve stays at the cap of 1e4; with the kept block solved again
-// every 25 sweeps it converges in 1 963 sweeps (doc/stalls.md). With the deck's cycles of 8 it
-// converges in 5 340 (and the stalls' blocks alone in 4 379).
+// A step of the mu 2, 30 degree corpus run (4 529 contacts; tests/data/kept_block_mu2_30deg_1e-4.cdp)
+// at tolerance 1e-4, every sweep full: blocks solved only at stalls are undone by the sweeps
+// between them and the solve stays at the cap of 1e4 (99 block solves, the residual left in 5
+// contacts); with the kept block solved again every 25 sweeps it converges in 760 sweeps, with the
+// deck's cycles of 8 in 977 (doc/stalls.md).
 TEST(StallRescue, AKeptBlockConvergesAStepThatStallBlocksAloneDoNot)
 {
   const auto solve = [&](int full_sweep_every, int stall_block_every) {
     cd::SolverSettings settings = chute_deck(1e-4);
     settings.full_sweep_every = full_sweep_every;
     settings.stall_block_every = stall_block_every;
-    return solve_saved_step(relaxed_plateau_step, settings);
+    return solve_saved_step(CD_TEST_DATA "/kept_block_mu2_30deg_1e-4.cdp", settings);
   };
   const cd::SolveReport kept = solve(1, 25);
   EXPECT_TRUE(kept.converged) << kept.iterations << " sweeps";

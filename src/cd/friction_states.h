@@ -1,0 +1,38 @@
+// An exact solve of a block's 2D Coulomb–Signorini problem by its contacts' states, the fast
+// path of the block solve (cd/block_solve.h), which falls back on Lemke's method when it does
+// not end. Each contact is guessed open, sticking, or sliding one way or the other; the guess
+// fixes a linear system (u_n = 0 where closed, u_t = 0 where sticking, p_t = ±mu p_n where
+// sliding, p = 0 where open), whose answer is checked against the law: an open contact that
+// would close, a closed one pulling (p_n < 0), a sticking one outside the cone, a sliding one
+// moving against its friction change state, and the system is solved again. From
+// the state the sweeps left, a few dense solves of the closed contacts' impulses end it, against
+// Lemke's path of O(n) pivots over its whole complementarity tableau. It proves nothing when it
+// does not end: the state changes may cycle.
+#pragma once
+
+#include <vector>
+
+#include "cd/contact.h"
+
+namespace cd {
+
+enum class FrictionState { open, stick, slide_positive, slide_negative };  // sliding: p_t = +mu p_n or -mu p_n
+
+// The state of an impulse: open at p_n <= 0, sliding on the cone's edge (to 1e-9), else sticking.
+FrictionState state_of(Local2 impulse, double mu);
+
+struct StatesSolve {
+  bool solved = false;
+  int solves = 0;              // dense systems solved
+  std::vector<Local2> answer;  // the block's impulses, when solved
+};
+
+// The block's problem in the layout of its complementarity problem (cd/block_solve.cpp): M is
+// 4m x 4m row-major over (p_n, p_+, p_-, s), q the law velocity at zero block impulses in its
+// first 2m entries (u_n, u_t); mu per contact. Every contact in a wrong state changes at once
+// until three solves in a row bring no fewer such contacts, then one at a time (a different one
+// each solve). Stops unsolved after max_solves systems or at a singular one.
+StatesSolve solve_by_states(const std::vector<double>& M, const std::vector<double>& q, const std::vector<double>& mu,
+                            std::vector<FrictionState> states, int max_solves);
+
+}  // namespace cd
