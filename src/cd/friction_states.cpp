@@ -83,7 +83,7 @@ bool impulses_of_states(const Response& w, const std::vector<double>& mu, const 
     if (states[i] == FrictionState::stick) tangent[i] = static_cast<std::ptrdiff_t>(k++);
   }
   std::vector<double> A(k * k, 0.0), b(k, 0.0);
-  // Row `row` of the system: the velocity component u_i (by `along`) = 0.
+  // Row `row` of the system: contact i's normal (or tangential) velocity = 0.
   const auto fill_row = [&](std::size_t row, std::size_t i, bool tangential) {
     b[row] = -(tangential ? w.q[m + i] : w.q[i]);
     for (std::size_t j = 0; j < m; j++) {
@@ -133,6 +133,15 @@ FrictionState checked_state(FrictionState state, Local2 p, Local2 u, double mu, 
   }
 }
 
+// The velocities a solve of the states' system leaves: u_n = 0 where closed, u_t = 0 where
+// sticking, to `floor`; an ill-conditioned system that misses them is no answer.
+bool meets_its_equations(FrictionState state, Local2 u, double floor)
+{
+  if (state == FrictionState::open) return true;
+  if (!(std::fabs(u.n) <= floor)) return false;
+  return state != FrictionState::stick || std::fabs(u.t) <= floor;
+}
+
 }  // namespace
 
 FrictionState state_of(Local2 impulse, double mu)
@@ -147,7 +156,8 @@ FrictionState state_of(Local2 impulse, double mu)
 StatesSolve solve_by_states(const std::vector<double>& M, const std::vector<double>& q, const std::vector<double>& mu,
                             std::vector<FrictionState> states, int max_solves)
 {
-  constexpr int patience = 3;  // solves without fewer contacts in a wrong state
+  constexpr int patience = 3;           // solves without fewer contacts in a wrong state
+  constexpr double solve_floor = 1e-8;  // of the velocities' scale: the system's equations met
   const std::size_t m = mu.size();
   const Response w{M, q, m};
   double u_scale = 0.0;
@@ -165,7 +175,9 @@ StatesSolve solve_by_states(const std::vector<double>& M, const std::vector<doub
     std::size_t wrong = 0;
     std::vector<FrictionState> next(states);
     for (std::size_t i = 0; i < m; i++) {
-      next[i] = checked_state(states[i], p[i], w.velocity(i, p), mu[i], p_floor, u_floor);
+      const Local2 u = w.velocity(i, p);
+      if (!meets_its_equations(states[i], u, solve_floor * u_scale)) return result;
+      next[i] = checked_state(states[i], p[i], u, mu[i], p_floor, u_floor);
       wrong += next[i] != states[i];
     }
     if (wrong == 0) {

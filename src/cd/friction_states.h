@@ -31,7 +31,8 @@ struct StatesSolve {
 // 4m x 4m row-major over (p_n, p_+, p_-, s), q the law velocity at zero block impulses in its
 // first 2m entries (u_n, u_t); mu per contact. Every contact in a wrong state changes at once
 // until three solves in a row bring no fewer such contacts, then one at a time (a different one
-// each solve). Stops unsolved after max_solves systems or at a singular one.
+// each solve). Stops unsolved after max_solves systems, at a singular one, or at one whose answer
+// misses its own equations by more than 1e-8 of the velocities' scale.
 StatesSolve solve_by_states(const std::vector<double>& M, const std::vector<double>& q, const std::vector<double>& mu,
                             std::vector<FrictionState> states, int max_solves);
 
