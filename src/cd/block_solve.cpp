@@ -153,10 +153,12 @@ double cluster_scale(const std::vector<Contact>& contacts, const std::vector<Bod
 bool solved_by_states(const std::vector<Contact>& contacts, const std::vector<int>& block, const BlockProblem& problem,
                       std::vector<Local2>& answer)
 {
-  constexpr int max_solves = 12;
+  constexpr int max_solves = 12, max_rounds = 4;
   std::vector<FrictionState> states(block.size());
   for (std::size_t i = 0; i < block.size(); i++) states[i] = state_of(contacts[block[i]].impulse, problem.mu[i]);
   StatesSolve solve = solve_by_states(problem.M, problem.q, problem.mu, std::move(states), max_solves);
+  if (!solve.solved && std::find(solve.changed.begin(), solve.changed.end(), true) != solve.changed.end())
+    solve = solve_cycling_by_lemke(problem.M, problem.q, problem.mu, solve.states, solve.changed, max_rounds);
   if (solve.solved) answer = std::move(solve.answer);
   return solve.solved;
 }
@@ -257,10 +259,10 @@ std::vector<int> residual_carriers(const std::vector<Contact>& contacts, const s
   return carriers;
 }
 
-int block_budget(int stall_window, std::size_t contact_count, int seeds)
+int block_budget(int sweeps, std::size_t contact_count, int seeds)
 {
   constexpr int largest_block = 200;
-  const double work_budget = std::cbrt(static_cast<double>(stall_window) * static_cast<double>(contact_count));
+  const double work_budget = std::cbrt(static_cast<double>(sweeps) * static_cast<double>(contact_count));
   return std::clamp(static_cast<int>(work_budget), seeds, std::max(seeds, largest_block));
 }
 

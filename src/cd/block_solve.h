@@ -51,13 +51,13 @@ BlockSolve solve_block(std::vector<Contact>& contacts, std::vector<BodyVelocity>
 std::vector<int> residual_carriers(const std::vector<Contact>& contacts, const std::vector<BodyVelocity>& velocity,
                                    double share, int max_count);
 
-// The most contacts a rescue's block may hold in a solve of `contact_count` contacts whose stall
-// window is `stall_window` sweeps: Lemke's work on a block of m contacts (about 50 ns m^3 on the
-// chute's trapped steps) stays within that of the window's sweeps (about 50 ns per contact and
-// sweep), (stall_window contact_count)^(1/3), at least `seeds` and at most 200 (the dense
-// tableau's memory). A chute of 4 800 contacts gets 78; a rank's 190 contacts of a 2-rank cell
-// 26, where blocks of up to 200 made the run 1.8 times slower (doc/stalls.md).
-int block_budget(int stall_window, std::size_t contact_count, int seeds);
+// The most contacts a rescue's block may hold in a solve of `contact_count` contacts after
+// `sweeps` sweeps (the stall window and those since the first stall): Lemke's work on a block of
+// m contacts (about 50 ns m^3 on the chute's trapped steps, the worst case of the exact solve)
+// stays within that of the sweeps (about 50 ns per contact and sweep), (sweeps contact_count)^(1/3),
+// at least `seeds` and at most 200 (the dense tableau's memory). At the first stall a chute of
+// 4 800 contacts gets 78, a rank's 190 contacts of a 2-rank cell 26 (doc/stalls.md).
+int block_budget(int sweeps, std::size_t contact_count, int seeds);
 
 // The block around `seeds` (indices into `contacts`): the seeds and every contact reached from
 // them through `hops` shared bodies (the world, body 0, links nothing), at most `max_size`

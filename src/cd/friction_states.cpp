@@ -6,40 +6,43 @@
 #include <cstddef>
 #include <utility>
 
+#include "cd/lemke.h"
+
 namespace cd {
 
 namespace {
 
-// Solves A x = b (A k x k, row-major, overwritten; x in b) by LU with partial pivoting; false if
-// a pivot falls below 1e-13 of A's largest entry.
-bool solve_dense(std::vector<double>& A, std::vector<double>& b, std::size_t k)
+// Solves A X = B (A k x k, B k x r, row-major; A overwritten, X in B) by LU with partial
+// pivoting; false if a pivot falls below 1e-13 of A's largest entry.
+bool solve_dense(std::vector<double>& A, std::vector<double>& B, std::size_t k, std::size_t r = 1)
 {
   double largest = 0.0;
   for (const double a : A) largest = std::max(largest, std::fabs(a));
   const double singular = 1e-13 * largest;
   for (std::size_t col = 0; col < k; col++) {
     std::size_t pivot = col;
-    for (std::size_t r = col + 1; r < k; r++)
-      if (std::fabs(A[r * k + col]) > std::fabs(A[pivot * k + col])) pivot = r;
+    for (std::size_t row = col + 1; row < k; row++)
+      if (std::fabs(A[row * k + col]) > std::fabs(A[pivot * k + col])) pivot = row;
     if (!(std::fabs(A[pivot * k + col]) > singular)) return false;
     if (pivot != col) {
       for (std::size_t c = 0; c < k; c++) std::swap(A[pivot * k + c], A[col * k + c]);
-      std::swap(b[pivot], b[col]);
+      for (std::size_t c = 0; c < r; c++) std::swap(B[pivot * r + c], B[col * r + c]);
     }
     const double* top = &A[col * k];
-    for (std::size_t r = col + 1; r < k; r++) {
-      double* row = &A[r * k];
-      const double factor = row[col] / top[col];
+    for (std::size_t row = col + 1; row < k; row++) {
+      double* below = &A[row * k];
+      const double factor = below[col] / top[col];
       if (factor == 0.0) continue;
-      for (std::size_t c = col + 1; c < k; c++) row[c] -= factor * top[c];
-      b[r] -= factor * b[col];
+      for (std::size_t c = col + 1; c < k; c++) below[c] -= factor * top[c];
+      for (std::size_t c = 0; c < r; c++) B[row * r + c] -= factor * B[col * r + c];
     }
   }
-  for (std::size_t col = k; col-- > 0;) {
-    double sum = b[col];
-    for (std::size_t c = col + 1; c < k; c++) sum -= A[col * k + c] * b[c];
-    b[col] = sum / A[col * k + col];
-  }
+  for (std::size_t col = k; col-- > 0;)
+    for (std::size_t c = 0; c < r; c++) {
+      double sum = B[col * r + c];
+      for (std::size_t j = col + 1; j < k; j++) sum -= A[col * k + j] * B[j * r + c];
+      B[col * r + c] = sum / A[col * k + col];
+    }
   return true;
 }
 
@@ -69,45 +72,67 @@ double slide_sign(FrictionState state)
   return state == FrictionState::slide_positive ? 1.0 : -1.0;
 }
 
-// The impulses the states fix: unknowns p_n of the closed contacts and p_t of the sticking
-// ones; false if their system is singular.
+// The unknowns the states of the held contacts fix: p_n of each closed one, p_t of each sticking
+// one (a sliding one's p_t is ±mu p_n); -1 where a contact has none.
+struct HeldUnknowns {
+  std::vector<std::ptrdiff_t> normal, tangent;
+  std::size_t count = 0;
+
+  HeldUnknowns(const std::vector<FrictionState>& states, const std::vector<bool>& held)
+      : normal(states.size(), -1), tangent(states.size(), -1)
+  {
+    for (std::size_t i = 0; i < states.size(); i++) {
+      if (!held[i] || states[i] == FrictionState::open) continue;
+      normal[i] = static_cast<std::ptrdiff_t>(count++);
+      if (states[i] == FrictionState::stick) tangent[i] = static_cast<std::ptrdiff_t>(count++);
+    }
+  }
+  // Adds to `row` (count entries) what each unknown does to contact i's normal (or tangential)
+  // velocity.
+  void add_response(const Response& w, const std::vector<double>& mu, const std::vector<FrictionState>& states,
+                    std::size_t i, bool tangential, double* row) const
+  {
+    for (std::size_t j = 0; j < normal.size(); j++) {
+      if (normal[j] < 0) continue;
+      const double by_n = tangential ? w.tn(i, j) : w.nn(i, j), by_t = tangential ? w.tt(i, j) : w.nt(i, j);
+      if (tangent[j] >= 0) {
+        row[normal[j]] += by_n;
+        row[tangent[j]] += by_t;
+      } else {
+        row[normal[j]] += by_n + by_t * slide_sign(states[j]) * mu[j];
+      }
+    }
+  }
+  // The held contacts' impulses from the unknowns x.
+  void impulses(const std::vector<FrictionState>& states, const std::vector<double>& mu, const double* x,
+                std::vector<Local2>& p) const
+  {
+    for (std::size_t i = 0; i < normal.size(); i++) {
+      if (normal[i] < 0) continue;
+      p[i].n = x[normal[i]];
+      p[i].t = tangent[i] >= 0 ? x[tangent[i]] : slide_sign(states[i]) * mu[i] * p[i].n;
+    }
+  }
+};
+
+// The impulses the states fix (every contact held); false if their system is singular.
 bool impulses_of_states(const Response& w, const std::vector<double>& mu, const std::vector<FrictionState>& states,
                         std::vector<Local2>& p)
 {
   const std::size_t m = w.m;
-  std::vector<std::ptrdiff_t> normal(m, -1), tangent(m, -1);
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < m; i++) {
-    if (states[i] == FrictionState::open) continue;
-    normal[i] = static_cast<std::ptrdiff_t>(k++);
-    if (states[i] == FrictionState::stick) tangent[i] = static_cast<std::ptrdiff_t>(k++);
-  }
+  const HeldUnknowns unknowns(states, std::vector<bool>(m, true));
+  const std::size_t k = unknowns.count;
   std::vector<double> A(k * k, 0.0), b(k, 0.0);
-  // Row `row` of the system: contact i's normal (or tangential) velocity = 0.
-  const auto fill_row = [&](std::size_t row, std::size_t i, bool tangential) {
-    b[row] = -(tangential ? w.q[m + i] : w.q[i]);
-    for (std::size_t j = 0; j < m; j++) {
-      if (normal[j] < 0) continue;
-      const double by_n = tangential ? w.tn(i, j) : w.nn(i, j), by_t = tangential ? w.tt(i, j) : w.nt(i, j);
-      if (tangent[j] >= 0) {
-        A[row * k + static_cast<std::size_t>(normal[j])] += by_n;
-        A[row * k + static_cast<std::size_t>(tangent[j])] += by_t;
-      } else {
-        A[row * k + static_cast<std::size_t>(normal[j])] += by_n + by_t * slide_sign(states[j]) * mu[j];
-      }
+  for (std::size_t i = 0; i < m; i++)
+    for (const bool tangential : {false, true}) {
+      const std::ptrdiff_t row = tangential ? unknowns.tangent[i] : unknowns.normal[i];
+      if (row < 0) continue;
+      b[static_cast<std::size_t>(row)] = -(tangential ? w.q[m + i] : w.q[i]);
+      unknowns.add_response(w, mu, states, i, tangential, &A[static_cast<std::size_t>(row) * k]);
     }
-  };
-  for (std::size_t i = 0; i < m; i++) {
-    if (normal[i] >= 0) fill_row(static_cast<std::size_t>(normal[i]), i, false);
-    if (tangent[i] >= 0) fill_row(static_cast<std::size_t>(tangent[i]), i, true);
-  }
   if (!solve_dense(A, b, k)) return false;
   p.assign(m, Local2{});
-  for (std::size_t i = 0; i < m; i++) {
-    if (normal[i] < 0) continue;
-    p[i].n = b[static_cast<std::size_t>(normal[i])];
-    p[i].t = tangent[i] >= 0 ? b[static_cast<std::size_t>(tangent[i])] : slide_sign(states[i]) * mu[i] * p[i].n;
-  }
+  unknowns.impulses(states, mu, b.data(), p);
   return true;
 }
 
@@ -163,11 +188,13 @@ StatesSolve solve_by_states(const std::vector<double>& M, const std::vector<doub
   double u_scale = 0.0;
   for (std::size_t i = 0; i < 2 * m; i++) u_scale = std::max(u_scale, std::fabs(q[i]));
   StatesSolve result;
+  result.changed.assign(m, false);
   std::size_t fewest = m + 1;
   int without_progress = 0;
   std::vector<Local2> p;
   while (result.solves < max_solves) {
     ++result.solves;
+    result.states = states;
     if (!impulses_of_states(w, mu, states, p)) return result;
     double p_scale = 0.0;
     for (const Local2& pi : p) p_scale = std::max({p_scale, std::fabs(pi.n), std::fabs(pi.t)});
@@ -179,6 +206,7 @@ StatesSolve solve_by_states(const std::vector<double>& M, const std::vector<doub
       if (!meets_its_equations(states[i], u, solve_floor * u_scale)) return result;
       next[i] = checked_state(states[i], p[i], u, mu[i], p_floor, u_floor);
       wrong += next[i] != states[i];
+      if (next[i] != states[i]) result.changed[i] = true;
     }
     if (wrong == 0) {
       result.solved = true;
@@ -197,6 +225,127 @@ StatesSolve solve_by_states(const std::vector<double>& M, const std::vector<doub
       if (next[i] != states[i]) changed.push_back(i);
     const std::size_t pick = changed[static_cast<std::size_t>(result.solves * 7919) % changed.size()];
     states[pick] = next[pick];
+  }
+  return result;
+}
+
+namespace {
+
+// The LCP of the layout of cd/block_solve.h from a response u = u0 + W p over c contacts: W
+// 2c x 2c row-major over (p_n of each contact, then p_t of each), u0 2c.
+void complementarity_problem(const std::vector<double>& W, const std::vector<double>& u0, const std::vector<double>& mu,
+                             std::vector<double>& M, std::vector<double>& q)
+{
+  const std::size_t c = mu.size(), n = 4 * c;
+  M.assign(n * n, 0.0);
+  q.assign(n, 0.0);
+  const auto cell = [&](std::size_t row, std::size_t column) -> double& { return M[row * n + column]; };
+  const auto response = [&](std::size_t row, std::size_t column) { return W[row * 2 * c + column]; };
+  for (std::size_t i = 0; i < c; i++) {
+    for (std::size_t j = 0; j < c; j++) {
+      const double wnn = response(i, j), wnt = response(i, c + j);
+      const double wtn = response(c + i, j), wtt = response(c + i, c + j);
+      cell(i, j) = wnn, cell(i, c + j) = wnt, cell(i, 2 * c + j) = -wnt;
+      cell(c + i, j) = wtn, cell(c + i, c + j) = wtt, cell(c + i, 2 * c + j) = -wtt;
+      cell(2 * c + i, j) = -wtn, cell(2 * c + i, c + j) = -wtt, cell(2 * c + i, 2 * c + j) = wtt;
+    }
+    cell(c + i, 3 * c + i) = 1.0;
+    cell(2 * c + i, 3 * c + i) = 1.0;
+    cell(3 * c + i, i) = mu[i], cell(3 * c + i, c + i) = -1.0, cell(3 * c + i, 2 * c + i) = -1.0;
+    q[i] = u0[i], q[c + i] = u0[c + i], q[2 * c + i] = -u0[c + i];
+  }
+}
+
+}  // namespace
+
+StatesSolve solve_cycling_by_lemke(const std::vector<double>& M, const std::vector<double>& q,
+                                   const std::vector<double>& mu, const std::vector<FrictionState>& states,
+                                   std::vector<bool> cycling, int max_rounds)
+{
+  const std::size_t m = mu.size();
+  const Response w{M, q, m};
+  double u_scale = 0.0;
+  for (std::size_t i = 0; i < 2 * m; i++) u_scale = std::max(u_scale, std::fabs(q[i]));
+  StatesSolve result;
+  result.states = states;
+  for (int round = 0; round < max_rounds; round++) {
+    ++result.solves;
+    std::vector<std::size_t> free;  // the cycling contacts, in order
+    std::vector<bool> held(m);
+    for (std::size_t i = 0; i < m; i++) {
+      held[i] = !cycling[i];
+      if (cycling[i]) free.push_back(i);
+    }
+    const std::size_t c = free.size(), columns = 1 + 2 * c;
+    const HeldUnknowns unknowns(states, held);
+    const std::size_t k = unknowns.count;
+    // The held unknowns as affine in the free impulses: X = X_0 + sum over free (p_n, p_t) X_a.
+    std::vector<double> A(k * k, 0.0), X(k * columns, 0.0);
+    for (std::size_t i = 0; i < m; i++)
+      for (const bool tangential : {false, true}) {
+        const std::ptrdiff_t at = tangential ? unknowns.tangent[i] : unknowns.normal[i];
+        if (at < 0) continue;
+        const std::size_t row = static_cast<std::size_t>(at);
+        unknowns.add_response(w, mu, states, i, tangential, &A[row * k]);
+        X[row * columns] = -(tangential ? w.q[m + i] : w.q[i]);
+        for (std::size_t a = 0; a < c; a++) {
+          X[row * columns + 1 + a] = -(tangential ? w.tn(i, free[a]) : w.nn(i, free[a]));
+          X[row * columns + 1 + c + a] = -(tangential ? w.tt(i, free[a]) : w.nt(i, free[a]));
+        }
+      }
+    if (!solve_dense(A, X, k, columns)) return result;
+    // The free contacts' response with the held ones following: u0 and W over (p_n..., p_t...).
+    std::vector<double> u0(2 * c), W(4 * c * c), along(k);
+    for (std::size_t b = 0; b < 2 * c; b++) {
+      const std::size_t i = free[b % c];
+      const bool tangential = b >= c;
+      std::fill(along.begin(), along.end(), 0.0);
+      unknowns.add_response(w, mu, states, i, tangential, along.data());
+      for (std::size_t col = 0; col < columns; col++) {
+        double sum = 0.0;
+        for (std::size_t v = 0; v < k; v++) sum += along[v] * X[v * columns + col];
+        if (col == 0) {
+          u0[b] = (tangential ? w.q[m + i] : w.q[i]) + sum;
+          continue;
+        }
+        const std::size_t a = (col - 1) % c;
+        const bool by_tangential = col - 1 >= c;
+        const double direct = tangential ? (by_tangential ? w.tt(i, free[a]) : w.tn(i, free[a]))
+                                         : (by_tangential ? w.nt(i, free[a]) : w.nn(i, free[a]));
+        W[b * 2 * c + (col - 1)] = direct + sum;
+      }
+    }
+    std::vector<double> free_mu(c), lcp_M, lcp_q, z;
+    for (std::size_t a = 0; a < c; a++) free_mu[a] = mu[free[a]];
+    complementarity_problem(W, u0, free_mu, lcp_M, lcp_q);
+    if (!solve_lcp_lemke(lcp_M, lcp_q, z, static_cast<int>(40 * c + 100)).solved) return result;
+    std::vector<Local2> p(m);
+    std::vector<double> free_p(columns, 1.0), x(k, 0.0);
+    for (std::size_t a = 0; a < c; a++) {
+      p[free[a]] = {z[a], std::max(z[c + a], 0.0) - std::max(z[2 * c + a], 0.0)};
+      free_p[1 + a] = p[free[a]].n;
+      free_p[1 + c + a] = p[free[a]].t;
+    }
+    for (std::size_t v = 0; v < k; v++)
+      for (std::size_t col = 0; col < columns; col++) x[v] += X[v * columns + col] * free_p[col];
+    unknowns.impulses(states, mu, x.data(), p);
+    double p_scale = 0.0;
+    for (const Local2& pi : p) p_scale = std::max({p_scale, std::fabs(pi.n), std::fabs(pi.t)});
+    bool held_hold = true;
+    for (std::size_t i = 0; i < m; i++) {
+      if (cycling[i]) continue;
+      const Local2 u = w.velocity(i, p);
+      if (!meets_its_equations(states[i], u, 1e-8 * u_scale)) return result;
+      if (checked_state(states[i], p[i], u, mu[i], 1e-10 * p_scale, 1e-10 * u_scale) != states[i]) {
+        cycling[i] = true;
+        held_hold = false;
+      }
+    }
+    if (held_hold) {
+      result.solved = true;
+      result.answer = std::move(p);
+      return result;
+    }
   }
   return result;
 }

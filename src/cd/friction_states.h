@@ -23,8 +23,10 @@ FrictionState state_of(Local2 impulse, double mu);
 
 struct StatesSolve {
   bool solved = false;
-  int solves = 0;              // dense systems solved
-  std::vector<Local2> answer;  // the block's impulses, when solved
+  int solves = 0;                     // dense systems solved (rounds, for solve_cycling_by_lemke)
+  std::vector<Local2> answer;         // the block's impulses, when solved
+  std::vector<FrictionState> states;  // the states of the last system
+  std::vector<bool> changed;          // contacts whose state changed on the way (solve_by_states)
 };
 
 // The block's problem in the layout of its complementarity problem (cd/block_solve.cpp): M is
@@ -35,5 +37,13 @@ struct StatesSolve {
 // misses its own equations by more than 1e-8 of the velocities' scale.
 StatesSolve solve_by_states(const std::vector<double>& M, const std::vector<double>& q, const std::vector<double>& mu,
                             std::vector<FrictionState> states, int max_solves);
+
+// Where the states cycle: Lemke's method on the contacts marked `cycling` alone, every other
+// contact held in its state (its impulses follow the cycling ones through the held system, a
+// complementarity problem of the cycling contacts only). Held contacts that then break their
+// state join the cycling ones, for at most max_rounds problems.
+StatesSolve solve_cycling_by_lemke(const std::vector<double>& M, const std::vector<double>& q,
+                                   const std::vector<double>& mu, const std::vector<FrictionState>& states,
+                                   std::vector<bool> cycling, int max_rounds);
 
 }  // namespace cd

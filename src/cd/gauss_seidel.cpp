@@ -430,7 +430,9 @@ class StallRescue {
     if (++stalls_ == 1) relax_unaccelerated(sweeping_.relaxation * sweeping_.stall_relaxation);
     const int hops = std::min(stalls_, sweeping_.stall_block);
     const std::vector<int> seeds = residual_carriers(contacts, velocity, carried_share, max_carriers);
-    const int budget = block_budget(sweeping_.stall_window, contacts.size(), max_carriers);
+    // The budget grows with the sweeps spent since the first stall: a trap that outlasts small
+    // blocks gets larger ones, their cost still within the sweeps' (cd::block_budget).
+    const int budget = block_budget(sweeping_.stall_window + report.stalled_sweeps, contacts.size(), max_carriers);
     const std::vector<int> block = block_around(contacts, static_cast<int>(velocity.size()), seeds, hops, budget);
     keep(block, budget);
     solve_block(contacts, velocity, block);
