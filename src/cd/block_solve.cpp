@@ -78,14 +78,9 @@ BlockProblem block_problem(const std::vector<Contact>& contacts, const std::vect
                            const std::vector<int>& block)
 {
   BlockDelassus w = block_delassus(contacts, block);
-  const std::size_t m = w.m, n = 4 * m;
-  BlockProblem problem;
-  problem.M.assign(n * n, 0.0);
-  problem.q.assign(n, 0.0);
-  problem.mu.resize(m);
-  std::vector<double>& M = problem.M;
-  std::vector<double>& q = problem.q;
-  const auto cell = [&](std::size_t row, std::size_t column) -> double& { return M[row * n + column]; };
+  const std::size_t m = w.m;
+  std::vector<double> W(4 * m * m), u0(2 * m), mu(m);
+  const auto response = [&](std::size_t row, std::size_t column) -> double& { return W[row * 2 * m + column]; };
   for (std::size_t i = 0; i < m; i++) {
     const Contact& ci = contacts[block[i]];
     Local2 affine = law_velocity(ci, velocity[ci.body_a], velocity[ci.body_b]);
@@ -94,23 +89,17 @@ BlockProblem block_problem(const std::vector<Contact>& contacts, const std::vect
       const double wnn = w.at(w.nn, i, j), wnt = w.at(w.nt, i, j), wtn = w.at(w.tn, i, j), wtt = w.at(w.tt, i, j);
       affine.n -= wnn * pj.n + wnt * pj.t;
       affine.t -= wtn * pj.n + wtt * pj.t;
-      cell(i, j) = wnn, cell(i, m + j) = wnt, cell(i, 2 * m + j) = -wnt;
-      cell(m + i, j) = wtn, cell(m + i, m + j) = wtt, cell(m + i, 2 * m + j) = -wtt;
-      cell(2 * m + i, j) = -wtn, cell(2 * m + i, m + j) = -wtt, cell(2 * m + i, 2 * m + j) = wtt;
+      response(i, j) = wnn, response(i, m + j) = wnt, response(m + i, j) = wtn, response(m + i, m + j) = wtt;
     }
     const double rho_n = proximal * ci.delassus.nn, rho_t = proximal * ci.delassus.tt;
     affine.n -= rho_n * ci.impulse.n;
     affine.t -= rho_t * ci.impulse.t;
-    cell(i, i) += rho_n;
-    cell(m + i, m + i) += rho_t, cell(m + i, 2 * m + i) -= rho_t;
-    cell(2 * m + i, m + i) -= rho_t, cell(2 * m + i, 2 * m + i) += rho_t;
-    cell(m + i, 3 * m + i) = 1.0;
-    cell(2 * m + i, 3 * m + i) = 1.0;
-    cell(3 * m + i, i) = ci.mu, cell(3 * m + i, m + i) = -1.0, cell(3 * m + i, 2 * m + i) = -1.0;
-    q[i] = affine.n, q[m + i] = affine.t, q[2 * m + i] = -affine.t;
-    problem.mu[i] = ci.mu;
+    response(i, i) += rho_n;
+    response(m + i, m + i) += rho_t;
+    u0[i] = affine.n, u0[m + i] = affine.t;
+    mu[i] = ci.mu;
   }
-  return problem;
+  return block_lcp(W, u0, mu);
 }
 
 namespace {
@@ -156,9 +145,9 @@ bool solved_by_states(const std::vector<Contact>& contacts, const std::vector<in
   constexpr int max_solves = 12, max_rounds = 4;
   std::vector<FrictionState> states(block.size());
   for (std::size_t i = 0; i < block.size(); i++) states[i] = state_of(contacts[block[i]].impulse, problem.mu[i]);
-  StatesSolve solve = solve_by_states(problem.M, problem.q, problem.mu, std::move(states), max_solves);
+  StatesSolve solve = solve_by_states(problem, std::move(states), max_solves);
   if (!solve.solved && std::find(solve.changed.begin(), solve.changed.end(), true) != solve.changed.end())
-    solve = solve_cycling_by_lemke(problem.M, problem.q, problem.mu, solve.states, solve.changed, max_rounds);
+    solve = solve_cycling_by_lemke(problem, solve.states, solve.changed, max_rounds);
   if (solve.solved) answer = std::move(solve.answer);
   return solve.solved;
 }

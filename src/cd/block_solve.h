@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "cd/block_problem.h"
 #include "cd/contact.h"
 
 namespace cd {
@@ -26,12 +27,8 @@ struct BlockSolve {
   int pivots = 0;
 };
 
-// A block's complementarity problem (above), the law acting on u + rho (p - p_k) (solve_block):
-// M 4m x 4m row-major over (p_n, p_+, p_-, s) of its m contacts in block order, q the law
-// velocities at zero block impulses (u_n, u_t, -u_t, 0), and the contacts' frictions.
-struct BlockProblem {
-  std::vector<double> M, q, mu;
-};
+// A block's complementarity problem (cd/block_problem.h), the law acting on u + rho (p - p_k)
+// (solve_block), its m contacts in block order.
 BlockProblem block_problem(const std::vector<Contact>& contacts, const std::vector<BodyVelocity>& velocity,
                            const std::vector<int>& block);
 

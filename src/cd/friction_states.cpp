@@ -12,6 +12,18 @@ namespace cd {
 
 namespace {
 
+// The floors of the checks, as fractions of the impulses' and the velocities' scales: a solve's
+// answer meets its own equations to equation_floor, and the law to law_floor.
+constexpr double equation_floor = 1e-8;
+constexpr double law_floor = 1e-10;
+
+double impulse_scale(const std::vector<Local2>& p)
+{
+  double scale = 0.0;
+  for (const Local2& pi : p) scale = std::max({scale, std::fabs(pi.n), std::fabs(pi.t)});
+  return scale;
+}
+
 // Solves A X = B (A k x k, B k x r, row-major; A overwritten, X in B) by LU with partial
 // pivoting; false if a pivot falls below 1e-13 of A's largest entry.
 bool solve_dense(std::vector<double>& A, std::vector<double>& B, std::size_t k, std::size_t r = 1)
@@ -56,6 +68,13 @@ struct Response {
   double nt(std::size_t i, std::size_t j) const { return M[i * 4 * m + m + j]; }
   double tn(std::size_t i, std::size_t j) const { return M[(m + i) * 4 * m + j]; }
   double tt(std::size_t i, std::size_t j) const { return M[(m + i) * 4 * m + m + j]; }
+  // The largest |u_n| or |u_t| at zero block impulses.
+  double velocity_scale() const
+  {
+    double scale = 0.0;
+    for (std::size_t i = 0; i < 2 * m; i++) scale = std::max(scale, std::fabs(q[i]));
+    return scale;
+  }
   Local2 velocity(std::size_t i, const std::vector<Local2>& p) const
   {
     Local2 u{q[i], q[m + i]};
@@ -178,15 +197,13 @@ FrictionState state_of(Local2 impulse, double mu)
   return FrictionState::stick;
 }
 
-StatesSolve solve_by_states(const std::vector<double>& M, const std::vector<double>& q, const std::vector<double>& mu,
-                            std::vector<FrictionState> states, int max_solves)
+StatesSolve solve_by_states(const BlockProblem& problem, std::vector<FrictionState> states, int max_solves)
 {
-  constexpr int patience = 3;           // solves without fewer contacts in a wrong state
-  constexpr double solve_floor = 1e-8;  // of the velocities' scale: the system's equations met
+  constexpr int patience = 3;  // solves without fewer contacts in a wrong state
+  const std::vector<double>& mu = problem.mu;
   const std::size_t m = mu.size();
-  const Response w{M, q, m};
-  double u_scale = 0.0;
-  for (std::size_t i = 0; i < 2 * m; i++) u_scale = std::max(u_scale, std::fabs(q[i]));
+  const Response w{problem.M, problem.q, m};
+  const double u_scale = w.velocity_scale();
   StatesSolve result;
   result.changed.assign(m, false);
   std::size_t fewest = m + 1;
@@ -196,14 +213,12 @@ StatesSolve solve_by_states(const std::vector<double>& M, const std::vector<doub
     ++result.solves;
     result.states = states;
     if (!impulses_of_states(w, mu, states, p)) return result;
-    double p_scale = 0.0;
-    for (const Local2& pi : p) p_scale = std::max({p_scale, std::fabs(pi.n), std::fabs(pi.t)});
-    const double p_floor = 1e-10 * p_scale, u_floor = 1e-10 * u_scale;
+    const double p_floor = law_floor * impulse_scale(p), u_floor = law_floor * u_scale;
     std::size_t wrong = 0;
     std::vector<FrictionState> next(states);
     for (std::size_t i = 0; i < m; i++) {
       const Local2 u = w.velocity(i, p);
-      if (!meets_its_equations(states[i], u, solve_floor * u_scale)) return result;
+      if (!meets_its_equations(states[i], u, equation_floor * u_scale)) return result;
       next[i] = checked_state(states[i], p[i], u, mu[i], p_floor, u_floor);
       wrong += next[i] != states[i];
       if (next[i] != states[i]) result.changed[i] = true;
@@ -229,43 +244,13 @@ StatesSolve solve_by_states(const std::vector<double>& M, const std::vector<doub
   return result;
 }
 
-namespace {
-
-// The LCP of the layout of cd/block_solve.h from a response u = u0 + W p over c contacts: W
-// 2c x 2c row-major over (p_n of each contact, then p_t of each), u0 2c.
-void complementarity_problem(const std::vector<double>& W, const std::vector<double>& u0, const std::vector<double>& mu,
-                             std::vector<double>& M, std::vector<double>& q)
-{
-  const std::size_t c = mu.size(), n = 4 * c;
-  M.assign(n * n, 0.0);
-  q.assign(n, 0.0);
-  const auto cell = [&](std::size_t row, std::size_t column) -> double& { return M[row * n + column]; };
-  const auto response = [&](std::size_t row, std::size_t column) { return W[row * 2 * c + column]; };
-  for (std::size_t i = 0; i < c; i++) {
-    for (std::size_t j = 0; j < c; j++) {
-      const double wnn = response(i, j), wnt = response(i, c + j);
-      const double wtn = response(c + i, j), wtt = response(c + i, c + j);
-      cell(i, j) = wnn, cell(i, c + j) = wnt, cell(i, 2 * c + j) = -wnt;
-      cell(c + i, j) = wtn, cell(c + i, c + j) = wtt, cell(c + i, 2 * c + j) = -wtt;
-      cell(2 * c + i, j) = -wtn, cell(2 * c + i, c + j) = -wtt, cell(2 * c + i, 2 * c + j) = wtt;
-    }
-    cell(c + i, 3 * c + i) = 1.0;
-    cell(2 * c + i, 3 * c + i) = 1.0;
-    cell(3 * c + i, i) = mu[i], cell(3 * c + i, c + i) = -1.0, cell(3 * c + i, 2 * c + i) = -1.0;
-    q[i] = u0[i], q[c + i] = u0[c + i], q[2 * c + i] = -u0[c + i];
-  }
-}
-
-}  // namespace
-
-StatesSolve solve_cycling_by_lemke(const std::vector<double>& M, const std::vector<double>& q,
-                                   const std::vector<double>& mu, const std::vector<FrictionState>& states,
+StatesSolve solve_cycling_by_lemke(const BlockProblem& problem, const std::vector<FrictionState>& states,
                                    std::vector<bool> cycling, int max_rounds)
 {
+  const std::vector<double>& mu = problem.mu;
   const std::size_t m = mu.size();
-  const Response w{M, q, m};
-  double u_scale = 0.0;
-  for (std::size_t i = 0; i < 2 * m; i++) u_scale = std::max(u_scale, std::fabs(q[i]));
+  const Response w{problem.M, problem.q, m};
+  const double u_scale = w.velocity_scale();
   StatesSolve result;
   result.states = states;
   for (int round = 0; round < max_rounds; round++) {
@@ -315,10 +300,10 @@ StatesSolve solve_cycling_by_lemke(const std::vector<double>& M, const std::vect
         W[b * 2 * c + (col - 1)] = direct + sum;
       }
     }
-    std::vector<double> free_mu(c), lcp_M, lcp_q, z;
+    std::vector<double> free_mu(c), z;
     for (std::size_t a = 0; a < c; a++) free_mu[a] = mu[free[a]];
-    complementarity_problem(W, u0, free_mu, lcp_M, lcp_q);
-    if (!solve_lcp_lemke(lcp_M, lcp_q, z, static_cast<int>(40 * c + 100)).solved) return result;
+    const BlockProblem reduced = block_lcp(W, u0, free_mu);
+    if (!solve_lcp_lemke(reduced.M, reduced.q, z, static_cast<int>(40 * c + 100)).solved) return result;
     std::vector<Local2> p(m);
     std::vector<double> free_p(columns, 1.0), x(k, 0.0);
     for (std::size_t a = 0; a < c; a++) {
@@ -329,14 +314,13 @@ StatesSolve solve_cycling_by_lemke(const std::vector<double>& M, const std::vect
     for (std::size_t v = 0; v < k; v++)
       for (std::size_t col = 0; col < columns; col++) x[v] += X[v * columns + col] * free_p[col];
     unknowns.impulses(states, mu, x.data(), p);
-    double p_scale = 0.0;
-    for (const Local2& pi : p) p_scale = std::max({p_scale, std::fabs(pi.n), std::fabs(pi.t)});
+    const double p_floor = law_floor * impulse_scale(p), u_floor = law_floor * u_scale;
     bool held_hold = true;
     for (std::size_t i = 0; i < m; i++) {
       if (cycling[i]) continue;
       const Local2 u = w.velocity(i, p);
-      if (!meets_its_equations(states[i], u, 1e-8 * u_scale)) return result;
-      if (checked_state(states[i], p[i], u, mu[i], 1e-10 * p_scale, 1e-10 * u_scale) != states[i]) {
+      if (!meets_its_equations(states[i], u, equation_floor * u_scale)) return result;
+      if (checked_state(states[i], p[i], u, mu[i], p_floor, u_floor) != states[i]) {
         cycling[i] = true;
         held_hold = false;
       }

@@ -12,6 +12,7 @@
 
 #include <vector>
 
+#include "cd/block_problem.h"
 #include "cd/contact.h"
 
 namespace cd {
@@ -29,21 +30,17 @@ struct StatesSolve {
   std::vector<bool> changed;          // contacts whose state changed on the way (solve_by_states)
 };
 
-// The block's problem in the layout of its complementarity problem (cd/block_solve.cpp): M is
-// 4m x 4m row-major over (p_n, p_+, p_-, s), q the law velocity at zero block impulses in its
-// first 2m entries (u_n, u_t); mu per contact. Every contact in a wrong state changes at once
+// The block's problem read from its complementarity problem (cd/block_problem.h). Every contact in a wrong state changes at once
 // until three solves in a row bring no fewer such contacts, then one at a time (a different one
 // each solve). Stops unsolved after max_solves systems, at a singular one, or at one whose answer
 // misses its own equations by more than 1e-8 of the velocities' scale.
-StatesSolve solve_by_states(const std::vector<double>& M, const std::vector<double>& q, const std::vector<double>& mu,
-                            std::vector<FrictionState> states, int max_solves);
+StatesSolve solve_by_states(const BlockProblem& problem, std::vector<FrictionState> states, int max_solves);
 
 // Where the states cycle: Lemke's method on the contacts marked `cycling` alone, every other
 // contact held in its state (its impulses follow the cycling ones through the held system, a
 // complementarity problem of the cycling contacts only). Held contacts that then break their
 // state join the cycling ones, for at most max_rounds problems.
-StatesSolve solve_cycling_by_lemke(const std::vector<double>& M, const std::vector<double>& q,
-                                   const std::vector<double>& mu, const std::vector<FrictionState>& states,
+StatesSolve solve_cycling_by_lemke(const BlockProblem& problem, const std::vector<FrictionState>& states,
                                    std::vector<bool> cycling, int max_rounds);
 
 }  // namespace cd

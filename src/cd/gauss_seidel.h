@@ -58,9 +58,10 @@ struct SolverSettings {
   // 0: each further stall starts the solve again from zero impulses, relaxed by w once more.
   int stall_block = 3;
   // Once a block rescue has begun, its kept block (the union of the stalls' blocks while it fits
-  // cd::block_budget, which grows with the sweeps since the first stall, else the newest) is solved exactly again whenever stall_block_every sweeps
-  // have passed since the last block solve: at mu 2 and tolerance 1e-4 a block solved only at
-  // stalls is undone by the sweeps that follow (doc/stalls.md). 0: blocks at stalls only.
+  // cd::block_budget, which grows with the sweeps since the first stall, else the newest) is
+  // solved exactly again whenever stall_block_every sweeps have passed since the last block solve:
+  // at mu 2 and tolerance 1e-4 a block solved only at stalls is undone by the sweeps that follow
+  // (doc/stalls_tight.md). 0: blocks at stalls only.
   int stall_block_every = 25;
 };
 

@@ -324,6 +324,23 @@ TEST(StallRescue, ACycleSlowerThanTheWindowIsAStall)
   EXPECT_GE(report.block_solves, 1);
 }
 
+// A step of the plane shear at mu 2, phi 0.76, tolerance 1e-4 (1 415 contacts; the fix's
+// defaults) that blocks within the first stall's budget, (100 x 1 415)^(1/3) = 52 contacts, left at
+// the cap of 1e4 (doc/stalls_tight.md): it converges only with a block larger than that, the
+// budget grown with the sweeps spent since the first stall.
+TEST(StallRescue, ABudgetGrowingWithTheSweepsSpentConvergesAStepSmallBlocksDoNot)
+{
+  cd::SolverSettings fix_defaults;
+  fix_defaults.tolerance = 1e-4;
+  fix_defaults.max_iterations = 10000;
+  const char* const step = CD_TEST_DATA "/growing_budget_plane_shear_mu2_1e-4.cdp";
+  const cd::SolveReport report = solve_saved_step(step, fix_defaults);
+  EXPECT_TRUE(report.converged) << report.iterations << " sweeps, norm " << report.residual;
+  const int first_budget = cd::block_budget(fix_defaults.stall_window, cd::read_problem(step).contacts.size(), 16);
+  EXPECT_EQ(first_budget, 52);
+  EXPECT_GT(report.largest_block, first_budget);
+}
+
 // A mu 0.5 step of the 12 d chute cell just after its tilt (1 652 contacts, the deck's sweeps,
 // tolerance 1e-3) whose norm wanders between 1.1e-3 and 2.2e-3 for 2 469 sweeps, 5 to 16
 // contacts switching a sweep, before it converges: over each 1000 sweeps its impulses keep their
@@ -421,8 +438,7 @@ TEST(FrictionStates, SolveATrappedChuteBlock)
   EXPECT_GE(closed, 10u) << "of " << trapped.swept.size();
   EXPECT_EQ(law_breakers(trapped.problem, lemkes_impulses(trapped)), 0u);
   EXPECT_GT(law_breakers(trapped.problem, trapped.impulses), 0u);
-  const cd::StatesSolve solve =
-      cd::solve_by_states(trapped.problem.M, trapped.problem.q, trapped.problem.mu, trapped.swept, 12);
+  const cd::StatesSolve solve = cd::solve_by_states(trapped.problem, trapped.swept, 12);
   ASSERT_TRUE(solve.solved);
   EXPECT_EQ(law_breakers(trapped.problem, solve.answer), 0u);
 }
@@ -450,8 +466,7 @@ TEST(FrictionStates, LemkeOnTheCyclingContactsAloneGivesTheWholeAnswer)
     }
   }
   ASSERT_EQ(held_wrong, 2u);
-  const cd::StatesSolve solve =
-      cd::solve_cycling_by_lemke(trapped.problem.M, trapped.problem.q, trapped.problem.mu, states, cycling, 4);
+  const cd::StatesSolve solve = cd::solve_cycling_by_lemke(trapped.problem, states, cycling, 4);
   ASSERT_TRUE(solve.solved);
   EXPECT_GE(solve.solves, 2);  // the two held ones wrong: a second problem
   EXPECT_EQ(law_breakers(trapped.problem, solve.answer), 0u);
