@@ -42,26 +42,37 @@ constexpr int output_columns = 7;
 // (doc/benchmarks.md).
 constexpr double narrow_subdomain_cutoffs = 2.0;
 
-// Partners of wall contacts in the per-atom store are negative, atom IDs positive.
+// Partners of wall contacts in the per-atom store are negative, atom IDs positive: a line or
+// segment w has three (its interior and ends), region walls follow them (region_wall_partner).
+constexpr int partners_per_line_wall = 3;
 std::int64_t wall_partner(int wall_index, cd::WallPart part)
 {
-  return -(3 * std::int64_t{wall_index} + static_cast<int>(part) + 1);
+  return -(partners_per_line_wall * std::int64_t{wall_index} + static_cast<int>(part) + 1);
 }
 
-// The 1-based wall number of a wall partner.
-int wall_number(std::int64_t partner)
+}  // namespace
+
+std::int64_t FixContactDynamics::region_wall_partner(int wall, int face) const
 {
-  return static_cast<int>((-partner - 1) / 3) + 1;
+  const std::int64_t lines = partners_per_line_wall * std::int64_t(settings.walls.size());
+  return -(lines + std::int64_t{wall} * RegionWalls::faces_per_region + face + 1);
+}
+
+// The 1-based wall number of a wall partner, among all walls in the order given.
+int FixContactDynamics::wall_number(std::int64_t partner) const
+{
+  const std::int64_t slot = -partner - 1;
+  const std::int64_t lines = partners_per_line_wall * std::int64_t(settings.walls.size());
+  if (slot < lines) return settings.wall_numbers[slot / partners_per_line_wall];
+  return settings.region_walls[(slot - lines) / RegionWalls::faces_per_region].number;
 }
 
 // A key's partner for messages: "atom ID" or "wall N".
-std::string partner_name(std::int64_t partner)
+std::string FixContactDynamics::partner_name(std::int64_t partner) const
 {
   if (partner > 0) return fmt::format("atom {}", partner);
   return fmt::format("wall {}", wall_number(partner));
 }
-
-}  // namespace
 
 /* ---------------------------------------------------------------------- */
 
@@ -152,6 +163,7 @@ void FixContactDynamics::init()
   fix_checks::integrators(lmp, *this);
   if (!settings.pair_forces) fix_checks::pair_style(lmp, *this);
   check_alert();
+  region_walls.init();
 
   // Largest radius now or announced by an insertion fix (fix pour, fix deposit).
   double rmax_local = 0.0;
@@ -246,6 +258,7 @@ void FixContactDynamics::setup(int)
   if (settings.disc_density > 0.0) assign_disc_masses();
   survey_group();
   check_subdomains();
+  region_walls.record_start();
   overlaps.warn_initial(sheared_cell.box_now(), mean_diameter);
   obstacles.record_starts(*atom, groupbit);
   run_statistics.clear();
@@ -320,6 +333,7 @@ void FixContactDynamics::final_integrate()
   }
   if (neighbor->ago == 0) check_subdomains();
   place_obstacles();
+  region_walls.begin_step(update->dt, step_parameters().theta);
   sheared_cell.begin_step(step_parameters());
   if (sheared_cell.deforms()) {
     sheared_cell.clear_image_shifts(atom->nlocal + atom->nghost);
@@ -485,6 +499,7 @@ void FixContactDynamics::LammpsHost::collect_pairs(const cd::PairReach& reach, d
   if (!std::isfinite(from_margin)) fix.overlaps.begin_look();
   fix.collect_grain_pairs(reach, from_margin, to_margin, contacts);
   fix.collect_wall_pairs(reach, from_margin, to_margin, contacts);
+  fix.collect_region_wall_pairs(reach, from_margin, to_margin, contacts);
 }
 
 void FixContactDynamics::collect_grain_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
@@ -557,6 +572,29 @@ void FixContactDynamics::collect_wall_pairs(const cd::PairReach& reach, double f
       const cd::PairKey key{i, wall_partner(w, touch->part)};
       contacts.offer(touch->geometry, settings.walls[w].law, key, impulses->carried(key));
     }
+  }
+}
+
+// Region walls stand where the step meets them (RegionWalls::AtSolve); a moving one's surface
+// comes closer in the rest of the step, as a deforming box's images do.
+void FixContactDynamics::collect_region_wall_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
+                                                   cd::StepContacts& contacts)
+{
+  if (settings.region_walls.empty()) return;
+  const RegionWalls::AtSolve at_solve(region_walls);
+  const double advance = step_parameters().advance();
+  double** x = atom->x;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(atom->mask[i] & groupbit)) continue;
+    const cd::Disk disk{x[i][0], x[i][1], atom->radius[i]};
+    const double reach_i = reach.reach(1 + i);
+    for (int w = 0; w < region_walls.count(); w++)
+      for (const RegionWalls::Touch& touch : region_walls.touches(w, 1 + i, disk, reach_i + to_margin, advance)) {
+        if (!reach.wall_in_look(1 + i, touch.geometry.gap, from_margin + touch.approach)) continue;
+        overlaps.watch_region_wall(i, w);
+        const cd::PairKey key{i, region_wall_partner(w, touch.face)};
+        contacts.offer(touch.geometry, region_walls.setting(w).law, key, impulses->carried(key));
+      }
   }
 }
 

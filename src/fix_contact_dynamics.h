@@ -98,7 +98,8 @@ class FixContactDynamics : public Fix {
   cd::SolveReport last_report;
   cd::SolveStatistics run_statistics;                               // this run's steps, reported at its end (post_run)
   ContactStressGauge contact_stress{lmp};                           // outputs 13-16, the virial
-  OverlapGauge overlaps{lmp, settings.walls};                       // outputs 5 and 6, the warning at a run's start
+  RegionWalls region_walls{lmp, settings.region_walls};             // LAMMPS regions as walls
+  OverlapGauge overlaps{lmp, settings.walls, region_walls};         // outputs 5 and 6, the warning at a run's start
   double solved_contacts_total = 0.0, loaded_contacts_total = 0.0;  // over all ranks
   double full_sweep_work = 0.0;  // the step's local solves over all ranks / solved contacts
   int loaded_contacts = 0;       // on this rank
@@ -142,7 +143,12 @@ class FixContactDynamics : public Fix {
   void collect_grain_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
                            cd::StepContacts& contacts);
   void collect_wall_pairs(const cd::PairReach& reach, double from_margin, double to_margin, cd::StepContacts& contacts);
+  void collect_region_wall_pairs(const cd::PairReach& reach, double from_margin, double to_margin,
+                                 cd::StepContacts& contacts);
   cd::PairKey pair_key(int i, int j) const;
+  std::int64_t region_wall_partner(int wall, int face) const;
+  int wall_number(std::int64_t partner) const;
+  std::string partner_name(std::int64_t partner) const;
   void store_impulses();
   void write_back_motion();
   void reduce_step_outputs();

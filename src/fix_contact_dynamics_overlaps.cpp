@@ -34,6 +34,14 @@ void OverlapGauge::visit_if_on_wall(int i, const cd::Wall& wall, const cd::Perio
     if (touch->geometry.gap < 0.0) visit(-touch->geometry.gap);
 }
 
+template <class Visit>
+void OverlapGauge::visit_if_on_region_wall(int i, int wall, Visit&& visit) const
+{
+  const double* xi = atom->x[i];
+  for (const RegionWalls::Touch& touch : region_walls_.touches(wall, 0, {xi[0], xi[1], atom->radius[i]}, 0.0, 0.0))
+    if (touch.geometry.gap < 0.0) visit(-touch.geometry.gap);
+}
+
 // The depth (m, > 0) of every overlapping listed pair with a grain and of every grain overlapping
 // a wall. Most listed pairs are apart: the squared distance tells them without a square root.
 template <class Visit>
@@ -43,9 +51,11 @@ void OverlapGauge::for_each_overlap(const cd::PeriodicBox& box, Visit&& visit) c
   for_each_listed_pair(*list_, *atom, [&](int i, int j) {
     if ((mask[i] & groupbit_) || (mask[j] & groupbit_)) visit_if_overlapping(i, j, visit);
   });
-  for (int i = 0; i < atom->nlocal; i++)
-    if (mask[i] & groupbit_)
-      for (const cd::Wall& wall : walls_) visit_if_on_wall(i, wall, box, visit);
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit_)) continue;
+    for (const cd::Wall& wall : walls_) visit_if_on_wall(i, wall, box, visit);
+    for (int r = 0; r < region_walls_.count(); r++) visit_if_on_region_wall(i, r, visit);
+  }
 }
 
 // The same over the pairs and walls the step looked at.
@@ -54,12 +64,14 @@ void OverlapGauge::for_each_watched_overlap(const cd::PeriodicBox& box, Visit&& 
 {
   for (const AtomPair& pair : watched_pairs_) visit_if_overlapping(pair.i, pair.j, visit);
   for (const AtomPair& pair : watched_walls_) visit_if_on_wall(pair.i, walls_[pair.j], box, visit);
+  for (const AtomPair& pair : watched_region_walls_) visit_if_on_region_wall(pair.i, pair.j, visit);
 }
 
 void OverlapGauge::begin_look()
 {
   watched_pairs_.clear();
   watched_walls_.clear();
+  watched_region_walls_.clear();
   looked_at_ = update->ntimestep;
 }
 

@@ -37,6 +37,7 @@ class SettingsParser {
   int parse_order(int iarg);
   int parse_save_problems(int iarg);
   int parse_wall(int iarg);
+  cd::ContactLaw parse_wall_law(int iarg);
   void parse_type_law(const char* keyword, int iarg, bool friction);
   void parse_value(const std::string& keyword, const char* value);
 
@@ -212,14 +213,29 @@ void SettingsParser::parse_type_law(const char* keyword, int iarg, bool friction
     }
 }
 
-// wall xplane X mu e | wall yplane Y mu e | wall segment x1 y1 x2 y2 mu e
+// The friction and restitution of a wall, at arg[iarg] and arg[iarg + 1].
+cd::ContactLaw SettingsParser::parse_wall_law(int iarg)
+{
+  const cd::ContactLaw law{number_for("wall mu", arg[iarg], error), number_for("wall e", arg[iarg + 1], error)};
+  check_friction("wall mu", law.mu, error);
+  check_restitution("wall e", law.restitution, error);
+  return law;
+}
+
+// wall xplane X mu e | wall yplane Y mu e | wall segment x1 y1 x2 y2 mu e | wall region ID mu e
 int SettingsParser::parse_wall(int iarg)
 {
   if (iarg + 1 >= narg)
     error->all(FLERR,
                "Fix contact/dynamics: wall needs a shape and its values: xplane position mu e, yplane position mu "
-               "e or segment x1 y1 x2 y2 mu e");
+               "e, segment x1 y1 x2 y2 mu e or region ID mu e");
   const std::string shape = arg[iarg + 1];
+  const int number = static_cast<int>(settings.walls.size() + settings.region_walls.size()) + 1;
+  if (shape == "region") {
+    require_values("wall region", iarg + 1, 3, narg, error, "ID mu e");
+    settings.region_walls.push_back({arg[iarg + 2], parse_wall_law(iarg + 3), number});
+    return iarg + 5;
+  }
   cd::Wall wall;
   int next;
   if (shape == "xplane" || shape == "yplane") {
@@ -248,13 +264,11 @@ int SettingsParser::parse_wall(int iarg)
       error->all(FLERR, "Fix contact/dynamics: wall segment has zero length");
     next = iarg + 6;
   } else {
-    error->all(FLERR, "Fix contact/dynamics: wall must be xplane, yplane or segment, got '{}'", shape);
+    error->all(FLERR, "Fix contact/dynamics: wall must be xplane, yplane, segment or region, got '{}'", shape);
   }
-  wall.law.mu = number_for("wall mu", arg[next], error);
-  wall.law.restitution = number_for("wall e", arg[next + 1], error);
-  check_friction("wall mu", wall.law.mu, error);
-  check_restitution("wall e", wall.law.restitution, error);
+  wall.law = parse_wall_law(next);
   settings.walls.push_back(wall);
+  settings.wall_numbers.push_back(number);
   return next + 2;
 }
 

@@ -10,6 +10,7 @@
 #include "cd/step.h"
 #include "cd/time_step.h"
 #include "cd/walls.h"
+#include "fix_contact_dynamics_region_walls.h"
 
 namespace LAMMPS_NS {
 class Error;
@@ -26,7 +27,9 @@ struct FixSettings {
   int law_types = 0;               // atom types when the fix was defined
   // mu and e of every type pair, (law_types+1)^2 row-major (law()): mu e, then mu/types, e/types.
   std::vector<cd::ContactLaw> type_laws;
-  std::vector<cd::Wall> walls;  // in the order given
+  std::vector<cd::Wall> walls;                  // lines and segments, in the order given
+  std::vector<int> wall_numbers;                // theirs among all walls (1-based)
+  std::vector<RegionWallSetting> region_walls;  // regions, in the order given
   // The step that follows the flow (dt_max given): dt_max (s) and the alignment period in
   // steps of dt_max (dt_align / dt_max); its travel is set by the fix from the neighbour skin.
   cd::StepGrid step_grid;

@@ -73,4 +73,10 @@ std::optional<WallContact> wall_contact(const Wall& wall, int body, const Disk& 
   return WallContact{geometry, part};
 }
 
+double SurfaceMotion::speed_bound(double x, double y, double distance) const
+{
+  const double lever = std::hypot(x - centre_x, y - centre_y) + distance;
+  return std::hypot(vx, vy) + std::fabs(spin) * lever;
+}
+
 }  // namespace cd

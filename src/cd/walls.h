@@ -64,4 +64,23 @@ struct WallContact {
 std::optional<WallContact> wall_contact(const Wall& wall, int body, const Disk& disk, double alert,
                                         const PeriodicBox& box);
 
+// The rigid motion of a moving wall over one step, as the step meets it: translation at
+// (vx, vy) and rotation at `spin` about `centre`, the pivot where it stands at the step's
+// instant. A host that knows only the wall's poses at both ends of the step gives their chords
+// (travel / dt), whose rates the step's x_m lies on.
+struct SurfaceMotion {
+  double vx = 0.0, vy = 0.0;              // m/s
+  double spin = 0.0;                      // rad/s, counter-clockwise
+  double centre_x = 0.0, centre_y = 0.0;  // m
+
+  // Velocity of the wall's material point at (x, y) (m/s).
+  void velocity_at(double x, double y, double& out_vx, double& out_vy) const
+  {
+    out_vx = vx - spin * (y - centre_y);
+    out_vy = vy + spin * (x - centre_x);
+  }
+  // The largest speed of the wall within `distance` of (x, y) (m/s).
+  double speed_bound(double x, double y, double distance) const;
+};
+
 }  // namespace cd

@@ -36,6 +36,12 @@ std::string with_fix(const std::string& fix_arguments)
   return preamble + "fix cd all contact/dynamics " + fix_arguments + "\nrun 10\n";
 }
 
+// The two grains with a region (its lines given) as a wall (`wall region` followed by `wall`).
+std::string with_region(const std::string& region_lines, const std::string& wall)
+{
+  return preamble + region_lines + "\nfix cd all contact/dynamics 0.5 0.5 wall region " + wall + "\nrun 10\n";
+}
+
 // Two grains in a periodic box tilted along x, sheared by fix deform on `group`.
 std::string sheared_box(const std::string& remap, const std::string& group, const std::string& fix_extra)
 {
@@ -131,7 +137,8 @@ const BadCase bad_cases[] = {
     {"zero_dt_align", with_fix("0.5 0.5 dt_max 1e-4 dt_align 0"), "dt_align must be > 0, got 0"},
     {"wall_missing_restitution", with_fix("0.5 0.5 wall yplane 0 0.5"), "wall yplane needs 3 values: position mu e"},
     {"wall_without_shape", with_fix("0.5 0.5 wall"),
-     "wall needs a shape and its values: xplane position mu e, yplane position mu e or segment x1 y1 x2 y2 mu e"},
+     "wall needs a shape and its values: xplane position mu e, yplane position mu e, segment x1 y1 x2 y2 mu e or "
+     "region ID mu e"},
     {"segment_missing_values", with_fix("0.5 0.5 wall segment 0 0 0.005"),
      "wall segment needs 6 values: x1 y1 x2 y2 mu e"},
     {"wall_position_not_a_number", with_fix("0.5 0.5 wall xplane x 0.5 0.5"), "wall xplane expects a number, got 'x'"},
@@ -140,8 +147,31 @@ const BadCase bad_cases[] = {
     {"wall_outside_box", with_fix("0.5 0.5 wall yplane -0.001 0.5 0.5"), "wall yplane at -0.001 is outside the box"},
     {"segment_outside_box", with_fix("0.5 0.5 wall segment 0 0 0 0.02 0.5 0.5"),
      "wall segment end (0, 0.02) is outside the box"},
-    {"unknown_wall", with_fix("0.5 0.5 wall zplane 0 0.5 0.5"), "wall must be xplane, yplane or segment, got 'zplane'"},
+    {"unknown_wall", with_fix("0.5 0.5 wall zplane 0 0.5 0.5"),
+     "wall must be xplane, yplane, segment or region, got 'zplane'"},
     {"wall_restitution", with_fix("0.5 0.5 wall yplane 0 0.5 2"), "wall e must be in [0,1], got 2"},
+    {"wall_region_missing_values", with_fix("0.5 0.5 wall region cup 0.5"), "wall region needs 3 values: ID mu e"},
+    {"wall_region_unknown", with_fix("0.5 0.5 wall region nowhere 0.5 0.5"), "wall region nowhere does not exist"},
+    {"wall_region_restitution", with_region("region cup sphere 0.005 0.005 0 0.004", "cup 0.5 1.5"),
+     "wall e must be in [0,1], got 1.5"},
+    {"wall_region_changing_shape",
+     with_region("variable size equal 0.004+time\nregion cup sphere 0.005 0.005 0 v_size", "cup 0.5 0.5"),
+     "region cup (sphere) changes its shape with variables; walls must be rigid"},
+    {"wall_region_turning_out_of_plane",
+     with_region("variable turn equal time\nregion drum cylinder z 0.005 0.005 0.004 INF INF rotate v_turn 0 0 0 1 0 0",
+                 "drum 0.5 0.5"),
+     "region drum (cylinder) rotates about an axis that is not along z"},
+    {"wall_region_union_of_moving_part",
+     with_region("variable shift equal time\nregion a sphere 0.005 0.005 0 0.004 move v_shift NULL NULL\n"
+                 "region b block 0.001 0.009 0 0.002 INF INF\nregion both union 2 a b",
+                 "both 0.5 0.5"),
+     "region both (union) combines moving region a; give the moving region a wall region keyword of its own"},
+    {"wall_region_moving_along_z",
+     with_region("variable rise equal time\nregion cup sphere 0.005 0.005 0 0.004 move NULL NULL v_rise",
+                 "cup 0.5 0.5"),
+     "wall region cup moves along z"},
+    {"wall_region_off_the_plane", with_region("region cup sphere 0.005 0.003 0.0002 0.003", "cup 0.5 0.5"),
+     "wall region cup meets the plane z = 0 obliquely"},
     {"dimension_3",
      "units si\natom_style sphere\nregion box block 0 1 0 1 0 1\ncreate_box 1 box\n"
      "fix cd all contact/dynamics 0.5 0.5\n",
