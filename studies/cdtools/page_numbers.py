@@ -13,7 +13,7 @@ tables use; the marker checks the last len(tuple) numbers before it in its parag
 A printed number agrees when it is its value rounded to the decimals printed (half a unit of its
 last digit, and a sign that matches). A number's sign is '−' (U+2212), '-' or '+' written just
 before its digits after a space or an opening bracket, '^' or '×'; '–' (U+2013) between two
-numbers is a range.
+numbers is a range; in '4e-05' the last digit is the fifth decimal.
 
     check_pages(root)       [(page, line, key, problem)] over PAGES; empty when every number agrees
     check_text(text, data)  the same for one text
@@ -32,7 +32,7 @@ import sys
 
 PAGES = ("results/README.md", "results/runs/README.md", "results/series/README.md", "doc/source.md")
 MARKER = re.compile(r"(?<!`)<!--\s*check:\s*(\S+?)\s*-->(?!`)")  # in `code`: shown, not a marker
-NUMBER = re.compile(r"(?<![\w.])([−+-]?)(\d+(?:\.\d+)?)(?![\w])")
+NUMBER = re.compile(r"(?<![\w.])([−+-]?)(\d+(?:\.\d+)?)(?:e([−+-]?\d+))?(?![\w])")
 SIGN_BEFORE = re.compile(r"(^|[\s(\[^×/=,;:–])$")
 
 
@@ -63,9 +63,15 @@ class Data:
 
     def series_runs(self, series):
         """[(name, manifest row, {quantity: (value, error)})] of a series in its manifest's order
-        ('a+b': the runs of both)."""
+        ('a+b': the runs of both; 'a[L<=102]': those whose manifest column L is at most 102)."""
         if "+" in series:
             return [run for part in series.split("+") for run in self.series_runs(part)]
+        condition = re.fullmatch(r"(\w+)\[(\w+)(<=|>=|!=|=|<|>)([\d.]+)\]", series)
+        if condition:
+            base, column, operator, bound = condition.groups()
+            compare = {"<=": float.__le__, ">=": float.__ge__, "!=": float.__ne__, "=": float.__eq__,
+                       "<": float.__lt__, ">": float.__gt__}[operator]
+            return [run for run in self.series_runs(base) if compare(float(run[1][column]), float(bound))]
 
         def make():
             folder = self.path("results", "series", series)
@@ -81,7 +87,10 @@ class Data:
         def make():
             with open(self.path("results", "runs", name, "results.json")) as src:
                 results = json.load(src)["results"]
-            return {r["name"]: (r["value"], r["error"]) for r in results if r["value"] is not None}
+            values = {r["name"]: (r["value"], r["error"]) for r in results if r["value"] is not None}
+            if "U" in values and "bagnold_slip" in values:  # the sheared layer's own speed
+                values["U_minus_slip"] = (values["U"][0] - values["bagnold_slip"][0], None)
+            return values
         return self._memo(("run", name), make)
 
     def runs_csv(self, series):
@@ -109,7 +118,7 @@ class Data:
         if quantity in results:
             return results[quantity]
         row = {}
-        for part in series.split("+"):
+        for part in re.sub(r"\[[^]]*\]", "", series).split("+"):
             row = self.runs_csv(part).get(name) or row
         if row.get(quantity):
             return float(row[quantity]), _float(row.get(quantity + "_error"))
@@ -243,11 +252,11 @@ def family_f_L(data, part="slope"):
 
 
 def family_scaled_range(data, series, quantity, power):
-    """Smallest and largest of quantity × (L/d)^power over the L series' runs."""
+    """Smallest and largest of quantity × (L/d)^power over the L series' runs (of one run: its value)."""
     values = []
     for name, row, results in data.series_runs(series):
         values.append(results[quantity][0] * float(row["L"]) ** float(power))
-    return min(values), max(values)
+    return (values[0],) if len(values) == 1 else (min(values), max(values))
 
 
 def family_list(data, series, quantity, mu=None):
@@ -374,12 +383,82 @@ def family_size_law(data, mu):
     return mean, se, len(shifts)
 
 
+def family_cmp(data, name, column="both"):
+    """A fit of results/series/readings/compared_fits.csv: column 'count' or 'layer' its value and
+    error, 'diff' layer - count in combined errors."""
+    rows = {r["name"]: r for r in read_rows(data.path("results", "series", "readings", "compared_fits.csv"))}
+    row = rows[name]
+    if column == "diff":
+        return (float(row["difference_sigma"]),)
+    return (float(row[column]),) + ((float(row[column + "_error"]),) if row[column + "_error"] else ())
+
+
+def _pairs(data, quantity, mu):
+    """[(count value, layer value)] of a quantity at each angle both readings ran at one friction
+    ('all': every friction)."""
+    count = {(row["mu"], row["theta"]): name for name, row, _ in data.series_runs("flow_rules")}
+    pairs = []
+    for name, row, _ in data.series_runs("layer_flow_rules"):
+        if (mu == "all" or float(row["mu"]) == float(mu)) and (row["mu"], row["theta"]) in count:
+            a = data.quantity("flow_rules", count[(row["mu"], row["theta"])], quantity)
+            b = data.quantity("layer_flow_rules", name, quantity)
+            if a is not None and b is not None:
+                pairs.append((a[0], b[0]))
+    return pairs
+
+
+def family_change(data, quantity, mu, how="fall"):
+    """Over the angles both readings ran: 'fall' smallest and largest 100 (1 - layer/count) (%),
+    'rise' 100 (layer/count - 1), 'diff' layer - count, 'ratio' count/layer, 'fall15'
+    100 (1 - (layer/count)^1.5) (the fall of U that h^1.5 predicts from h), 'mean' mean and standard
+    error of layer - count, 'median' median of layer - count."""
+    pairs = _pairs(data, quantity, mu)
+    if how == "mean":
+        values = [b - a for a, b in pairs]
+        return statistics.mean(values), statistics.stdev(values) / math.sqrt(len(values))
+    if how == "median":
+        return (statistics.median(b - a for a, b in pairs),)
+    values = {"fall": [100 * (1 - b / a) for a, b in pairs], "rise": [100 * (b / a - 1) for a, b in pairs],
+              "diff": [b - a for a, b in pairs], "ratio": [a / b for a, b in pairs],
+              "fall15": [100 * (1 - (b / a) ** 1.5) for a, b in pairs]}[how]
+    return min(values), max(values)
+
+
+def family_ends(data, series, quantity, mu):
+    """A quantity at the lowest and at the highest angle of one friction's runs of a series."""
+    runs = sorted((float(row["theta"]), name) for name, row, _ in data.series_runs(series)
+                  if float(row["mu"]) == float(mu))
+    return tuple(data.quantity(series, runs[i][1], quantity)[0] for i in (0, -1))
+
+
+def family_fit_scaled(data, series, name, factor):
+    """A series fit's value and error times FACTOR (k × 10⁻³ printed as k: factor 1000)."""
+    return tuple(x * float(factor) for x in family_fit(data, series, name))
+
+
+def family_cmp_range(data, names, how="sigma"):
+    """Over the compared fits named (',' between names): 'sigma' smallest and largest layer - count
+    in combined errors, 'delta' in value, 'abs' the largest |layer - count| in combined errors,
+    'ratio' layer/count of the one fit named."""
+    rows = {r["name"]: r for r in read_rows(data.path("results", "series", "readings", "compared_fits.csv"))}
+    chosen = [rows[name] for name in names.split(",")]
+    if how == "ratio":
+        return (float(chosen[0]["layer"]) / float(chosen[0]["count"]),)
+    if how == "abs":
+        return (max(abs(float(r["difference_sigma"])) for r in chosen),)
+    values = [float(r["difference_sigma"]) if how == "sigma" else float(r["layer"]) - float(r["count"])
+              for r in chosen]
+    return min(values), max(values)
+
+
 FAMILIES = {"fit": family_fit, "run": family_run, "range": family_range, "median": family_median,
             "f_mu": family_f_mu, "A_mu": family_A_mu, "f_L": family_f_L, "scaled_range": family_scaled_range,
             "list": family_list, "counts": family_counts, "packing": family_packing, "replica": family_replica,
             "fits_range": family_fits_range, "below_source": family_below_source, "readings": family_readings,
             "ratio_range": family_ratio_range, "fits": family_fits, "table_range": family_table_range,
-            "f_L_without": family_f_L_without, "size_law": family_size_law}
+            "f_L_without": family_f_L_without, "size_law": family_size_law,
+            "cmp": family_cmp, "change": family_change, "ends": family_ends,
+            "fit_scaled": family_fit_scaled, "cmp_range": family_cmp_range}
 
 
 def values_of(key, data):
@@ -393,11 +472,11 @@ def printed_numbers(text):
     """[(value, decimals)] of the numbers in text, signs read as the module's docstring says."""
     numbers = []
     for match in NUMBER.finditer(text):
-        sign, digits = match.group(1), match.group(2)
+        sign, digits, exponent = match.group(1), match.group(2), int((match.group(3) or "0").replace("−", "-"))
         if sign and not SIGN_BEFORE.search(text[:match.start()]):
             sign = ""
-        value = float(digits) * (-1 if sign in ("−", "-") else 1)
-        numbers.append((value, len(digits.split(".")[1]) if "." in digits else 0))
+        value = float(digits) * 10.0 ** exponent * (-1 if sign in ("−", "-") else 1)
+        numbers.append((value, (len(digits.split(".")[1]) if "." in digits else 0) - exponent))
     return numbers
 
 
