@@ -451,6 +451,12 @@ def family_cmp_range(data, names, how="sigma"):
     return min(values), max(values)
 
 
+def family_fit_diff(data, series, names, references):
+    """Each fit named minus its reference (',' between names, in pairs): a definition's shift."""
+    fits = data.fits(series)
+    return tuple(fits[a][0] - fits[b][0] for a, b in zip(names.split(","), references.split(",")))
+
+
 FAMILIES = {"fit": family_fit, "run": family_run, "range": family_range, "median": family_median,
             "f_mu": family_f_mu, "A_mu": family_A_mu, "f_L": family_f_L, "scaled_range": family_scaled_range,
             "list": family_list, "counts": family_counts, "packing": family_packing, "replica": family_replica,
@@ -458,7 +464,8 @@ FAMILIES = {"fit": family_fit, "run": family_run, "range": family_range, "median
             "ratio_range": family_ratio_range, "fits": family_fits, "table_range": family_table_range,
             "f_L_without": family_f_L_without, "size_law": family_size_law,
             "cmp": family_cmp, "change": family_change, "ends": family_ends,
-            "fit_scaled": family_fit_scaled, "cmp_range": family_cmp_range}
+            "fit_scaled": family_fit_scaled, "cmp_range": family_cmp_range,
+            "fit_diff": family_fit_diff}
 
 
 def values_of(key, data):
