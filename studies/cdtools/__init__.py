@@ -6,6 +6,7 @@
     cdpost            finding cdpost, reading its results.csv
     stats             means and standard errors, pooled scatter, differences in errors, slopes
     text              numbers, values with errors, durations, Markdown tables
+    page_numbers      the results pages' marked numbers recomputed from the committed data
     campaign/         the chute campaign of studies/chute_campaign.py
 
 The study drivers beside this package (studies/*.py) are its users, one entry point each; the

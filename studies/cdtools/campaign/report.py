@@ -20,7 +20,9 @@ import shlex
 import shutil
 import sys
 
+from .. import page_numbers
 from ..cdpost import read_results
+from ..run import TOP
 from ..stats import mean_sd_se, pooled_sd
 from ..text import markdown_table, number, with_error
 from .jobs import read_json
@@ -728,4 +730,18 @@ def write_results(args):
     published = sum(r.results is not None and not r.local for r in records)
     print(f"{readme}: {analysed} of {len(records)} runs analysed ({published} read from their published results)",
           flush=True)
+    report_stale_numbers(args.report)
     return 0
+
+
+def report_stale_numbers(destination):
+    """When the report rewrote the repository's results/: the sentences of the kept discussions (and
+    doc/source.md) whose marked numbers the new tables no longer give, one line each."""
+    if os.path.realpath(destination) != os.path.realpath(os.path.join(TOP, "results")):
+        return
+    stale = page_numbers.check_pages(TOP)
+    for page, line, key, problem in stale:
+        print(f"{page}:{line}: {key}: {problem}", flush=True)
+    if stale:
+        print(f"{len(stale)} marked numbers of the pages' prose disagree with the new tables: edit those "
+              "sentences (ctest chute.page_numbers fails until then)", flush=True)
