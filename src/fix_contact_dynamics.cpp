@@ -149,7 +149,7 @@ void FixContactDynamics::init()
   if (atom->map_style == Atom::MAP_NONE)
     error->all(FLERR, "Fix contact/dynamics requires an atom map: use atom_modify map hash");
   fix_checks::insertion_map(lmp);
-  if (step_grid->on()) fix_checks::pour_with_step_grid(lmp);
+  if (step_grid->on()) fix_checks::fixed_step_fixes(lmp);
   // The per-step displacement limit (half the skin) keeps every contact in the list only if
   // the list is rebuilt as soon as a grain has moved that far.
   if (neighbor->every != 1 || neighbor->delay != 0 || !neighbor->dist_check)

@@ -48,13 +48,23 @@ void fix_checks::insertion_map(LAMMPS* lmp)
                     pour->id);
 }
 
-void fix_checks::pour_with_step_grid(LAMMPS* lmp)
+// LAMMPS's fix pour and fix move refuse a step that changes during a run ("Cannot change
+// timestep with fix pour", "Resetting timestep size is not allowed with fix move"): said before
+// the run, naming the fix and what to do.
+void fix_checks::fixed_step_fixes(LAMMPS* lmp)
 {
-  if (const Fix* pour = pour_fix(lmp))
-    lmp->error->all(FLERR,
-                    "Fix contact/dynamics: fix {} (pour) cannot follow dt_max: it stops the run when the step "
-                    "changes; pour at a fixed step, then continue with dt_max",
-                    pour->id);
+  const Modify& modify = *lmp->modify;
+  for (int f = 0; f < modify.nfix; f++) {
+    const Fix& other = *modify.fix[f];
+    const char* remedy = utils::strmatch(other.style, "^pour")   ? "pour at a fixed step, then continue with dt_max"
+                         : utils::strmatch(other.style, "^move") ? "give the step with timestep instead of dt_max"
+                                                                 : nullptr;
+    if (remedy)
+      lmp->error->all(FLERR,
+                      "Fix contact/dynamics: fix {} ({}) cannot follow dt_max: it stops the run when the step "
+                      "changes; {}",
+                      other.id, other.style, remedy);
+  }
 }
 
 void fix_checks::integrators(LAMMPS* lmp, const Fix& fix)

@@ -10,9 +10,9 @@ namespace fix_checks {
 
 // fix pour with an array atom map (it writes past the map's end after a short insertion).
 void insertion_map(LAMMPS* lmp);
-// fix pour beside the step that follows the flow (dt_max): LAMMPS's fix pour stops the run at the
+// fix pour or fix move beside the step that follows the flow (dt_max): they stop the run at the
 // first change of the step.
-void pour_with_step_grid(LAMMPS* lmp);
+void fixed_step_fixes(LAMMPS* lmp);
 // Another fix integrating atoms of the group.
 void integrators(LAMMPS* lmp, const Fix& fix);
 // A pair style acting between grains of the group (springs on top of rigid contacts).

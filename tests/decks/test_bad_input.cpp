@@ -228,7 +228,12 @@ const BadCase bad_cases[] = {
               "fix pour all pour 4 1 4767548 diam one 5e-4 dens 2500 2500 region slab\n"
               "fix cd all contact/dynamics 0.5 0.5 density 2500 dt_max 1e-5\nrun 1\n";
      }(),
-     "fix pour (pour) cannot follow dt_max: it stops the run when the step changes"},
+     "fix pour (pour) cannot follow dt_max: it stops the run when the step changes; pour at a fixed step"},
+    {"move_with_step_grid",
+     preamble + "group floor id 1\ngroup grains id 2\nfix conveyor floor move linear 0.01 0 0 units box\n"
+                "fix cd grains contact/dynamics 0.5 0.5 dt_max 1e-5\nrun 1\n",
+     "fix conveyor (move) cannot follow dt_max: it stops the run when the step changes; give the step with "
+     "timestep instead of dt_max"},
     {"second_integrator", preamble + "fix nve all nve/sphere\nfix cd all contact/dynamics 0.5 0.5\nrun 1\n",
      "fix nve (nve/sphere) also integrates atoms of group all"},
     {"pair_style_on_the_group",

@@ -144,6 +144,28 @@ TEST(FunnelExample, FillsThenDrainsThroughItsRegionWalls)
   std::filesystem::remove_all(run.folder);
 }
 
+// The drum and its soft twin, shortened: the grains settle in the drum at rest, then it turns a
+// fiftieth of a turn at Fr 1e-2; every solve converged, the rigid contacts' overlaps within a
+// thousandth of a diameter.
+TEST(DrumExample, RigidDrumTurns)
+{
+  const auto run = run_example("in.drum_rigid", "-var froude 1e-2 -var turns 0.02 -var settle 5");
+  expect_clean(run);
+  EXPECT_EQ(printed_value(run.output, "DRUM", "grains"), 806);
+  EXPECT_EQ(printed_value(run.output, "DRUM", "unconverged"), 0);
+  EXPECT_LT(printed_value(run.output, "DRUM", "overlap"), 1e-3);
+  EXPECT_TRUE(std::filesystem::exists(run.folder / "dump.drum"));
+  std::filesystem::remove_all(run.folder);
+}
+
+TEST(DrumExample, SoftTwinTurns)
+{
+  const auto run = run_example("in.drum_granular", "-var froude 1e-2 -var turns 0.002 -var settle 0.5");
+  expect_clean(run);
+  EXPECT_EQ(printed_value(run.output, "DRUM", "grains"), 806);
+  std::filesystem::remove_all(run.folder);
+}
+
 TEST(PourExample, SoftTwinRuns)
 {
   // One time unit (10 000 steps): the first batch poured and falling, Hertz contacts set up.

@@ -213,6 +213,18 @@ TEST_F(SeveralRanks, ShortTrajectoriesAgreeToSolverTolerance)
   EXPECT_LT(largest_difference(on_many.y, on_one.y) / d, trajectory_tolerance);
 }
 
+// A floor region rising under the landed grains (a plane region moving with a variable of time)
+// carries them across both ranks as on one: region walls are met by each rank's own grains.
+TEST_F(SeveralRanks, ARisingRegionFloorGivesTheOneRankTrajectory)
+{
+  run_both(std::string(tight_solve) + " wall region lift 0.5 0.5",
+           "variable rise equal 0.05*time\nregion lift plane 0 0 0 0 1 0 side in units box move NULL v_rise NULL\n"
+           "run 100");
+  if (world_rank() != 0) return;
+  EXPECT_LT(largest_difference(on_many.x, on_one.x, 20 * d) / d, trajectory_tolerance);
+  EXPECT_LT(largest_difference(on_many.y, on_one.y) / d, trajectory_tolerance);
+}
+
 TEST_F(SeveralRanks, LoadBalancingKeepsTheTrajectory)
 {
   // fix balance moves the cut between the ranks every 20 steps; atoms migrate with their
