@@ -215,7 +215,13 @@ void FixContactDynamics::check_alert()
 // diameter (the unit of the overlap outputs) and the default alert distance that follows it.
 void FixContactDynamics::survey_group()
 {
-  fix_checks::disk_masses(lmp, *this);
+  const std::optional<double> areal_density = fix_checks::disk_masses(lmp, *this);
+  if (areal_density && settings.disc_density <= 0.0 && !mass_rule_reported && comm->me == 0)
+    utils::logmesg(lmp,
+                   "Fix contact/dynamics: the grains of group {} have one radius: their masses are disks of areal "
+                   "density {:.6g} (m = pi r^2 rho); were they set as spheres (set density), use set density/disc\n",
+                   group->names[igroup], *areal_density);
+  mass_rule_reported = mass_rule_reported || areal_density.has_value();
   mean_diameter = group_mean_diameter();
   contact_step.set_mean_diameter(mean_diameter);
   natoms_surveyed = atom->natoms;

@@ -82,6 +82,7 @@ class FixContactDynamics : public Fix {
   // --- settings (from the command line) ---
   fix_keywords::FixSettings settings;
   bool narrow_subdomains_reported = false;     // the narrow-subdomain warning is given once per fix
+  bool mass_rule_reported = false;             // the areal density of one-radius masses is printed once per fix
   std::unique_ptr<StepGridControl> step_grid;  // the step that follows the flow (dt_max)
 
   // --- per-step state ---
