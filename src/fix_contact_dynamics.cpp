@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -106,9 +107,10 @@ FixContactDynamics::FixContactDynamics(LAMMPS* lmp, int narg, char** arg) : Fix(
   restart_global = 1;
   restart_peratom = 1;
   create_attribute = 1;
-  comm_forward = 3;        // vx, vy, spin of a body
-  comm_reverse = 3;        // the change of a ghost's vx, vy, spin over one sweep
-  virial_global_flag = 1;  // the contact stress, into compute pressure with fix_modify virial yes
+  comm_forward = 3;         // vx, vy, spin of a body
+  comm_reverse = 3;         // the change of a ghost's vx, vy, spin over one sweep
+  virial_global_flag = 1;   // the contact stress, into compute pressure with fix_modify virial yes
+  virial_peratom_flag = 1;  // and atom by atom into compute stress/atom
   thermo_virial = 0;
 
   // With a varying step the clock is LAMMPS's time, not step x dt; step 0 is time 0 (this
@@ -225,7 +227,13 @@ void FixContactDynamics::check_alert()
 // diameter (the unit of the overlap outputs) and the default alert distance that follows it.
 void FixContactDynamics::survey_group()
 {
-  fix_checks::disk_masses(lmp, *this);
+  const std::optional<double> areal_density = fix_checks::disk_masses(lmp, *this);
+  if (areal_density && settings.disc_density <= 0.0 && !mass_rule_reported && comm->me == 0)
+    utils::logmesg(lmp,
+                   "Fix contact/dynamics: the grains of group {} have one radius: their masses are disks of areal "
+                   "density {:.6g} (m = pi r^2 rho); were they set as spheres (set density), use set density/disc\n",
+                   group->names[igroup], *areal_density);
+  mass_rule_reported = mass_rule_reported || areal_density.has_value();
   mean_diameter = group_mean_diameter();
   contact_step.set_mean_diameter(mean_diameter);
   natoms_surveyed = atom->natoms;
@@ -253,8 +261,14 @@ void FixContactDynamics::assign_disc_masses()
     if (atom->mask[i] & groupbit) atom->rmass[i] = cd::disk_mass(atom->radius[i], settings.disc_density);
 }
 
-void FixContactDynamics::setup(int)
+void FixContactDynamics::setup(int vflag)
 {
+  // No step is solved at a run's start: the per-atom virial is zero there (the global one keeps
+  // the last step's), in rows for every owned atom.
+  if (thermo_virial && (vflag & (VIRIAL_ATOM | VIRIAL_CENTROID))) {
+    grow_peratom_virial();
+    contact_stress.per_atom(cd::StepContacts{}, vatom, atom->nlocal);
+  }
   if (settings.disc_density > 0.0) assign_disc_masses();
   survey_group();
   check_subdomains();
@@ -348,6 +362,7 @@ void FixContactDynamics::final_integrate()
   loaded_contacts = report.loaded_contacts;
   store_impulses();
   contact_stress.after_step(contact_step.contacts(), vflag_global ? virial : nullptr);
+  if (vflag_atom) tally_peratom_virial();
   fill_local_output();
   write_back_motion();
   reduce_step_outputs();
@@ -725,6 +740,11 @@ cd::BodyVelocity FixContactDynamics::velocity_change_of_ghost(int g) const
 int FixContactDynamics::pack_reverse_comm(int n, int first, double* buf)
 {
   int m = 0;
+  if (reverse_field == ReverseField::virial) {
+    for (int g = first; g < first + n; g++)
+      for (const int k : peratom_virial_components) buf[m++] = vatom[g][k];
+    return m;
+  }
   for (int g = first; g < first + n; g++) {
     const cd::BodyVelocity change = velocity_change_of_ghost(g);
     buf[m++] = change.vx;
@@ -737,12 +757,40 @@ int FixContactDynamics::pack_reverse_comm(int n, int first, double* buf)
 void FixContactDynamics::unpack_reverse_comm(int n, int* list, double* buf)
 {
   int m = 0;
+  if (reverse_field == ReverseField::virial) {
+    for (int k = 0; k < n; k++)
+      for (const int c : peratom_virial_components) vatom[list[k]][c] += buf[m++];
+    return;
+  }
   for (int k = 0; k < n; k++, m += 3) {
     cd::BodyVelocity& velocity = bodies.velocity[body_of_atom[list[k]]];
     velocity.vx += buf[m];
     velocity.vy += buf[m + 1];
     velocity.spin += buf[m + 2];
   }
+}
+
+// vatom has a row for every owned and ghost atom: LAMMPS sized it at initial_integrate, before
+// atoms arrived from other ranks.
+void FixContactDynamics::grow_peratom_virial()
+{
+  if (atom->nmax <= maxvatom) return;
+  maxvatom = atom->nmax;
+  memory->destroy(vatom);
+  memory->create(vatom, maxvatom, 6, "contact/dynamics:vatom");
+}
+
+// The step's contacts atom by atom, on the steps that ask for it (compute stress/atom): a pair
+// across a rank boundary is solved by one rank, which leaves the other atom's share on its
+// ghost; the owner adds it in (compute stress/atom reads owned atoms' rows only).
+void FixContactDynamics::tally_peratom_virial()
+{
+  grow_peratom_virial();
+  contact_stress.per_atom(contact_step.contacts(), vatom, atom->nlocal + atom->nghost);
+  if (!distributed) return;  // one rank: the images of an owned atom share its body
+  reverse_field = ReverseField::virial;
+  comm->reverse_comm_fix(this, static_cast<int>(std::size(peratom_virial_components)));
+  reverse_field = ReverseField::velocity_change;
 }
 
 // One row per loaded contact, at the predicted configuration (before the corrector): atom IDs
@@ -914,5 +962,6 @@ double FixContactDynamics::memory_usage()
   bytes += static_cast<double>(contact_step.contacts().memory_bytes());
   bytes += bodies.velocity.capacity() * (2 * sizeof(cd::BodyVelocity) + sizeof(cd::BodyInertia));
   bytes += static_cast<double>(local_rows_allocated) * output_columns * sizeof(double);
+  bytes += static_cast<double>(maxvatom) * 6 * sizeof(double);  // the per-atom virial, if asked for
   return bytes;
 }

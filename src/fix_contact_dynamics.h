@@ -82,6 +82,7 @@ class FixContactDynamics : public Fix {
   // --- settings (from the command line) ---
   fix_keywords::FixSettings settings;
   bool narrow_subdomains_reported = false;     // the narrow-subdomain warning is given once per fix
+  bool mass_rule_reported = false;             // the areal density of one-radius masses is printed once per fix
   std::unique_ptr<StepGridControl> step_grid;  // the step that follows the flow (dt_max)
 
   // --- per-step state ---
@@ -122,6 +123,10 @@ class FixContactDynamics : public Fix {
   // What a forward communication carries (forward): bodies' velocities (comm_forward values an
   // atom) unless an obstacle's travel or an image's shift (2 values) is asked for.
   enum class ForwardField { velocity, obstacle_travel, image_shift } forward_field = ForwardField::velocity;
+  // What a reverse communication carries: ghosts' velocity changes over a sweep (comm_reverse
+  // values an atom), or their shares of the per-atom virial (peratom_virial_components of vatom).
+  enum class ReverseField { velocity_change, virial } reverse_field = ReverseField::velocity_change;
+  static constexpr int peratom_virial_components[3] = {0, 1, 3};  // xx, yy, xy: a 2D contact's
 
   // --- local output: one row per loaded contact ---
   int local_rows_allocated = 0;
@@ -153,6 +158,8 @@ class FixContactDynamics : public Fix {
   void write_back_motion();
   void reduce_step_outputs();
   void fill_local_output();
+  void grow_peratom_virial();
+  void tally_peratom_virial();
   void count_solve();
   void save_hard_problem();
 };

@@ -110,8 +110,9 @@ void fix_checks::pair_style(LAMMPS* lmp, const Fix& fix)
 }
 
 // Disks need m = pi r^2 rho. Sphere masses (4/3 pi r^3 rho, as fix pour and set density give)
-// show in a polydisperse group as a uniform mass/r^3 with a non-uniform mass/r^2.
-void fix_checks::disk_masses(LAMMPS* lmp, const Fix& fix)
+// show in a polydisperse group as a uniform mass/r^3 with a non-uniform mass/r^2; in a group of
+// one radius both are uniform, whichever rule made the masses.
+std::optional<double> fix_checks::disk_masses(LAMMPS* lmp, const Fix& fix)
 {
   const Atom& atom = *lmp->atom;
   double local[4];  // max m/r^2, max -m/r^2, max m/r^3, max -m/r^3
@@ -131,7 +132,7 @@ void fix_checks::disk_masses(LAMMPS* lmp, const Fix& fix)
   }
   double global[4];
   MPI_Allreduce(local, global, 4, MPI_DOUBLE, MPI_MAX, lmp->world);
-  if (global[0] == -HUGE_VAL) return;  // no grain
+  if (global[0] == -HUGE_VAL) return std::nullopt;  // no grain
   const bool area_uniform = global[0] <= -global[1] * (1.0 + uniform_ratio_tolerance);
   const bool volume_uniform = global[2] <= -global[3] * (1.0 + uniform_ratio_tolerance);
   if (!area_uniform && volume_uniform)
@@ -139,6 +140,8 @@ void fix_checks::disk_masses(LAMMPS* lmp, const Fix& fix)
                     "Fix contact/dynamics: group {} has sphere masses (4/3 pi r^3 rho); use set "
                     "density/disc or the density keyword",
                     lmp->group->names[fix.igroup]);
+  if (area_uniform && volume_uniform) return global[0] / M_PI;
+  return std::nullopt;
 }
 
 // An RCB tiling may split either axis. A triclinic box splits in reduced coordinates: a slice

@@ -2,6 +2,8 @@
 // error line naming what to change; `fix` is the contact fix (its group and ID).
 #pragma once
 
+#include <optional>
+
 namespace LAMMPS_NS {
 class Fix;
 class LAMMPS;
@@ -17,8 +19,9 @@ void fixed_step_fixes(LAMMPS* lmp);
 void integrators(LAMMPS* lmp, const Fix& fix);
 // A pair style acting between grains of the group (springs on top of rigid contacts).
 void pair_style(LAMMPS* lmp, const Fix& fix);
-// Radius and mass > 0 for every grain, and no sphere masses (m/r^3 uniform, m/r^2 not).
-void disk_masses(LAMMPS* lmp, const Fix& fix);
+// Radius and mass > 0 for every grain, and no sphere masses (m/r^3 uniform, m/r^2 not). Masses of
+// one radius cannot tell disks from spheres: then the areal density m / (pi r^2) they imply.
+std::optional<double> disk_masses(LAMMPS* lmp, const Fix& fix);
 // Width of the narrowest subdomain, over all ranks, along the axes split between ranks.
 double narrowest_split_subdomain(LAMMPS* lmp);
 

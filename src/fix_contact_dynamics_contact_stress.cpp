@@ -18,6 +18,19 @@ void ContactStressGauge::after_step(const cd::StepContacts& contacts, double* vi
   virial[3] += sums.xy / dt;
 }
 
+void ContactStressGauge::per_atom(const cd::StepContacts& contacts, double** vatom, int atoms)
+{
+  for (int i = 0; i < atoms; i++)
+    for (int k = 0; k < 6; k++) vatom[i][k] = 0.0;
+  const double dt = update->dt;
+  cd::for_each_branch_impulse_share(contacts, [&](int body, const cd::BranchImpulseSums& share) {
+    double* row = vatom[body - 1];
+    row[0] += share.xx / dt;
+    row[1] += share.yy / dt;
+    row[3] += share.xy / dt;
+  });
+}
+
 double ContactStressGauge::component(int k)
 {
   if (!measured_ && contacts_) {

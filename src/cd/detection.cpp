@@ -90,20 +90,32 @@ bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const 
   return contacts.solved.size() > before;
 }
 
+bool in_branch_sums(const StepContacts& contacts, std::size_t k)
+{
+  const Contact& c = contacts.solved[k];
+  const bool finite = std::isfinite(c.impulse.n) && std::isfinite(c.impulse.t);
+  return c.body_b != world_body && !(finite && c.impulse.n <= 0.0);  // as for_each_loaded
+}
+
+BranchImpulseSums branch_impulse(const StepContacts& contacts, std::size_t k)
+{
+  const Contact& c = contacts.solved[k];
+  const double branch = c.lever_a + c.lever_b + contacts.gaps[k];
+  const double lx = branch * c.normal_x, ly = branch * c.normal_y;
+  const WorldImpulse p = world_impulse(c, c.impulse);
+  return {lx * p.x, ly * p.y, lx * p.y, ly * p.x};
+}
+
 BranchImpulseSums branch_impulse_sums(const StepContacts& contacts)
 {
   BranchImpulseSums sums;
   for (std::size_t k = 0; k < contacts.solved.size(); k++) {
-    const Contact& c = contacts.solved[k];
-    const bool finite = std::isfinite(c.impulse.n) && std::isfinite(c.impulse.t);
-    if (c.body_b == world_body || (finite && c.impulse.n <= 0.0)) continue;  // as for_each_loaded
-    const double branch = c.lever_a + c.lever_b + contacts.gaps[k];
-    const double lx = branch * c.normal_x, ly = branch * c.normal_y;
-    const WorldImpulse p = world_impulse(c, c.impulse);
-    sums.xx += lx * p.x;
-    sums.yy += ly * p.y;
-    sums.xy += lx * p.y;
-    sums.yx += ly * p.x;
+    if (!in_branch_sums(contacts, k)) continue;
+    const BranchImpulseSums one = branch_impulse(contacts, k);
+    sums.xx += one.xx;
+    sums.yy += one.yy;
+    sums.xy += one.xy;
+    sums.yx += one.yx;
   }
   return sums;
 }

@@ -155,15 +155,41 @@ class StepContacts {
 // (closes_after_solve) to the solved contacts, prepared, keys and gaps with them. True if any moved.
 bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const StepParameters& step);
 
-// Sum over the loaded contacts (StepContacts::for_each_loaded) between two bodies (not walls) of the branch vector l (from b's
-// centre to a's, at the predicted configuration) times a's impulse p (N s m): the contact part
-// of the pressure tensor times area and step, compressive positive, xy = sum l_x p_y.
+// The contact part of the pressure tensor times area and step (N s m), compressive positive: over
+// the loaded contacts (StepContacts::for_each_loaded) between two bodies (not walls), the branch
+// vector l (from b's centre to a's, at the predicted configuration) times a's impulse p, xy = l_x p_y.
 struct BranchImpulseSums {
   double xx = 0.0;
   double yy = 0.0;
   double xy = 0.0;
   double yx = 0.0;
 };
+
+// l p of solved contact k, and whether it enters the sums (a loaded pair, not a wall).
+bool in_branch_sums(const StepContacts& contacts, std::size_t k);
+BranchImpulseSums branch_impulse(const StepContacts& contacts, std::size_t k);
+
 BranchImpulseSums branch_impulse_sums(const StepContacts& contacts);
+
+// The sums body by body, as a pair style splits its virial: visit(body, share) for each contact
+// in the sums, half to each body when both move, all of it to the one that moves against an
+// immovable body (an obstacle, inverse mass 0). The shares add up to branch_impulse_sums.
+template <class Visit>
+void for_each_branch_impulse_share(const StepContacts& contacts, Visit&& visit)
+{
+  for (std::size_t k = 0; k < contacts.solved.size(); k++) {
+    if (!in_branch_sums(contacts, k)) continue;
+    const Contact& c = contacts.solved[k];
+    const BranchImpulseSums whole = branch_impulse(contacts, k);
+    const bool a_moves = c.inv_mass_a > 0.0, b_moves = c.inv_mass_b > 0.0;
+    if (a_moves && b_moves) {
+      const BranchImpulseSums half{0.5 * whole.xx, 0.5 * whole.yy, 0.5 * whole.xy, 0.5 * whole.yx};
+      visit(c.body_a, half);
+      visit(c.body_b, half);
+    } else {
+      visit(a_moves || !b_moves ? c.body_a : c.body_b, whole);
+    }
+  }
+}
 
 }  // namespace cd

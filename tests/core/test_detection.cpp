@@ -209,10 +209,10 @@ TEST(SolveStep, TheReachGivesTheSameStepAsLookingAtEveryPair)
 
 namespace {
 
-// One loaded pair with n = (0.6, 0.8), levers 1 and 2 m and a gap of 0.5 m: l = 3.5 n; p = (3, 1)
-// in the local frame is (3 n + 1 t) = (1.0, 3.0) in the world (t = (-0.8, 0.6)). A wall contact
-// and an unloaded pair add nothing.
-TEST(BranchImpulseSums, AreTheBranchVectorTimesTheImpulseOfLoadedPairsOnly)
+// One loaded pair of grains 1 and 2 with n = (0.6, 0.8), levers 1 and 2 m (with a gap of 0.5 m:
+// l = 3.5 n); p = (3, 1) in the local frame is (3 n + 1 t) = (1.0, 3.0) in the world
+// (t = (-0.8, 0.6)).
+cd::Contact loaded_pair()
 {
   cd::Contact pair;
   pair.body_a = 1;
@@ -221,7 +221,16 @@ TEST(BranchImpulseSums, AreTheBranchVectorTimesTheImpulseOfLoadedPairsOnly)
   pair.normal_y = 0.8;
   pair.lever_a = 1.0;
   pair.lever_b = 2.0;
+  pair.inv_mass_a = 0.5;
+  pair.inv_mass_b = 0.25;
   pair.impulse = {3.0, 1.0};
+  return pair;
+}
+
+// A wall contact and an unloaded pair add nothing.
+TEST(BranchImpulseSums, AreTheBranchVectorTimesTheImpulseOfLoadedPairsOnly)
+{
+  const cd::Contact pair = loaded_pair();
   cd::Contact wall = pair;
   wall.body_b = cd::world_body;
   cd::Contact unloaded = pair;
@@ -235,6 +244,39 @@ TEST(BranchImpulseSums, AreTheBranchVectorTimesTheImpulseOfLoadedPairsOnly)
   EXPECT_NEAR(sums.yy, ly * 3.0, 1e-14);
   EXPECT_NEAR(sums.xy, lx * 3.0, 1e-14);
   EXPECT_NEAR(sums.yx, ly * 1.0, 1e-14);
+}
+
+// The loaded pair between two grains, once more against an obstacle (body 3, inverse mass 0), and
+// a wall contact: the grains' shares are half of the first each, all of the second to grain 1,
+// nothing of the wall's; they add up to the sums.
+TEST(BranchImpulseSums, AreSplitHalfBetweenGrainsAndWhollyToTheGrainAgainstAnObstacle)
+{
+  const cd::Contact pair = loaded_pair();
+  cd::Contact obstacle = pair;
+  obstacle.body_b = 3;
+  obstacle.inv_mass_b = 0.0;
+  cd::Contact wall = pair;
+  wall.body_b = cd::world_body;
+  cd::StepContacts contacts;
+  contacts.solved = {pair, obstacle, wall};
+  contacts.gaps = {0.5, 0.5, 0.5};
+  std::vector<cd::BranchImpulseSums> share(4);
+  cd::for_each_branch_impulse_share(contacts, [&](int body, const cd::BranchImpulseSums& s) {
+    share[body].xx += s.xx;
+    share[body].yy += s.yy;
+    share[body].xy += s.xy;
+    share[body].yx += s.yx;
+  });
+  const double ly = 3.5 * 0.8;
+  EXPECT_NEAR(share[1].yy, 1.5 * ly * 3.0, 1e-14);
+  EXPECT_NEAR(share[2].yy, 0.5 * ly * 3.0, 1e-14);
+  EXPECT_EQ(share[3].yy, 0.0);
+  EXPECT_EQ(share[0].yy, 0.0);
+  const cd::BranchImpulseSums sums = cd::branch_impulse_sums(contacts);
+  EXPECT_DOUBLE_EQ(share[1].xx + share[2].xx, sums.xx);
+  EXPECT_DOUBLE_EQ(share[1].yy + share[2].yy, sums.yy);
+  EXPECT_DOUBLE_EQ(share[1].xy + share[2].xy, sums.xy);
+  EXPECT_DOUBLE_EQ(share[1].yx + share[2].yx, sums.yx);
 }
 
 }  // namespace

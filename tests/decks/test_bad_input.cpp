@@ -293,6 +293,26 @@ TEST(Warnings, OverlapsAtTheStartOfARunAreReported)
   EXPECT_EQ(apart.output.find("overlap by up to"), std::string::npos) << apart.output;
 }
 
+// Masses of one radius cannot tell disks from spheres (m/r^2 and m/r^3 are both uniform): the
+// fix prints, once, the areal density they imply; sphere masses of rho 2500 read as 4/3 r rho.
+TEST(Masses, OneRadiusMassesAreReportedWithTheArealDensityTheyImply)
+{
+  const char* note = "have one radius: their masses are disks of areal density ";
+  const RunResult spheres =
+      run_deck("one_radius_spheres", preamble +
+                                         "set group all density 2500\nfix cd all contact/dynamics 0.5 0.5\n"
+                                         "run 1\nrun 1\n");
+  EXPECT_EQ(spheres.exit_status, 0) << spheres.output;
+  const std::size_t at = spheres.output.find(note);
+  ASSERT_NE(at, std::string::npos) << spheres.output;
+  EXPECT_EQ(spheres.output.substr(at + std::string(note).size(), 8), "0.833333") << spheres.output;
+  EXPECT_EQ(spheres.output.find(note, at + 1), std::string::npos) << "once per fix\n" << spheres.output;
+  const RunResult discs = run_deck("one_radius_discs", with_fix("0.5 0.5"));
+  EXPECT_NE(discs.output.find(std::string(note) + "2500 "), std::string::npos) << discs.output;
+  const RunResult reset = run_deck("one_radius_density_keyword", with_fix("0.5 0.5 density 2500"));
+  EXPECT_EQ(reset.output.find(note), std::string::npos) << reset.output;
+}
+
 TEST(PairForces, KeptWhenAskedFor)
 {
   // Two grains 0.4 d apart, centre to centre: the rigid contacts keep the overlap, a Hooke
