@@ -954,6 +954,13 @@ TEST(Cli, SeriesComparedWithAnotherKeepsEachOnesFits)
   EXPECT_EQ(in_a, alone_a.size());
   EXPECT_EQ(in_b, alone_b.size());
   EXPECT_GT(differences, 20u);
+  // The comparison's report states the solver's health of each series' runs.
+  const auto compared_report = slurp(dir / "compared/report.md");
+  for (const char* label : {"a", "b"})
+    EXPECT_NE(compared_report.find("## Solver health of the runs of " + std::string(label) +
+                                   "\n\nFrom each run's solver.time"),
+              std::string::npos)
+        << label;
   // Both series on the same axes: per friction one colour (line type 1 for mu = 0.5), per series
   // a point type (circles, squares) and a dash (b dashed).
   const auto script = slurp(dir / "compared/figures/U_vs_theta.gp");

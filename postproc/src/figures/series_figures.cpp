@@ -532,10 +532,25 @@ std::vector<std::string> creep_cells(const SeriesRun& run)
           plain(points),        floor_text, bands};
 }
 
-// Each run's solver health (analysis/solver_health.h), "not recorded" where its solver.time was
-// absent (or, for a published run, its results hold none).
-void solver_table(MarkdownReport& report, const SeriesAnalysis& series)
+void creep_table(MarkdownReport& report, const SeriesAnalysis& series)
 {
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& run : series.runs) rows.push_back(creep_cells(run));
+  report.table({"run", "creep length lambda (d)", "fit range z (d)", "bins", "floor (sqrt(g d))",
+                "local decay length by depth below the wall tops (d)"},
+               rows);
+}
+
+}  // namespace
+
+void solver_section(MarkdownReport& report, const SeriesAnalysis& series, const std::string& heading)
+{
+  report.heading(heading);
+  report.paragraph(
+      "From each run's solver.time (each row the means over one solver_interval): the steps whose last solve hit the "
+      "sweep cap, the median and 99th percentile of the rows' sweeps per step, the largest row mean of the steps' "
+      "largest interpenetration; each run's report lists the fix's solver lines of its log. Per run: solver_* in "
+      "runs.csv.");
   std::vector<std::vector<std::string>> rows;
   for (const auto& run : series.runs) {
     auto cell = [&](const std::string& name, double scale = 1) {
@@ -554,17 +569,6 @@ void solver_table(MarkdownReport& report, const SeriesAnalysis& series)
                 "largest interpenetration (d)"},
                rows);
 }
-
-void creep_table(MarkdownReport& report, const SeriesAnalysis& series)
-{
-  std::vector<std::vector<std::string>> rows;
-  for (const auto& run : series.runs) rows.push_back(creep_cells(run));
-  report.table({"run", "creep length lambda (d)", "fit range z (d)", "bins", "floor (sqrt(g d))",
-                "local decay length by depth below the wall tops (d)"},
-               rows);
-}
-
-}  // namespace
 
 std::vector<FrictionCurve> points_by_friction(const SeriesAnalysis& series, const std::string& x, const std::string& y)
 {
@@ -682,13 +686,7 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
       "The "
       "fitted curves of the figures carry one-standard-error bands from the fit's covariance (delta method: var y = "
       "g^T C g, g the curve's gradient in the parameters).");
-  report.heading("Solver health of the runs");
-  report.paragraph(
-      "From each run's solver.time (each row the means over one solver_interval): the steps whose last solve hit the "
-      "sweep cap, the median and 99th percentile of the rows' sweeps per step, the largest row mean of the steps' "
-      "largest interpenetration; each run's report lists the fix's solver lines of its log. Per run: solver_* in "
-      "runs.csv.");
-  solver_table(report, series);
+  solver_section(report, series, "Solver health of the runs");
   report.heading("Fitted numbers");
   report.table(series.fits);
   report.heading("Residuals of the flow-rule fits");
