@@ -64,6 +64,11 @@ TEST(SolverHealth, CountsUnconvergedStepsFromTheIntervalMeans)
   ASSERT_NE(results.find("solver_unconverged_fraction"), nullptr);
   EXPECT_DOUBLE_EQ(results.find("solver_unconverged_fraction")->value, 0.2);
   EXPECT_EQ(results.find("solver_sweeps_largest")->value, 837);
+  // Step by step, the log's last run: its solver line's numbers.
+  EXPECT_EQ(results.find("solver_log_unconverged_steps")->value, 111);
+  EXPECT_EQ(results.find("solver_log_sweeps_median")->value, 71);
+  EXPECT_EQ(results.find("solver_log_sweeps_p99")->value, 358);
+  EXPECT_EQ(results.find("solver_log_sweeps_max")->value, 692);
   const auto text = solver_health_text(record);
   EXPECT_NE(text.find("60 of 300 steps unconverged (20 %)"), std::string::npos) << text;
   EXPECT_NE(text.find("\n1. 5539 steps, 111 unconverged"), std::string::npos) << text;
@@ -82,6 +87,7 @@ TEST(SolverHealth, AbsentFilesAreSaidNotRecordedInEveryOutput)
   add_solver_results(results, record);
   EXPECT_EQ(results.find("solver_unconverged_steps"), nullptr);  // no number to compute with
   EXPECT_NE(results.markdown().find("| `solver_unconverged_steps` | not recorded |"), std::string::npos);
+  EXPECT_NE(results.markdown().find("| `solver_log_sweeps_p99` | not recorded |"), std::string::npos);
   EXPECT_NE(results.text().find("solver_overlap_max"), std::string::npos);
   results.write_csv((dir / "results.csv").string());
   results.write_json((dir / "results.json").string(), {});

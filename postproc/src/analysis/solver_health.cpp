@@ -1,6 +1,8 @@
 #include "analysis/solver_health.h"
 
 #include <algorithm>
+#include <array>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -44,6 +46,19 @@ constexpr const char* kLogFile = "log.lammps";
 constexpr const char* kLogTag = "Fix contact/dynamics ";
 constexpr const char* kLogSolver = " solver: ";
 constexpr const char* kExtremesTag = "SOLVER ";
+
+// The numbers of a solver line's text after "solver: " ("N steps, U unconverged (F %), largest
+// final norm R, sweeps per step median M, 99th percentile P, max X, ..."): N, U, M, P, X.
+std::optional<std::array<double, 5>> solver_line_numbers(const std::string& summary)
+{
+  std::array<double, 5> n{};
+  if (std::sscanf(summary.c_str(),
+                  "%lf steps, %lf unconverged (%*[^)]), largest final norm %*[^,], sweeps per step median %lf, "
+                  "99th percentile %lf, max %lf",
+                  &n[0], &n[1], &n[2], &n[3], &n[4]) != 5)
+    return std::nullopt;
+  return n;
+}
 
 }  // namespace
 
@@ -140,6 +155,22 @@ void add_solver_results(ResultTable& results, const SolverRecord& record)
   if (record.largest_overlap_d)
     results.add("solver_overlap_largest", *record.largest_overlap_d, "d", "largest interpenetration" + extremes);
   else results.add_not_recorded("solver_overlap_largest", "d", "largest interpenetration" + extremes + missing);
+  const auto last = record.log_lines.empty() ? std::nullopt : solver_line_numbers(record.log_lines.back());
+  const std::string per_step =
+      " of the log's last LAMMPS run (in.chute: the chute run), step by step, from its solver line";
+  const std::vector<std::pair<const char*, std::string>> log_rows = {
+      {"solver_log_steps", "steps"},
+      {"solver_log_unconverged_steps", "unconverged steps"},
+      {"solver_log_sweeps_median", "median sweeps per step"},
+      {"solver_log_sweeps_p99", "99th percentile of the sweeps per step"},
+      {"solver_log_sweeps_max", "largest sweeps of a step"}};
+  for (size_t i = 0; i < log_rows.size(); ++i) {
+    const std::string description = log_rows[i].second + per_step;
+    if (last) results.add(log_rows[i].first, (*last)[i], "", description);
+    else
+      results.add_not_recorded(log_rows[i].first, "",
+                               description + ": not recorded (no solver line in " + record.log_file + ")");
+  }
 }
 
 std::string solver_health_text(const SolverRecord& record)

@@ -47,7 +47,10 @@ SolverRecord read_solver_record(const std::string& directory);
 
 // Rows solver_steps, solver_unconverged_steps, solver_unconverged_fraction, solver_sweeps_median,
 // solver_sweeps_p99 and solver_overlap_max: numbers, or "not recorded" without a solver.time;
-// solver_sweeps_largest and solver_overlap_largest from the log's SOLVER line, or "not recorded".
+// solver_sweeps_largest and solver_overlap_largest from the log's SOLVER line, or "not recorded";
+// solver_log_steps, solver_log_unconverged_steps, solver_log_sweeps_median, solver_log_sweeps_p99
+// and solver_log_sweeps_max, step by step, from the log's last solver line (in.chute: the chute
+// run's), or "not recorded".
 void add_solver_results(ResultTable& results, const SolverRecord& record);
 
 // A count of steps or sweeps as a whole number ("390000", not "3.9e+05").
