@@ -369,13 +369,16 @@ TEST(Cli, SnapshotOfAnyDumpTakesItsDiameterAndPeriodicityFromIt)
   auto outcome = cdpost("snapshot " + dump + " --units reduced");
   ASSERT_EQ(outcome.status, 0) << outcome.err;
   EXPECT_EQ(outcome.out.substr(0, outcome.out.find('\n')),
-            "snapshot: d 0.75 input length units (the dump's mean diameter); not periodic (the dump's box bounds)");
+            "snapshot: d 0.75 input length units (the dump's mean diameter); not periodic (the dump's box bounds); "
+            "input in reduced units (g = 1 in the dump's units)");
   const auto script = slurp(dir / "snapshot.gp");
   EXPECT_EQ(script.find("periodic images"), std::string::npos);
   EXPECT_NE(script.find("xrange [0:133.333"), std::string::npos) << script;  // 100 / 0.75: x in d
   outcome = cdpost("snapshot " + dump + " --units reduced --d 1 --periodic x");
   ASSERT_EQ(outcome.status, 0) << outcome.err;
-  EXPECT_NE(outcome.out.find("d 1 m (from --d or chute.params); periodic in x (from --periodic)"), std::string::npos)
+  EXPECT_NE(outcome.out.find("d 1 m (from --d or chute.params); periodic in x (from --periodic); input in reduced "
+                             "units (lengths in d, times in sqrt(d/g))"),
+            std::string::npos)
       << outcome.out;
   EXPECT_EQ(cdpost("snapshot " + dump + " --periodic z").err,
             "cdpost: cdpost snapshot: --periodic takes x, y, xy or none, not 'z' (see cdpost --help)\n");

@@ -82,6 +82,10 @@ std::string describe(const Units& used, bool d_from_dump, std::array<bool, 2> pe
   const char* axes = periodic[0] && periodic[1] ? "x and y" : periodic[0] ? "x" : periodic[1] ? "y" : "";
   text << "; " << (*axes ? std::string("periodic in ") + axes : std::string("not periodic"))
        << (periodic_given ? " (from --periodic)" : " (the dump's box bounds)");
+  // Reduced input with d from the dump: the dump's length unit is not d (an LJ sigma), g is 1 in it.
+  if (used.input == Units::Input::reduced && d_from_dump)
+    text << "; input in reduced units (g = 1 in the dump's units)";
+  else if (used.input != Units::Input::si) text << "; " << input_units_text(used);
   return text.str();
 }
 
