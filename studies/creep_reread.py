@@ -29,10 +29,11 @@ SERIES_CREEP_FILES = ("runs.csv", "report.md")  # what the creep changes of a se
 
 
 def rows_of(text):
-    """{name: (value, error or None)} of a results.csv's text."""
+    """{name: (value, error or None)} of a results.csv's text; rows not recorded (no value) left out."""
     rows = {}
     for row in csv.DictReader(io.StringIO(text)):
-        rows[row["name"]] = (float(row["value"]), float(row["error"]) if row["error"] else None)
+        if row["value"]:
+            rows[row["name"]] = (float(row["value"]), float(row["error"]) if row["error"] else None)
     return rows
 
 

@@ -47,6 +47,7 @@ inline std::string ave_chunk_text(const std::vector<std::string>& names, const s
 struct DumpAtom {
   long id;
   double x, y, vx, vy, radius;
+  long type = 1;
 };
 
 // boundary: the flags of the "ITEM: BOX BOUNDS" line (x y z), as LAMMPS writes them.
@@ -60,7 +61,7 @@ inline std::string dump_frame_text(long timestep, double lx, double ly, const st
       << atoms.size() << "\nITEM: BOX BOUNDS " << boundary << "\n0 " << lx << "\n0 " << ly << "\n-0.5 0.5\n"
       << "ITEM: ATOMS id type x y vx vy radius\n";
   for (const auto& a : atoms)
-    out << a.id << " 1 " << a.x << ' ' << a.y << ' ' << a.vx << ' ' << a.vy << ' ' << a.radius << '\n';
+    out << a.id << ' ' << a.type << ' ' << a.x << ' ' << a.y << ' ' << a.vx << ' ' << a.vy << ' ' << a.radius << '\n';
   return out.str();
 }
 

@@ -38,8 +38,11 @@ struct SyntheticRun {
   unsigned seed = 1;
   double y_top = 0;  // m: height of the wall tops, z = y - y_top
   bool with_chunks_and_dump = true;
-  double occupied_above_h = 0;              // d: profile bins above h holding grains (a dilute surface), u as at h
-  bool with_record = true;                  // chute.params, as inputs/in.chute writes it
+  double occupied_above_h = 0;  // d: profile bins above h holding grains (a dilute surface), u as at h
+  bool with_record = true;      // chute.params, as inputs/in.chute writes it
+  // solver.time, as inputs/in.chute writes it (every 10000 steps, every step converged but these)
+  bool with_solver = true;
+  long unconverged_steps = 0;               // all in the first interval
   std::optional<double> recorded_length_d;  // L_d of chute.params (none: not recorded)
   // columns.chunk: v of `columns` x-columns tiling the cell, each the layer's oscillation plus
   // noise of its own (column_noise); one column empty every `empty_every` samples (0: never).
@@ -78,6 +81,15 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const Syntheti
   }
   write_file(dir / "flow.time",
              ave_time_text({"TimeStep", "v_time", "v_u_all", "v_u_flow", "v_v_flow", "v_phi_flow", "v_h"}, rows));
+  if (run.with_solver) {
+    std::vector<std::vector<double>> solver;
+    for (long step = 10000; step <= steps; step += 10000)
+      solver.push_back({double(step), 40, 1e-4, 100, 80, 1e-3, 1e-4,
+                        step == 10000 ? 1 - double(run.unconverged_steps) / 10000 : 1.0, 2, 1});
+    write_file(dir / "solver.time", ave_time_text({"TimeStep", "f_cd[1]", "f_cd[2]", "f_cd[3]", "f_cd[4]", "f_cd[5]",
+                                                   "f_cd[6]", "f_cd[7]", "f_cd[11]", "f_cd[12]"},
+                                                  solver));
+  }
   if (run.with_record) {
     std::ostringstream record;
     record << "# inputs/in.chute: chute parameters, one name and value a line (SI)\ny_top_m " << run.y_top

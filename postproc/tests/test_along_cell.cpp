@@ -217,6 +217,43 @@ TEST(AlongCell, IncoherentColumnsSitAtTheNoiseFloorAndAreLocal)
   EXPECT_NE(result.along.verdict.text.find("below one column width"), std::string::npos);
 }
 
+// The user trial's figure: a window of one segment reads coherence 1 between any columns (and a
+// few averages near it), which once gave "local: no coherence even between neighbouring columns"
+// beside numbers of 0.98. Too few averages resolve nothing: never local, and the text says so.
+TEST(AlongCell, VerdictAgreesWithItsNumbersWhenTooFewAveragesResolveNothing)
+{
+  const double f = 30, a = 0.3;
+  const auto field = field_of(16, 1, 0.02, [&](double, double t) { return a * std::sin(2 * M_PI * f * t); });
+  const auto result = analyse(field, f, 0.1);
+  const auto& c = result.along.coherence;
+  ASSERT_LT(c.averages, 4);
+  for (double value : c.coherence) EXPECT_GT(value, 0.9);
+  const auto& v = result.along.verdict;
+  EXPECT_EQ(v.pattern, OscillationPattern::Uniform) << v.text;
+  EXPECT_EQ(v.text.find("no coherence"), std::string::npos) << v.text;
+  EXPECT_NE(v.text.find("the coherence does not resolve where the oscillation lives"), std::string::npos) << v.text;
+
+  // The same numbers judged directly: 0.98 at every distance from 2 averages is not local either.
+  CoherenceByDistance reading;
+  reading.distance = {1.5, 3, 4.5, 6};
+  reading.coherence = {0.98, 0.98, 0.98, 0.98};
+  reading.averages = 2;
+  reading.noise_floor = 0.5;
+  std::vector<double> power(17, 0.0);
+  power[8] = 1;  // all at m = 0 (16 columns: m = -8..8)
+  const auto judged = judge_pattern(power, 16, reading, std::nullopt, 24);
+  EXPECT_NE(judged.pattern, OscillationPattern::Local) << judged.text;
+  EXPECT_EQ(judged.text.find("no coherence"), std::string::npos) << judged.text;
+  // With enough averages the same reading is coherent; a reading at the floor is local and says
+  // its number against twice the floor.
+  reading.averages = 20, reading.noise_floor = 0.05;
+  EXPECT_EQ(judge_pattern(power, 16, reading, std::nullopt, 24).pattern, OscillationPattern::Uniform);
+  reading.coherence = {0.06, 0.05, 0.05, 0.05};
+  const auto local = judge_pattern(power, 16, reading, std::nullopt, 24);
+  EXPECT_EQ(local.pattern, OscillationPattern::Local);
+  EXPECT_NE(local.text.find("(0.06 at r = 1.5 d, below twice the noise floor 0.05)"), std::string::npos) << local.text;
+}
+
 TEST(AlongCell, CoherenceThatDoesNotDecayGivesAVerdictNotALength)
 {
   // A uniform oscillation with noise of each column's own: C = 0.9974 at every distance (its
@@ -375,6 +412,8 @@ TEST(AlongCellSeries, EveryRunGetsItsVerdictRawOrPublished)
     run.relaxation = 0.1;
     run.seed = static_cast<unsigned>(i);
     run.u_final = 5.0 + i;
+    run.with_solver = i != 2;  // run 2 recorded none: its row says so
+    run.unconverged_steps = i == 1 ? 12 : 0;
     const std::string name = "run" + std::to_string(i);
     testing::write_synthetic_run(dir / name, run);
     manifest << name << ",0.5," << 21 + i << ",45\n";
@@ -399,6 +438,14 @@ TEST(AlongCellSeries, EveryRunGetsItsVerdictRawOrPublished)
   EXPECT_EQ(rows, 3);
   for (const char* run : {"run1,0.5,22,uniform,", "run2,0.5,23,uniform,", "run3,0.5,24,uniform,"})
     EXPECT_NE(text.find(run), std::string::npos) << text;
+  // The series' report states each run's solver health, or that it was not recorded.
+  std::ifstream report_file(dir / "post/report.md");
+  const std::string report((std::istreambuf_iterator<char>(report_file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("## Solver health of the runs"), std::string::npos);
+  const auto table = report.substr(report.find("## Solver health of the runs"), 900);
+  EXPECT_NE(report.find("| run1 (mu 0.5, 22 deg) | 12 of 390000 | 0.0030769 |"), std::string::npos) << table;
+  EXPECT_NE(report.find("| run2 (mu 0.5, 23 deg) | not recorded | not recorded |"), std::string::npos) << report;
+  EXPECT_NE(report.find("| run3 (mu 0.5, 24 deg) | 0 of 390000 |"), std::string::npos) << report;
   EXPECT_TRUE(std::filesystem::exists(dir / "post/figures/coherence_vs_U.png") ||
               std::filesystem::exists(dir / "post/figures/coherence_vs_U.gp"));
 }

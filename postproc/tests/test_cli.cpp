@@ -369,16 +369,134 @@ TEST(Cli, SnapshotOfAnyDumpTakesItsDiameterAndPeriodicityFromIt)
   auto outcome = cdpost("snapshot " + dump + " --units reduced");
   ASSERT_EQ(outcome.status, 0) << outcome.err;
   EXPECT_EQ(outcome.out.substr(0, outcome.out.find('\n')),
-            "snapshot: d 0.75 input length units (the dump's mean diameter); not periodic (the dump's box bounds)");
+            "snapshot: d 0.75 input length units (the dump's mean diameter); not periodic (the dump's box bounds); "
+            "input in reduced units (g = 1 in the dump's units)");
   const auto script = slurp(dir / "snapshot.gp");
   EXPECT_EQ(script.find("periodic images"), std::string::npos);
   EXPECT_NE(script.find("xrange [0:133.333"), std::string::npos) << script;  // 100 / 0.75: x in d
   outcome = cdpost("snapshot " + dump + " --units reduced --d 1 --periodic x");
   ASSERT_EQ(outcome.status, 0) << outcome.err;
-  EXPECT_NE(outcome.out.find("d 1 m (from --d or chute.params); periodic in x (from --periodic)"), std::string::npos)
+  EXPECT_NE(outcome.out.find("d 1 m (from --d or chute.params); periodic in x (from --periodic); input in reduced "
+                             "units (lengths in d, times in sqrt(d/g))"),
+            std::string::npos)
       << outcome.out;
   EXPECT_EQ(cdpost("snapshot " + dump + " --periodic z").err,
             "cdpost: cdpost snapshot: --periodic takes x, y, xy or none, not 'z' (see cdpost --help)\n");
+}
+
+// The user trial: a report said nothing of the solver's health. Every report and results.json
+// gives it, or says it was not recorded.
+TEST(Cli, ReportsGiveTheSolversHealthOrSayItIsNotRecorded)
+{
+  testing::SyntheticRun truth;
+  truth.with_solver = false;
+  auto dir = run_with_wall_tops("health", truth);
+  auto outcome = cdpost("run " + dir.string() + " --t-start 2.5");
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_NE(outcome.err.find("cdpost: warning: " + (dir / "solver.time").string() +
+                             " not found: the solver's health is not recorded"),
+            std::string::npos)
+      << outcome.err;
+  auto report = slurp(dir / "post/report.md");
+  EXPECT_NE(report.find("## Solver health\n\nUnconverged steps, sweeps per step and the largest interpenetration: "
+                        "not recorded (no " +
+                        (dir / "solver.time").string() + ")."),
+            std::string::npos)
+      << report;
+  EXPECT_NE(report.find("| `solver_sweeps_p99` | not recorded |"), std::string::npos);
+  const auto json = slurp(dir / "post/results.json");
+  for (const char* name : {"solver_unconverged_steps", "solver_unconverged_fraction", "solver_sweeps_median",
+                           "solver_sweeps_p99", "solver_overlap_max", "solver_overlap_largest"})
+    EXPECT_NE(json.find("{\"name\": \"" + std::string(name) + "\", \"value\": null"), std::string::npos) << name;
+
+  // 3000 of the first 10 000 steps unconverged (of 39 intervals, 390 000 steps), and the log's solver line.
+  truth.with_solver = true;
+  truth.unconverged_steps = 3000;
+  dir = run_with_wall_tops("health", truth);
+  testing::write_file(dir / "log.lammps",
+                      "Fix contact/dynamics cd solver: 5539 steps, 111 unconverged (2 %), largest final norm 0.01, "
+                      "sweeps per step median 71, 99th percentile 358, max 692, 0 rescued from a stall\n");
+  outcome = cdpost("run " + dir.string() + " --t-start 2.5");
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_NE(outcome.err.find("solver.time: 3000 steps unconverged, 0.76923 % of the steps (more than 0.1 %)"),
+            std::string::npos)
+      << outcome.err;
+  report = slurp(dir / "post/report.md");
+  EXPECT_NE(report.find("3000 of 390000 steps unconverged (0.76923 %); sweeps per step, median 40, 99th percentile 40"),
+            std::string::npos)
+      << report.substr(report.find("## Solver health"), 600);
+  EXPECT_NE(report.find("\n1. 5539 steps, 111 unconverged (2 %)"), std::string::npos) << report;
+  EXPECT_NE(report.find("not recorded (no SOLVER line in the log)"), std::string::npos) << report;
+  EXPECT_NEAR(csv_value(dir / "post/results.csv", "solver_unconverged_fraction"), 3000.0 / 390000, 1e-12);
+  EXPECT_DOUBLE_EQ(csv_value(dir / "post/results.csv", "solver_overlap_max"), 1e-3);
+
+  // A broken solver.time is one line naming it.
+  testing::write_file(dir / "solver.time", "# Time-averaged data\n# TimeStep f_cd[1] f_cd[5] f_cd[7]\n100 3 0.1 2\n");
+  outcome = cdpost("run " + dir.string() + " --t-start 2.5");
+  EXPECT_EQ(outcome.status, 1);
+  EXPECT_EQ(outcome.err, "cdpost: error: " + (dir / "solver.time").string() +
+                             ":3: fraction of converged steps 2 is not in [0, 1]\n");
+}
+
+// The parameters line names the input's units: reduced lengths are in d, not metres.
+TEST(Cli, UnitsLineIsRightForEveryUnitSystem)
+{
+  testing::SyntheticRun truth;
+  auto dir = run_with_wall_tops("units", truth);
+  auto first_line = [](const Outcome& outcome) { return outcome.out.substr(0, outcome.out.find('\n')); };
+  const std::string record = (dir / "chute.params").string();
+  auto reduced = cdpost("run " + dir.string() + " --units reduced");  // SI files read as reduced: may then fail
+  EXPECT_EQ(first_line(reduced),
+            "parameters: input in reduced units (lengths in d, times in sqrt(d/g)) from --units; z0 10 d, sample rate "
+            "1000 Hz, d 0.0005 m, g 9.81 m/s^2 (converting sqrt(d/g) to s, for the results in Hz and s) from " +
+                record)
+      << reduced.out;
+  auto custom = cdpost("run " + dir.string() + " --length-unit 1e-3 --out " + (dir / "mm").string());
+  EXPECT_EQ(first_line(custom),
+            "parameters: input length unit 0.001 m, time unit 1 s from --length-unit, "
+            "--time-unit; z0 0.005 m, sample rate 1000 Hz, d 0.0005 m, g 9.81 m/s^2 from " +
+                record)
+      << custom.out;
+  auto si = cdpost("run " + dir.string() + " --t-start 2.5");
+  ASSERT_EQ(si.status, 0) << si.err;
+  EXPECT_NE(slurp(dir / "post/report.md").find("Units: input in SI units (m, s); d = 0.0005 m, g = 9.81 m/s^2"),
+            std::string::npos);
+  EXPECT_EQ(cdpost("run " + dir.string() + " --time-unit 0").err,
+            "cdpost: cdpost run: --time-unit must be positive (see cdpost --help)\n");
+  // The snapshot's help says what the command does: without a chute.params it needs --g.
+  const auto help = cdpost("snapshot --help").out;
+  const auto g_line = help.substr(help.find("  --g "), help.find('\n', help.find("  --g ")) - help.find("  --g "));
+  EXPECT_EQ(g_line.find("9.81"), std::string::npos) << g_line;
+  EXPECT_NE(g_line.find("without one, needed unless --units reduced"), std::string::npos) << g_line;
+}
+
+// Atoms that are not grains (a ring of disks moved by fix move) are drawn as obstacles, in grey.
+TEST(Cli, SnapshotDrawsObstaclesApartFromGrains)
+{
+  const auto dir = testing::scratch_dir();
+  std::vector<testing::DumpAtom> atoms = {{1, 10, 10, 1, 0, 0.5}, {2, 20, 10, 2, 0, 0.5}};
+  for (long i = 0; i < 8; ++i)
+    atoms.push_back({3 + i, 30 + 3 * std::cos(i * M_PI / 4), 20 + 3 * std::sin(i * M_PI / 4), 0, 0, 0.25, 2});
+  const auto dump = testing::write_file(dir / "dump.ring", testing::dump_frame_text(100, 40, 30, atoms, "pp ff pp"));
+  auto outcome = cdpost("snapshot " + dump + " --g 1 --obstacle-types 2");
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_NE(outcome.out.find("8 obstacle atoms (from --obstacle-types)"), std::string::npos) << outcome.out;
+  const auto script = slurp(dir / "snapshot.gp");
+  EXPECT_NE(script.find("lc rgb 'grey50'"), std::string::npos) << script;
+  EXPECT_NE(script.find("(2 grains, 8 obstacle atoms)"), std::string::npos) << script;
+  EXPECT_NE(script.find("obstacles (atom type 2) in grey"), std::string::npos);
+  // Refused in one line: a list that is not one of types, a type no atom has.
+  EXPECT_EQ(cdpost("snapshot " + dump + " --g 1 --obstacle-types 2,,3").err,
+            "cdpost: cdpost snapshot: --obstacle-types takes positive atom types separated by commas (e.g. 2,3), "
+            "not '2,,3' (see cdpost --help)\n");
+  EXPECT_EQ(cdpost("snapshot " + dump + " --g 1 --obstacle-types 0").status, 2);
+  outcome = cdpost("snapshot " + dump + " --g 1 --obstacle-types 5");
+  EXPECT_EQ(outcome.status, 1);
+  EXPECT_EQ(outcome.err, "cdpost: error: " + dump +
+                             ":1: no atom of the obstacle type(s) 5 in the frame at timestep 100: check "
+                             "--obstacle-types\n");
+  EXPECT_EQ(cdpost("run " + dir.string() + " --obstacle-types 2").err,
+            "cdpost: cdpost run: --obstacle-types is for the snapshot: give --dump too (see cdpost --help)\n");
 }
 
 // Bins above the measured h (the dilute surface) are drawn apart from the fitted layer and named.
@@ -593,7 +711,7 @@ std::map<std::string, double> csv_values(const std::filesystem::path& csv)
   std::getline(lines, line);
   while (std::getline(lines, line)) {
     const auto comma = line.find(',');
-    values[line.substr(0, comma)] = std::stod(line.substr(comma + 1));
+    if (line[comma + 1] != ',') values[line.substr(0, comma)] = std::stod(line.substr(comma + 1));  // else not recorded
   }
   return values;
 }
@@ -839,6 +957,13 @@ TEST(Cli, SeriesComparedWithAnotherKeepsEachOnesFits)
   EXPECT_EQ(in_a, alone_a.size());
   EXPECT_EQ(in_b, alone_b.size());
   EXPECT_GT(differences, 20u);
+  // The comparison's report states the solver's health of each series' runs.
+  const auto compared_report = slurp(dir / "compared/report.md");
+  for (const char* label : {"a", "b"})
+    EXPECT_NE(compared_report.find("## Solver health of the runs of " + std::string(label) +
+                                   "\n\nFrom each run's solver.time"),
+              std::string::npos)
+        << label;
   // Both series on the same axes: per friction one colour (line type 1 for mu = 0.5), per series
   // a point type (circles, squares) and a dash (b dashed).
   const auto script = slurp(dir / "compared/figures/U_vs_theta.gp");

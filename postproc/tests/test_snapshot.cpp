@@ -64,6 +64,47 @@ TEST(Snapshot, WallsStandOnTheBoundaryUpToTheWallTops)
   EXPECT_NE(figure.caption.find("above the wall tops"), std::string::npos);
 }
 
+// Atoms of an obstacle type (a ring moved by fix move, outside the fix's group) are no grains: drawn
+// apart in grey with their images, off the colour scale, the grain count and the mean diameter.
+TEST(Snapshot, ObstaclesAreDrawnApartFromGrains)
+{
+  auto request = cell_dump();
+  const std::vector<testing::DumpAtom> atoms = {
+      {1, 5.0, 12.0, 1, 0, 0.5},      // a grain
+      {2, 10.0, 12.0, 3, 0, 0.5},     // a grain
+      {3, 0.5, 15.0, 0, 0, 2.0, 2},   // an obstacle at x = 0, above the wall tops: imaged at x = L
+      {4, 15.0, 15.0, 0, 0, 2.0, 2},  // an obstacle mid-cell
+  };
+  testing::write_file(request.dump_path, testing::dump_frame_text(100, 20, 30, atoms));
+  request.obstacle_types = {2};
+  request.diameter_from_dump = true;
+  const auto snapshot = snapshot_figure(request, unit_d());
+  const Figure& figure = snapshot.figure;
+  ASSERT_NE(curve_named(figure, "obstacles"), nullptr);
+  const Curve& obstacles = *curve_named(figure, "obstacles");
+  EXPECT_EQ(obstacles.style, CurveStyle::Obstacles);
+  ASSERT_EQ(obstacles.x.size(), 3u);  // two obstacles and the image of the one at x = 0
+  EXPECT_DOUBLE_EQ(obstacles.x[0], 0.5);
+  EXPECT_DOUBLE_EQ(obstacles.x[1], 20.5);
+  EXPECT_DOUBLE_EQ(obstacles.x[2], 15.0);
+  EXPECT_EQ(curve_named(figure, "grains")->x.size(), 2u);
+  EXPECT_EQ(curve_named(figure, "periodic images"), nullptr);  // the grains are mid-cell
+  EXPECT_NE(figure.panels[0].title.find("(2 grains, 2 obstacle atoms)"), std::string::npos);
+  EXPECT_NE(figure.caption.find("obstacles (atom type 2) in grey"), std::string::npos);
+  // d is the grains' mean diameter, 1, not the mean over every atom (2.5).
+  EXPECT_NE(snapshot.parameters.find("d 1 input length units"), std::string::npos) << snapshot.parameters;
+  // Without the option they are grains, as before.
+  request.obstacle_types.clear();
+  EXPECT_EQ(curve_named(snapshot_figure(request, unit_d()).figure, "obstacles"), nullptr);
+  request.obstacle_types = {7};
+  try {
+    snapshot_figure(request, unit_d());
+    ADD_FAILURE() << "no atom of type 7: refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no atom of the obstacle type(s) 7"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Snapshot, ImagesOnlyAboveTheWallTops)
 {
   const Figure figure = snapshot_figure(cell_dump(), unit_d()).figure;

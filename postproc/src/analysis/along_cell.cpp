@@ -16,6 +16,10 @@ constexpr double kTravellingBalance = 1.0 / 3;
 // Neighbouring columns are incoherent when their mean coherence is below twice the noise floor
 // (the mean of M pair estimates of incoherent columns scatters by ~floor / sqrt(M)).
 constexpr double kIncoherentNeighbours = 2;
+// Below this many averages incoherent columns read up to half or more (the floor 1/n, twice it
+// 2/n >= 1/2), and a single segment reads 1 whatever the field: the coherence cannot tell
+// coherent columns from incoherent ones, and no verdict rests on it.
+constexpr double kLeastAverages = 4;
 // The coherence is kept across the cell when its plateau is at least half that of neighbours.
 constexpr double kCoherentPlateau = 0.5;
 // The coherence fit's three parameters need more distances than that.
@@ -271,11 +275,15 @@ PatternVerdict judge_pattern(const std::vector<double>& band_power, int columns,
                           " at r = " + number(coherence.distance.back()) + " d (noise floor " +
                           number(coherence.noise_floor) + ")";
   std::string headline;
-  if (coherence.coherence.front() < kIncoherentNeighbours * coherence.noise_floor) {
+  const bool resolved = coherence.averages >= kLeastAverages;
+  const double neighbours = coherence.coherence.front();
+  if (resolved && neighbours < kIncoherentNeighbours * coherence.noise_floor) {
     verdict.pattern = OscillationPattern::Local;
-    headline = "local: no coherence even between neighbouring columns (" + number(coherence.coherence.front()) +
-               " at r = " + number(coherence.distance.front()) + " d): coherence length below one column width";
-  } else if (fit && fit->length && fit->length->value + 2 * fit->length->error.value_or(0) < cell_length_d / 2 &&
+    headline = "local: neighbouring columns no more coherent than incoherent ones (" + number(neighbours) +
+               " at r = " + number(coherence.distance.front()) + " d, below twice the noise floor " +
+               number(coherence.noise_floor) + "): coherence length below one column width";
+  } else if (resolved && fit && fit->length &&
+             fit->length->value + 2 * fit->length->error.value_or(0) < cell_length_d / 2 &&
              fit->plateau.value < kCoherentPlateau * coherence.coherence.front()) {
     verdict.pattern = OscillationPattern::Local;
     headline = "local: coherence length " + format_estimate(fit->length->value, fit->length->error) +
@@ -294,8 +302,12 @@ PatternVerdict judge_pattern(const std::vector<double>& band_power, int columns,
     headline = "standing";
   }
   verdict.text = headline + "; " + wavenumber_text(verdict, cell_length_d) + "; " + far;
-  if (verdict.pattern != OscillationPattern::Local && coherence.without_group.size() >= 2 &&
-      !coherence_decays(coherence)) {
+  if (!resolved)
+    verdict.text += "; the coherence does not resolve where the oscillation lives: " + number(coherence.averages) +
+                    " averages (fewer than " + number(kLeastAverages) +
+                    "), so incoherent columns could read as much (analyse a longer window)";
+  else if (verdict.pattern != OscillationPattern::Local && coherence.without_group.size() >= 2 &&
+           !coherence_decays(coherence)) {
     const auto decay = coherence_decay(coherence);
     verdict.text +=
         "; no coherence length: the coherence does not decay over the cell (" + number(coherence.coherence.front()) +

@@ -76,7 +76,9 @@ struct PatternVerdict {
 // when one direction of the dominant |m| holds at least twice the power of the other (|balance|
 // >= 1/3, and beyond twice its error), standing otherwise. band_power as band_power_by_m gives
 // it for `columns` columns; the balance's error (1 - b^2) / sqrt(2 n) with n the coherence's
-// averages (each P(+-m) a mean of n squared Gaussian amplitudes).
+// averages (each P(+-m) a mean of n squared Gaussian amplitudes). With fewer than 4 averages
+// the coherence tells nothing (one segment reads 1): never local then, the wavenumbers alone
+// judge, and the text says the coherence does not resolve the pattern.
 PatternVerdict judge_pattern(const std::vector<double>& band_power, int columns, const CoherenceByDistance& coherence,
                              const std::optional<CoherenceFit>& fit, double cell_length_d);
 

@@ -71,6 +71,10 @@ ResultTable read_results_csv(const std::string& path)
                 [&](const std::vector<std::string>& fields, const LineSource& source) {
                   if (fields[0].empty()) source.fail("a result without a name");
                   if (!names.insert(fields[0]).second) source.fail("result '" + fields[0] + "' is given twice");
+                  if (fields[1].empty() && fields[2].empty()) {  // ResultRow::recorded false
+                    results.add_not_recorded(fields[0], fields[3], fields[4]);
+                    return;
+                  }
                   const double value = parse_number(fields[1], source, fields[0]);
                   if (fields[2].empty()) results.add(fields[0], value, fields[3], fields[4]);
                   else
@@ -190,7 +194,7 @@ ResultTable with_creep_rows(const ResultTable& results, const CreepMeasure& cree
   add_creep_results(measured, creep);
   bool placed = false;
   for (const auto& row : results.rows()) {
-    if (!is_creep_result(row.name)) updated.add(row.name, Estimate{row.value, row.error}, row.unit, row.description);
+    if (!is_creep_result(row.name)) updated.add_row(row);
     else if (!placed) updated.append(measured, "");
     placed = placed || is_creep_result(row.name);
   }

@@ -32,9 +32,25 @@ void Units::use_reduced_input()
 {
   length_unit_m = d_m;
   time_unit_s = reduced_time_s();
+  input = Input::reduced;
+}
+
+std::string input_units_text(const Units& units)
+{
+  switch (units.input) {
+    case Units::Input::si: return "input in SI units (m, s)";
+    case Units::Input::reduced: return "input in reduced units (lengths in d, times in sqrt(d/g))";
+    case Units::Input::custom: break;
+  }
+  std::ostringstream text;
+  text << "input length unit " << units.length_unit_m << " m, time unit " << units.time_unit_s << " s";
+  return text.str();
 }
 
 namespace {
+
+// More unconverged steps than this fraction is a warning (the campaign refuses to publish such a run).
+constexpr double kUnconvergedWarning = 1e-3;
 
 std::string path_in(const RunSettings& settings, const std::string& file)
 {
@@ -598,6 +614,14 @@ RunAnalysis analyse_run(const RunSettings& settings)
   analyser.derived_rates();
   analyser.layer_spectra();
   analyser.along_cell();
+  run.solver = read_solver_record(settings.directory);
+  add_solver_results(run.results, run.solver);
+  if (!run.solver.health)
+    run.warnings.push_back(run.solver.solver_file + " not found: the solver's health is not recorded");
+  else if (run.solver.health->unconverged_fraction > kUnconvergedWarning)
+    run.warnings.push_back(run.solver.solver_file + ": " + count_text(run.solver.health->unconverged_steps) +
+                           " steps unconverged, " + format_estimate(100 * run.solver.health->unconverged_fraction, {}) +
+                           " % of the steps (more than 0.1 %)");
   return run;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "analysis/along_cell.h"
+#include "analysis/solver_health.h"
 #include "fit/creep.h"
 #include "fit/packing_profile.h"
 #include "fit/profile_fits.h"
@@ -24,6 +25,9 @@ struct Units {
   double g_mps2 = 9.81;      // gravity
   double length_unit_m = 1;  // one input length unit in metres
   double time_unit_s = 1;    // one input time unit in seconds
+  // How the input's units were given: SI, reduced (--units reduced) or by --length-unit and
+  // --time-unit (custom); said by input_units_text.
+  enum class Input { si, reduced, custom } input = Input::si;
   double velocity_unit_mps() const { return length_unit_m / time_unit_s; }
   double reduced_velocity_mps() const;  // sqrt(g d)
   double reduced_time_s() const;        // sqrt(d / g)
@@ -31,6 +35,10 @@ struct Units {
   // Input in reduced units: lengths in d, times in sqrt(d/g).
   void use_reduced_input();
 };
+
+// "input in SI units (m, s)", "input in reduced units (lengths in d, times in sqrt(d/g))" or
+// "input length unit X m, time unit Y s".
+std::string input_units_text(const Units& units);
 
 // The files a run directory holds (names relative to it) and their column names.
 struct RunColumns {
@@ -127,6 +135,7 @@ struct RunAnalysis {
   std::optional<PackingProfile> packing;  // phi(z) over the window, every bin (packing.chunk)
   std::vector<LayerSpectrum> layers;
   std::optional<AlongCell> along_cell;  // from columns.chunk
+  SolverRecord solver;                  // solver.time and the log's solver lines
   ResultTable results;
   std::vector<std::string> warnings;
   double h_d = 0;  // the layer thickness used for I, U/h and Bagnold (0 if unknown)

@@ -187,20 +187,51 @@ void print_warnings(const std::vector<std::string>& warnings)
   for (const auto& w : warnings) std::cerr << "cdpost: warning: " << w << '\n';
 }
 
+const OptionSpec obstacle_types_option = {
+    "obstacle-types", "T1,T2,...",
+    "atom types that are obstacles, not grains (e.g. a ring moved by fix move): drawn in grey, off the colour "
+    "scale (the dump's type column; default: none)"};
+
+// --obstacle-types: positive atom types separated by commas; empty when not given.
+std::vector<long> obstacle_types(const ParsedOptions& options, const std::string& command)
+{
+  std::vector<long> types;
+  const auto given = options.text("obstacle-types");
+  if (!given) return types;
+  const auto refuse = [&] {
+    return UsageError(command + ": --obstacle-types takes positive atom types separated by commas (e.g. 2,3), not '" +
+                      *given + "'");
+  };
+  size_t start = 0;
+  while (start <= given->size()) {
+    const size_t comma = std::min(given->find(',', start), given->size());
+    const std::string item = given->substr(start, comma - start);
+    if (item.empty() || item.find_first_not_of("0123456789") != std::string::npos || item.size() > 9) throw refuse();
+    types.push_back(std::stol(item));
+    if (types.back() < 1) throw refuse();
+    start = comma + 1;
+  }
+  return types;
+}
+
 int command_run(const std::vector<std::string>& arguments)
 {
   auto specs = analysis_options();
   specs.push_back({"dump", "FILE", "LAMMPS dump (.gz allowed) for the snapshot figure; default: none"});
+  specs.push_back(obstacle_types_option);
   auto options = parse_or_help("cdpost run", "cdpost run DIR [options]", arguments, specs, 1);
   if (!options) return 0;
   auto settings = settings_from(*options, "cdpost run");
+  const auto obstacles = obstacle_types(*options, "cdpost run");
+  if (!obstacles.empty() && !options->text("dump"))
+    throw UsageError("cdpost run: --obstacle-types is for the snapshot: give --dump too");
   settings.directory = options->positional[0];
   if (!std::filesystem::is_directory(settings.directory)) throw InputError(settings.directory, 0, "not a directory");
   apply_run_parameters(settings, *options, "cdpost run");
   std::cout << "parameters: " << settings.parameters << '\n';
   auto out = options->text("out").value_or((std::filesystem::path(settings.directory) / "post").string());
   auto run = analyse_run(settings);
-  write_run_outputs(run, out, options->text("dump").value_or(""));
+  write_run_outputs(run, out, options->text("dump").value_or(""), obstacles);
   std::cout << run.results.text() << "results: " << out << "/results.csv, report: " << out << "/report.md\n";
   print_warnings(run.warnings);
   return 0;
@@ -313,11 +344,16 @@ std::optional<std::array<bool, 2>> periodic_option(const ParsedOptions& options)
 int command_snapshot(const std::vector<std::string>& arguments)
 {
   auto specs = unit_options();
-  for (auto& spec : specs)
+  for (auto& spec : specs) {
     if (spec.name == "d")
       spec.help =
           "mean grain diameter (default: the chute.params beside the dump, else the dump's mean diameter, "
           "from its radius column)";
+    if (spec.name == "g")
+      spec.help =
+          "gravity in the dump's units, which the colours u_x / sqrt(g d) are scaled by (default: the chute.params "
+          "beside the dump; without one, needed unless --units reduced)";
+  }
   specs.insert(specs.end(), {{"timestep", "N", "frame to draw (default: the last)"},
                              {"z0", "LENGTH",
                               "height of the wall tops in input length units: walls on the periodic boundary from the "
@@ -326,6 +362,7 @@ int command_snapshot(const std::vector<std::string>& arguments)
                              {"periodic", "x|y|xy|none",
                               "the periodic dimensions, whose images are shaded (default: the dump's "
                               "'ITEM: BOX BOUNDS' flags)"},
+                             obstacle_types_option,
                              {"out", "DIR", "output directory (default: the dump's directory)"}});
   auto options = parse_or_help("cdpost snapshot", "cdpost snapshot DUMP [options]", arguments, specs, 1);
   if (!options) return 0;
@@ -334,6 +371,7 @@ int command_snapshot(const std::vector<std::string>& arguments)
   request.timestep = options->integer("timestep");
   request.progress = options->flag("progress");
   request.periodic = periodic_option(*options);
+  request.obstacle_types = obstacle_types(*options, "cdpost snapshot");
   auto out = options->text("out").value_or(std::filesystem::path(request.dump_path).parent_path().string());
   if (out.empty()) out = ".";
   const auto recorded = run_parameters(*options, "cdpost snapshot", folder_of(request.dump_path), WallTops::optional);

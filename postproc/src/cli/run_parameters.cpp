@@ -54,8 +54,12 @@ Units units_from(const ParsedOptions& options, const std::string& command, const
   auto system = options.text("units").value_or("si");
   if (system == "reduced") units.use_reduced_input();
   else if (system != "si") throw UsageError(command + ": --units must be 'si' or 'reduced', not '" + system + "'");
-  units.length_unit_m = options.number("length-unit").value_or(units.length_unit_m);
-  units.time_unit_s = options.number("time-unit").value_or(units.time_unit_s);
+  for (const char* name : {"length-unit", "time-unit"})
+    if (auto value = options.number(name)) {
+      if (!(*value > 0)) throw UsageError(command + ": --" + name + " must be positive");
+      (std::string(name) == "length-unit" ? units.length_unit_m : units.time_unit_s) = *value;
+      units.input = Units::Input::custom;
+    }
   return units;
 }
 
@@ -76,7 +80,15 @@ RunParameters run_parameters(const ParsedOptions& options, const std::string& co
 
   if (auto z0 = options.number("z0")) p.z0 = *z0;
   else if (auto y_top = recorded ? recorded->find("y_top_m") : std::nullopt) p.z0 = *y_top / p.units.length_unit_m;
-  if (p.z0) described.emplace_back("z0 " + number_text(*p.z0 * p.units.length_unit_m) + " m", source("z0", true));
+  // The input's units, when not SI (the unit a chute.params records its values in).
+  const bool reduced = p.units.input == Units::Input::reduced;
+  if (reduced) described.emplace_back(input_units_text(p.units), "from --units");
+  else if (p.units.input == Units::Input::custom)
+    described.emplace_back(input_units_text(p.units), "from --length-unit, --time-unit");
+  if (p.z0)
+    described.emplace_back(
+        reduced ? "z0 " + number_text(*p.z0) + " d" : "z0 " + number_text(*p.z0 * p.units.length_unit_m) + " m",
+        source("z0", true));
   else if (wall_tops == WallTops::required)
     throw InputError(recorded ? recorded->source : directory, 0,
                      std::string(recorded ? "no y_top_m" : "no chute.params (inputs/in.chute writes it)") +
@@ -87,8 +99,10 @@ RunParameters run_parameters(const ParsedOptions& options, const std::string& co
   if (p.sample_rate_hz)
     described.emplace_back("sample rate " + number_text(*p.sample_rate_hz) + " Hz", source("sample-rate", true));
   else described.emplace_back("sample rate none given or recorded (the time file's longest interval)", "");
+  // In reduced input d and g only turn times into seconds and rates into Hz: said so.
+  const std::string scales = reduced ? " (converting sqrt(d/g) to s, for the results in Hz and s)" : "";
   described.emplace_back("d " + number_text(p.units.d_m) + " m", source("d", recorded && recorded->find("d_m")));
-  described.emplace_back("g " + number_text(p.units.g_mps2) + " m/s^2",
+  described.emplace_back("g " + number_text(p.units.g_mps2) + " m/s^2" + scales,
                          source("g", recorded && recorded->find("g_mps2")));
   p.cell_length_d = options.number("cell-length");
   if (!p.cell_length_d) p.cell_length_d = recorded_positive(recorded, "L_d");

@@ -231,10 +231,11 @@ std::string method_text(const RunAnalysis& run)
                 format_estimate(s.criterion.min_window_fraction * 100, std::nullopt) + "% of the run"
           : (run.window_stationary ? "Stationary window" : "Window") + std::string(" given on the command line, ") +
                 (run.window_stationary ? "" : "not stationary: ") + run.window_drift;
-  return "Units: d = " + format_estimate(s.units.d_m, std::nullopt) +
+  return "Units: " + input_units_text(s.units) + "; d = " + format_estimate(s.units.d_m, std::nullopt) +
          " m, g = " + format_estimate(s.units.g_mps2, std::nullopt) +
-         " m/s^2 (sqrt(g/d) = " + format_estimate(s.units.reduced_rate_hz(), std::nullopt) + " Hz). " + window +
-         ". Means carry the standard error of " + std::to_string(s.averaging_blocks) +
+         " m/s^2 (sqrt(g/d) = " + format_estimate(s.units.reduced_rate_hz(), std::nullopt) + " Hz)" +
+         (s.units.input == Units::Input::reduced ? ", which turn the reduced input's times into s and Hz" : "") + ". " +
+         window + ". Means carry the standard error of " + std::to_string(s.averaging_blocks) +
          " block means. Spectrum: Welch average of Hann-windowed, detrended segments of " +
          format_estimate(run.spectrum.segment_duration_s, std::nullopt) +
          " s, amplitude normalised so that a sinusoid of amplitude a reads a; "
@@ -246,7 +247,8 @@ std::string method_text(const RunAnalysis& run)
 
 }  // namespace
 
-void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::string& dump_path)
+void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::string& dump_path,
+                       const std::vector<long>& obstacle_types)
 {
   const std::string figures_dir = out_dir + "/figures";
   std::filesystem::create_directories(figures_dir);
@@ -259,11 +261,14 @@ void write_run_outputs(RunAnalysis& run, const std::string& out_dir, const std::
     request.dump_path = dump_path;
     request.progress = run.settings.progress;
     request.wall_tops = run.settings.z0;
+    request.obstacle_types = obstacle_types;
     figures.push_back(snapshot_figure(request, run.settings.units).figure);
   }
   MarkdownReport report("Run " + run.settings.directory);
   report.paragraph(method_text(run));
   if (!run.settings.parameters.empty()) report.paragraph("Parameters: " + run.settings.parameters + ".");
+  report.heading("Solver health");
+  report.paragraph(solver_health_text(run.solver));
   report.heading("Results");
   report.table(run.results);
   if (run.creep) {

@@ -324,6 +324,8 @@ void write_comparison_outputs(SeriesComparison& comparison, const std::string& o
   const auto fits = compared_fits(comparison);
   const std::vector<LabelledSeries> both{{labels[0], &comparison.series[0]}, {labels[1], &comparison.series[1]}};
   source_section(report, both);
+  for (size_t i = 0; i < 2; ++i)
+    solver_section(report, comparison.series[i], "Solver health of the runs of " + labels[i]);
   report.heading("Fits of both series");
   fits_table(report, comparison, fits);
   auto warnings = comparison_warnings(comparison);

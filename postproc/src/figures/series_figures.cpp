@@ -7,6 +7,7 @@
 
 #include "analysis/creep_results.h"
 #include "analysis/series_analysis.h"
+#include "analysis/solver_health.h"
 #include "figures/along_cell_series.h"
 #include "figures/series_figures.h"
 #include "io/ave_time.h"
@@ -364,7 +365,13 @@ void write_runs_table(const SeriesAnalysis& series, const std::string& path)
                                           "creep_z_high",
                                           "creep_z_low",
                                           "creep_points",
-                                          "creep_floor"};
+                                          "creep_floor",
+                                          "solver_steps",
+                                          "solver_unconverged_steps",
+                                          "solver_unconverged_fraction",
+                                          "solver_sweeps_median",
+                                          "solver_sweeps_p99",
+                                          "solver_overlap_max"};
   auto out = open_output(path);
   out.precision(10);
   out << "run,mu,theta_deg,L_d";
@@ -536,6 +543,33 @@ void creep_table(MarkdownReport& report, const SeriesAnalysis& series)
 
 }  // namespace
 
+void solver_section(MarkdownReport& report, const SeriesAnalysis& series, const std::string& heading)
+{
+  report.heading(heading);
+  report.paragraph(
+      "From each run's solver.time (each row the means over one solver_interval): the steps whose last solve hit the "
+      "sweep cap, the median and 99th percentile of the rows' sweeps per step, the largest row mean of the steps' "
+      "largest interpenetration; each run's report lists the fix's solver lines of its log. Per run: solver_* in "
+      "runs.csv.");
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& run : series.runs) {
+    auto cell = [&](const std::string& name, double scale = 1) {
+      const auto e = run.estimate(name);
+      return e ? format_estimate(scale * e->value, std::nullopt) : std::string("not recorded");
+    };
+    const bool recorded = run.estimate("solver_unconverged_steps") && run.estimate("solver_steps");
+    rows.push_back({run_label(run.entry),
+                    recorded ? count_text(run.estimate("solver_unconverged_steps")->value) + " of " +
+                                   count_text(run.estimate("solver_steps")->value)
+                             : "not recorded",
+                    cell("solver_unconverged_fraction", 100), cell("solver_sweeps_median"), cell("solver_sweeps_p99"),
+                    cell("solver_overlap_max")});
+  }
+  report.table({"run", "unconverged steps", "unconverged (%)", "sweeps per step, median", "99th percentile",
+                "largest interpenetration (d)"},
+               rows);
+}
+
 std::vector<FrictionCurve> points_by_friction(const SeriesAnalysis& series, const std::string& x, const std::string& y)
 {
   std::set<double> mus;
@@ -652,6 +686,7 @@ void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir)
       "The "
       "fitted curves of the figures carry one-standard-error bands from the fit's covariance (delta method: var y = "
       "g^T C g, g the curve's gradient in the parameters).");
+  solver_section(report, series, "Solver health of the runs");
   report.heading("Fitted numbers");
   report.table(series.fits);
   report.heading("Residuals of the flow-rule fits");

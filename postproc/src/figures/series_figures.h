@@ -9,12 +9,17 @@
 
 #include "analysis/series_analysis.h"
 #include "output/gnuplot.h"
+#include "output/report.h"
 
 namespace cdpost {
 
 // OUT/runs.csv (one row per flowing run), OUT/fits.{csv,json}, OUT/residuals.csv, OUT/held_fits.csv,
 // OUT/layer_amplitudes.csv, OUT/depth_decay.csv, OUT/figures, OUT/report.md.
 void write_series_outputs(SeriesAnalysis& series, const std::string& out_dir);
+
+// A section `heading` with each run's solver health (analysis/solver_health.h), "not recorded"
+// where the run's solver.time was absent (or, for a published run, its results hold none).
+void solver_section(MarkdownReport& report, const SeriesAnalysis& series, const std::string& heading);
 
 // Result y (with its error bars if any) against result x ("theta": the tilt), one curve per
 // friction coefficient that has runs with both.

@@ -33,15 +33,35 @@ DumpFrame select_frame(const SnapshotRequest& request)
   return chosen;
 }
 
-// The mean of the frame's diameters, input length units.
-double mean_diameter(const DumpFrame& frame, size_t radius)
+// Whether each atom of the frame is an obstacle: its type is one of `types` (none when empty).
+std::vector<bool> obstacle_atoms(const DumpFrame& frame, const std::vector<long>& types)
 {
-  if (frame.atoms == 0)
-    throw InputError(frame.source, frame.line, "no grain in the frame to take the mean diameter from: give --d");
+  std::vector<bool> obstacle(frame.atoms, false);
+  if (types.empty()) return obstacle;
+  const size_t type = frame.column_index("type");
+  for (size_t atom = 0; atom < frame.atoms; ++atom)
+    obstacle[atom] = std::find(types.begin(), types.end(), std::lround(frame.value(atom, type))) != types.end();
+  if (std::find(obstacle.begin(), obstacle.end(), true) == obstacle.end()) {
+    std::string listed;
+    for (long t : types) listed += (listed.empty() ? "" : ",") + std::to_string(t);
+    throw InputError(frame.source, frame.line,
+                     "no atom of the obstacle type(s) " + listed + " in the frame at timestep " +
+                         std::to_string(frame.timestep) + ": check --obstacle-types");
+  }
+  return obstacle;
+}
+
+// The mean of the grains' diameters (obstacles left out), input length units.
+double mean_diameter(const DumpFrame& frame, size_t radius, const std::vector<bool>& obstacle)
+{
   double sum = 0;
-  for (size_t atom = 0; atom < frame.atoms; ++atom) sum += 2 * frame.value(atom, radius);
+  size_t grains = 0;
+  for (size_t atom = 0; atom < frame.atoms; ++atom)
+    if (!obstacle[atom]) sum += 2 * frame.value(atom, radius), ++grains;
+  if (grains == 0)
+    throw InputError(frame.source, frame.line, "no grain in the frame to take the mean diameter from: give --d");
   if (!(sum > 0)) throw InputError(frame.source, frame.line, "the radius column's mean is not positive: give --d");
-  return sum / double(frame.atoms);
+  return sum / double(grains);
 }
 
 std::array<bool, 2> periodicity(const SnapshotRequest& request, const DumpFrame& frame)
@@ -62,6 +82,10 @@ std::string describe(const Units& used, bool d_from_dump, std::array<bool, 2> pe
   const char* axes = periodic[0] && periodic[1] ? "x and y" : periodic[0] ? "x" : periodic[1] ? "y" : "";
   text << "; " << (*axes ? std::string("periodic in ") + axes : std::string("not periodic"))
        << (periodic_given ? " (from --periodic)" : " (the dump's box bounds)");
+  // Reduced input with d from the dump: the dump's length unit is not d (an LJ sigma), g is 1 in it.
+  if (used.input == Units::Input::reduced && d_from_dump)
+    text << "; input in reduced units (g = 1 in the dump's units)";
+  else if (used.input != Units::Input::si) text << "; " << input_units_text(used);
   return text.str();
 }
 
@@ -103,8 +127,9 @@ Snapshot snapshot_figure(const SnapshotRequest& request, const Units& units)
   const DumpFrame frame = select_frame(request);
   const size_t x = frame.column_index("x"), y = frame.column_index("y");
   const size_t vx = frame.column_index("vx"), radius = frame.column_index("radius");
+  const auto obstacle = obstacle_atoms(frame, request.obstacle_types);
   Units used = units;
-  if (request.diameter_from_dump) used.d_m = mean_diameter(frame, radius) * units.length_unit_m;
+  if (request.diameter_from_dump) used.d_m = mean_diameter(frame, radius, obstacle) * units.length_unit_m;
   const auto periodic = periodicity(request, frame);
   const double to_d = used.length_unit_m / used.d_m;
   const double to_reduced = used.velocity_unit_mps() / used.reduced_velocity_mps();
@@ -118,6 +143,7 @@ Snapshot snapshot_figure(const SnapshotRequest& request, const Units& units)
 
   Curve grains{"grains", CurveStyle::Circles, {}, {}, {}, {}, {}};
   Curve images{"periodic images", CurveStyle::ShadedCircles, {}, {}, {}, {}, {}};
+  Curve obstacles{"obstacles", CurveStyle::Obstacles, {}, {}, {}, {}, {}};
   for (size_t atom = 0; atom < frame.atoms; ++atom) {
     const double gx = frame.value(atom, x) * to_d, gz = (frame.value(atom, y) - z0) * to_d;
     const double r = frame.value(atom, radius) * to_d, u = frame.value(atom, vx) * to_reduced;
@@ -127,7 +153,7 @@ Snapshot snapshot_figure(const SnapshotRequest& request, const Units& units)
       curve.radius.push_back(r);
       curve.colour.push_back(u);
     };
-    add(grains, gx, gz);
+    add(obstacle[atom] ? obstacles : grains, gx, gz);
     std::vector<double> shift_x{0}, shift_z{0};  // the image's offsets across each periodic side
     if (periodic[0] && !(walls && gz <= 0.0)) {
       if (gx - xlo < margin_x) shift_x.push_back(length);
@@ -139,10 +165,13 @@ Snapshot snapshot_figure(const SnapshotRequest& request, const Units& units)
     }
     for (double sx : shift_x)
       for (double sz : shift_z)
-        if (sx != 0.0 || sz != 0.0) add(images, gx + sx, gz + sz);
+        if (sx != 0.0 || sz != 0.0) add(obstacle[atom] ? obstacles : images, gx + sx, gz + sz);
   }
   Panel panel;
-  panel.title = "Cell at timestep " + std::to_string(frame.timestep) + " (" + std::to_string(frame.atoms) + " grains)";
+  const size_t obstacle_count = static_cast<size_t>(std::count(obstacle.begin(), obstacle.end(), true));
+  panel.title = "Cell at timestep " + std::to_string(frame.timestep) + " (" +
+                std::to_string(frame.atoms - obstacle_count) + " grains" +
+                (obstacle_count ? ", " + std::to_string(obstacle_count) + " obstacle atoms" : std::string()) + ")";
   panel.x_label = "x / d";
   panel.y_label = request.wall_tops ? "z / d" : "y / d";
   panel.colour_label = "u_x / sqrt(g d)";
@@ -153,12 +182,20 @@ Snapshot snapshot_figure(const SnapshotRequest& request, const Units& units)
   // A shrink-wrapped top with a minimum (boundary fm) stays where the rain started: above the
   // highest grain there is only empty box, so the picture ends a diameter above it.
   double grains_top = zlo;
-  for (size_t i = 0; i < grains.y.size(); ++i) grains_top = std::max(grains_top, grains.y[i] + grains.radius[i]);
-  const double shown_top = periodic[1] || grains.y.empty() ? zhi + pad_z : std::min(zhi, grains_top + 1.0);
+  for (const Curve* drawn : {&grains, &obstacles})
+    for (size_t i = 0; i < drawn->y.size(); ++i) grains_top = std::max(grains_top, drawn->y[i] + drawn->radius[i]);
+  const double shown_top =
+      periodic[1] || (grains.y.empty() && obstacles.y.empty()) ? zhi + pad_z : std::min(zhi, grains_top + 1.0);
   panel.y_range = std::make_pair(zlo - pad_z, shown_top);
   panel.curves = {grains};
   if (!images.x.empty()) panel.curves.push_back(images);
   std::string caption = "Snapshot of the cell, grains coloured by x-velocity";
+  if (!obstacles.x.empty()) {
+    panel.curves.push_back(obstacles);
+    std::string types;
+    for (long t : request.obstacle_types) types += (types.empty() ? "" : ", ") + std::to_string(t);
+    caption += "; obstacles (atom type " + types + ") in grey";
+  }
   if (periodic[0] || periodic[1]) caption += "; periodic images shaded";
   if (walls) {
     const double nan = std::numeric_limits<double>::quiet_NaN();  // a break between the two walls
@@ -171,7 +208,9 @@ Snapshot snapshot_figure(const SnapshotRequest& request, const Units& units)
   const double colour_span = grains.colour.empty() ? 0.0 : *fastest - *slowest;
   fit_canvas(figure, panel, length + 2 * pad_x, shown_top - (zlo - pad_z), colour_span);
   figure.panels = {panel};
-  return {figure, describe(used, request.diameter_from_dump, periodic, request.periodic.has_value())};
+  std::string parameters = describe(used, request.diameter_from_dump, periodic, request.periodic.has_value());
+  if (obstacle_count) parameters += "; " + std::to_string(obstacle_count) + " obstacle atoms (from --obstacle-types)";
+  return {figure, parameters};
 }
 
 }  // namespace cdpost

@@ -45,6 +45,7 @@ void write_data_block(std::ostream& out, const std::string& name, const Curve& c
     if (curve.style == CurveStyle::ErrorBars || curve.style == CurveStyle::LinesBand) out << ' ' << curve.y_error[i];
     if (curve.style == CurveStyle::Circles || curve.style == CurveStyle::ShadedCircles)
       out << ' ' << curve.radius[i] << ' ' << curve.colour[i];
+    if (curve.style == CurveStyle::Obstacles) out << ' ' << curve.radius[i];
     if (curve.style == CurveStyle::Map) out << ' ' << curve.colour[i];
     out << '\n';
   }
@@ -68,6 +69,9 @@ std::string plot_clause(const Curve& curve, const std::string& block, size_t ind
     case CurveStyle::Circles: with = "using 1:2:3:4 with circles lc palette fs solid 1.0 noborder"; break;
     case CurveStyle::ShadedCircles:
       with = "using 1:2:3:4 with circles lc palette fs transparent solid 0.3 noborder";
+      break;
+    case CurveStyle::Obstacles:
+      with = "using 1:2:3 with circles lc rgb 'grey50' fs solid 1.0 border lc rgb 'grey30'";
       break;
     case CurveStyle::Walls: with = "using 1:2 with lines lw 3 lc rgb 'black'"; break;
     case CurveStyle::LinesBand:

@@ -38,6 +38,11 @@ std::string json_string(const std::string& text)
   return out + "\"";
 }
 
+std::string shown_value(const ResultRow& row)
+{
+  return row.recorded ? format_estimate(row.value, row.error) : "not recorded";
+}
+
 }  // namespace
 
 std::ofstream open_output(const std::string& path)
@@ -60,6 +65,17 @@ void ResultTable::add(const std::string& name, double value, const std::string& 
   add(name, Estimate{value, std::nullopt}, unit, description);
 }
 
+void ResultTable::add_not_recorded(const std::string& name, const std::string& unit, const std::string& description)
+{
+  rows_.push_back({name, 0.0, std::nullopt, unit, description, false});
+}
+
+void ResultTable::add_row(const ResultRow& row)
+{
+  if (row.recorded) add(row.name, Estimate{row.value, row.error}, row.unit, row.description);
+  else add_not_recorded(row.name, row.unit, row.description);
+}
+
 void ResultTable::append(const ResultTable& other, const std::string& prefix)
 {
   for (auto row : other.rows_) {
@@ -71,7 +87,7 @@ void ResultTable::append(const ResultTable& other, const std::string& prefix)
 const ResultRow* ResultTable::find(const std::string& name) const
 {
   for (const auto& row : rows_)
-    if (row.name == name) return &row;
+    if (row.name == name && row.recorded) return &row;
   return nullptr;
 }
 
@@ -80,8 +96,8 @@ void ResultTable::write_csv(const std::string& path) const
   auto out = open_output(path);
   out << "name,value,error,unit,description\n";
   for (const auto& row : rows_)
-    out << row.name << ',' << number(row.value) << ',' << (row.error ? number(*row.error) : "") << ','
-        << csv_field(row.unit) << ',' << csv_field(row.description) << '\n';
+    out << row.name << ',' << (row.recorded ? number(row.value) : "") << ',' << (row.error ? number(*row.error) : "")
+        << ',' << csv_field(row.unit) << ',' << csv_field(row.description) << '\n';
 }
 
 void ResultTable::write_json(const std::string& path, const std::vector<std::string>& warnings) const
@@ -90,7 +106,7 @@ void ResultTable::write_json(const std::string& path, const std::vector<std::str
   out << "{\n  \"results\": [\n";
   for (size_t i = 0; i < rows_.size(); ++i) {
     const auto& row = rows_[i];
-    out << "    {\"name\": " << json_string(row.name) << ", \"value\": " << number(row.value)
+    out << "    {\"name\": " << json_string(row.name) << ", \"value\": " << (row.recorded ? number(row.value) : "null")
         << ", \"error\": " << (row.error ? number(*row.error) : "null") << ", \"unit\": " << json_string(row.unit)
         << ", \"description\": " << json_string(row.description) << "}" << (i + 1 < rows_.size() ? "," : "") << "\n";
   }
@@ -104,8 +120,7 @@ std::string ResultTable::markdown() const
   std::ostringstream out;
   out << "| quantity | value | unit | meaning |\n|---|---|---|---|\n";
   for (const auto& row : rows_)
-    out << "| `" << row.name << "` | " << format_estimate(row.value, row.error) << " | " << row.unit << " | "
-        << row.description << " |\n";
+    out << "| `" << row.name << "` | " << shown_value(row) << " | " << row.unit << " | " << row.description << " |\n";
   return out.str();
 }
 
@@ -115,8 +130,8 @@ std::string ResultTable::text() const
   for (const auto& row : rows_) width = std::max(width, row.name.size());
   std::ostringstream out;
   for (const auto& row : rows_)
-    out << row.name << std::string(width + 2 - row.name.size(), ' ') << format_estimate(row.value, row.error) << ' '
-        << row.unit << '\n';
+    out << row.name << std::string(width + 2 - row.name.size(), ' ') << shown_value(row)
+        << (row.recorded ? " " + row.unit : std::string()) << '\n';
   return out.str();
 }
 
