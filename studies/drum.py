@@ -33,6 +33,11 @@ sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 from cdtools import lammps_files, logs, run, stats
 
 DECK = os.path.join(run.TOP, "inputs", "examples", "in.drum_rigid")
+# The same grains' rheology, measured elsewhere in the project: plane shear's mu(I) at contact
+# friction 0.5 and the chute's Pouliquen fit (layer reading, mu 0.5).
+PLANE_SHEAR = os.path.join(run.TOP, "results", "plane_shear", "plane_shear_mu0.5.csv")
+CHUTE_FITS = os.path.join(run.TOP, "results", "series", "layer_flow_rules", "fits.json")
+BETA = 0.136
 RADIUS = 25.0           # the decks' drum radius (d)
 COLUMN = 2.0            # surface columns' width (d)
 BIN = 1.0               # height and depth bins (d)
@@ -83,21 +88,22 @@ def frame_surface(grains):
 
 
 def add_profile(grains, intercept, angle_deg, sums):
-    """Adds a frame's grains near the normal through the axis to sums {depth bin: [count, sum u]}:
-    depth below the surface, u the velocity down the slope."""
+    """Adds a frame's grains near the normal through the axis to sums {depth bin: [count, sum u,
+    area]}: depth below the surface, u the velocity down the slope, the grains' area."""
     a = math.radians(angle_deg)
     down = (-math.cos(a), -math.sin(a))   # along the surface, downhill (towards -x)
     normal = (-math.sin(a), math.cos(a))  # out of the bed
-    for x, y, vx, vy, _ in grains:
+    for x, y, vx, vy, radius in grains:
         rx, ry = x, y - intercept
         if abs(rx * down[0] + ry * down[1]) > STRIP:
             continue
         depth = -(rx * normal[0] + ry * normal[1])
         if depth < 0.0:
             continue
-        entry = sums.setdefault(int(depth // BIN), [0, 0.0])
+        entry = sums.setdefault(int(depth // BIN), [0, 0.0, 0.0])
         entry[0] += 1
         entry[1] += vx * down[0] + vy * down[1]
+        entry[2] += math.pi * radius * radius
 
 
 def sign_change_depth(profile):
@@ -125,6 +131,48 @@ def deepest_overlap(grains):
                     xj, yj, _, _, rj = grains[j]
                     deepest = max(deepest, ri + rj - math.hypot(xi - xj, yi - yj))
     return max(deepest, 0.0)
+
+
+def plane_shear_mu(inertial):
+    """mu at inertial number I from plane shear's table, interpolated linearly in log I (None
+    outside it)."""
+    with open(PLANE_SHEAR) as src:
+        rows = sorted((float(r["I"]), float(r["mu"])) for r in csv.DictReader(l for l in src if not l.startswith("#")))
+    for (i0, m0), (i1, m1) in zip(rows, rows[1:]):
+        if i0 <= inertial <= i1:
+            return m0 + (m1 - m0) * math.log(inertial / i0) / math.log(i1 / i0)
+    return None
+
+
+def pouliquen_angle(h, mean_velocity):
+    """The chute's flow rule tan theta = tan theta1 + (tan theta2 - tan theta1) exp(-beta h
+    sqrt(g h) / (ell d U)) for a layer h (d) flowing at U (sqrt(g d)), in degrees."""
+    import json
+    with open(CHUTE_FITS) as src:
+        fits = {r["name"]: r["value"] for r in json.load(src)["results"]}
+    t1 = math.tan(math.radians(fits["pouliquen_theta1_mu0.5"]))
+    t2 = math.tan(math.radians(fits["pouliquen_theta2_mu0.5"]))
+    ell = fits["pouliquen_ell_mu0.5"]
+    return math.degrees(math.atan(t1 + (t2 - t1) * math.exp(-BETA * h * math.sqrt(h) / (ell * mean_velocity))))
+
+
+def layer_rheology(profile, packing, h, angle_deg):
+    """The flowing layer as a uniform shear flow: its packing, mean velocity U and shear rate
+    u_s / h, the pressure at mid-depth from the weight above (g cos theta times the packing
+    integrated over h/2), the inertial number I = rate d / sqrt(P / rho) there, and what plane
+    shear's mu(I) and the chute's flow rule give for such a layer (angles in degrees)."""
+    if h is None or not profile:
+        return {"phi_layer": None, "U_layer": None, "I_layer": None, "theta_mu_I": None, "theta_pouliquen": None}
+    inside = [u for depth, u in profile if depth < h]
+    mean_velocity = sum(inside) / len(inside)
+    phi = sum(packing[k] for k in packing if (k + 0.5) * BIN < h) / max(1, sum(1 for k in packing if (k + 0.5) * BIN < h))
+    pressure = math.cos(math.radians(angle_deg)) * sum(packing.get(k, 0.0) * BIN for k in range(int(h / 2 / BIN)))
+    pressure += math.cos(math.radians(angle_deg)) * packing.get(int(h / 2 / BIN), 0.0) * (h / 2 % BIN)
+    inertial = profile[0][1] / h / math.sqrt(pressure)
+    mu = plane_shear_mu(inertial)
+    return {"phi_layer": phi, "U_layer": mean_velocity, "I_layer": inertial,
+            "theta_mu_I": None if mu is None else math.degrees(math.atan(mu)),
+            "theta_pouliquen": pouliquen_angle(h, mean_velocity)}
 
 
 def frames_of(folder):
@@ -168,16 +216,20 @@ def analyse(folder):
     block_means = [sum(angles[b * size:(b + 1) * size]) / size for b in range(BLOCKS)]
     _, _, se = stats.mean_sd_se(block_means)
     profile = [((k + 0.5) * BIN, sums[k][1] / sums[k][0]) for k in sorted(sums) if sums[k][0] >= 10]
+    packing = {k: sums[k][2] / (2.0 * STRIP * BIN * len(angles)) for k in sums}
     health = logs.solver_health(os.path.join(folder, "log.lammps")) or {}
-    return {"folder": folder, "froude": summary["froude"], "omega": omega, "turns": summary["turns"],
+    h = sign_change_depth(profile)
+    layer = layer_rheology(profile, packing, h, mean)
+    return {**layer, "folder": folder, "froude": summary["froude"], "omega": omega, "turns": summary["turns"],
             "frames": len(angles), "theta": mean, "theta_sd": sd, "theta_se": se,
-            "h": sign_change_depth(profile), "u_surface": profile[0][1] if profile else None,
+            "h": h, "u_surface": profile[0][1] if profile else None,
             "unconverged": health.get("unconverged"), "steps": health.get("steps"),
             "sweeps_median": health.get("sweeps_median"), "sweeps_p99": health.get("sweeps_p99"),
             "overlap": overlap, "cpu_s": turning_cpu(folder), "profile": profile}
 
 
-COLUMNS = ["froude", "omega", "turns", "frames", "theta", "theta_sd", "theta_se", "h", "u_surface",
+COLUMNS = ["froude", "omega", "turns", "frames", "theta", "theta_sd", "theta_se", "h", "u_surface", "U_layer",
+           "phi_layer", "I_layer", "theta_mu_I", "theta_pouliquen",
            "unconverged", "steps", "sweeps_median", "sweeps_p99", "overlap", "cpu_s", "folder"]
 
 
@@ -204,11 +256,13 @@ set output '{out}/drum.png'
 set datafile separator ','
 set multiplot layout 1,2
 set logscale x
+set xrange [5e-5:2e-2]
 set xlabel 'Fr = omega^2 R / g'
 set ylabel 'dynamic angle of repose (deg)'
 plot '{out}/drum.csv' every ::1 using 1:5:7 with yerrorbars pt 7 title 'mean +- s.e.', \\
      '' every ::1 using 1:5:6 with yerrorbars lt 2 pt 0 title 'fluctuation (s.d.)'
 unset logscale x
+set autoscale x
 set xlabel 'depth below the surface (d)'
 set ylabel 'velocity down the slope (sqrt(g d))'
 plot for [fr in "{' '.join(sorted({r for r in _froudes(out)}))}"] '{out}/profiles.csv' every ::1 \\
@@ -262,7 +316,8 @@ def main():
     draw(args.out)
     for r in results:
         print(f"Fr {r['froude']:g}: theta {r['theta']:.2f} +- {r['theta_se']:.2f} (s.d. {r['theta_sd']:.2f}) deg, "
-              f"h {r['h'] if r['h'] is None else round(r['h'], 1)} d, u_s {r['u_surface']:.2f}, "
+              f"h {r['h'] if r['h'] is None else round(r['h'], 1)} d, u_s {r['u_surface']:.2f}, I {r['I_layer']}, "
+              f"mu(I) angle {r['theta_mu_I']}, flow-rule angle {r['theta_pouliquen']}, "
               f"unconverged {r['unconverged']} of {r['steps']}, CPU {r['cpu_s']} s")
 
 
