@@ -33,26 +33,6 @@ DumpFrame select_frame(const SnapshotRequest& request)
   return chosen;
 }
 
-// The mean of the frame's diameters, input length units.
-double mean_diameter(const DumpFrame& frame, size_t radius)
-{
-  if (frame.atoms == 0)
-    throw InputError(frame.source, frame.line, "no grain in the frame to take the mean diameter from: give --d");
-  double sum = 0;
-  for (size_t atom = 0; atom < frame.atoms; ++atom) sum += 2 * frame.value(atom, radius);
-  if (!(sum > 0)) throw InputError(frame.source, frame.line, "the radius column's mean is not positive: give --d");
-  return sum / double(frame.atoms);
-}
-
-std::array<bool, 2> periodicity(const SnapshotRequest& request, const DumpFrame& frame)
-{
-  if (request.periodic) return *request.periodic;
-  if (!frame.periodic)
-    throw InputError(frame.source, frame.line,
-                     "the 'ITEM: BOX BOUNDS' line names no boundary flags: give --periodic x, y, xy or none");
-  return {(*frame.periodic)[0], (*frame.periodic)[1]};
-}
-
 // "d ...; periodic in ..." with where each came from.
 std::string describe(const Units& used, bool d_from_dump, std::array<bool, 2> periodic, bool periodic_given)
 {
@@ -105,7 +85,7 @@ Snapshot snapshot_figure(const SnapshotRequest& request, const Units& units)
   const size_t vx = frame.column_index("vx"), radius = frame.column_index("radius");
   Units used = units;
   if (request.diameter_from_dump) used.d_m = mean_diameter(frame, radius) * units.length_unit_m;
-  const auto periodic = periodicity(request, frame);
+  const auto periodic = periodic_xy(frame, request.periodic);
   const double to_d = used.length_unit_m / used.d_m;
   const double to_reduced = used.velocity_unit_mps() / used.reduced_velocity_mps();
   const double z0 = request.wall_tops.value_or(0);
