@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """cdpost fields on LAMMPS runs of the fix (ctest label fields):
 
-    tests/chute/test_fields.py pile|chute --lmp build/lmp_cd --cdpost build/postproc/cdpost --work DIR
+    tests/chute/test_fields.py pile|chute|shear --lmp build/lmp_cd --cdpost build/postproc/cdpost --work DIR
 
 pile:  a pile at rest (in.fields_pile). A Gaussian and a Lucy kernel of 25 um, their range inside
        the gap between the floor and the lowest centres (radius 0.2 mm at least): there sigma_yy
@@ -12,6 +12,11 @@ pile:  a pile at rest (in.fields_pile). A Gaussian and a Lucy kernel of 25 um, t
 chute: a flowing chute on a fixed base (in.fields_chute, 22 degrees), dumped every step for
        0.4 s: in the bulk (phi >= 0.7, y >= 1.5 mm, 2 d above the base's top) sigma_yy and
        -sigma_yx are the weight above per width times cos and sin theta within 2 %.
+shear: plane shear (inputs/examples/in.plane_shear, 12 x 12 grains, strain 2, phi 0.75) with the
+       atoms and the fix's local array dumped every step of its averaging window: the profile's
+       mean stress against the deck's averages over the same steps, within 1 %: its contact part
+       against the fix's outputs 13-16, the whole (kinetic about the local mean velocity, the
+       images across y moving at rate x ly) against compute pressure with compute temp/deform.
 Standard library only.
 """
 
@@ -109,16 +114,51 @@ def case_chute(args):
         sys.exit("chute: the stress in the bulk is not the weight above times cos and sin theta within 2 %")
 
 
+def case_shear(args):
+    folder = fresh(args.work, "fields_shear")
+    with open(os.path.join(HERE, os.pardir, os.pardir, "inputs", "examples", "in.plane_shear")) as src:
+        deck = src.read()
+    last = deck.rindex("run             ${half}")  # the averaging run
+    dumps = ("dump atoms all custom 1 shear.dump id type x y vx vy radius mass\n"
+             "dump contacts all local 1 shear.contacts f_cd[1] f_cd[2] f_cd[3] f_cd[4] f_cd[5] f_cd[6] f_cd[7]\n")
+    with open(os.path.join(folder, "in.shear"), "w") as out:
+        out.write(deck[:last] + dumps + deck[last:])
+    run([args.lmp, "-in", "in.shear", "-log", "log.lammps", "-screen", "none", "-var", "side", "12", "-var", "strain",
+         "2", "-var", "press_steps", "3000"], folder)
+    with open(os.path.join(folder, "log.lammps")) as src:
+        line = [line for line in src if line.startswith("SHEAR ")][-1].split()
+    deck_values = dict(zip(line[1::2], map(float, line[2::2])))
+    rate, dt = deck_values["rate"], 0.002 / deck_values["rate"]  # the deck's strain_step / rate
+    steps = round(2 / rate / dt)
+    # The deck averages steps half + 1 to steps; the dumps start at step half.
+    run([args.cdpost, "fields", "shear.dump", "--contacts", "shear.contacts", "--units", "lj", "--dt", str(dt),
+         "--t-start", str((steps // 2 + 0.5) * dt), "--along", "y", "--width", "0.5", "--image-velocity",
+         str(rate * deck_values["ly"]), "--out", "profile"], folder)
+    fields = read_fields(os.path.join(folder, "profile", "fields.csv"))
+    unit = "_m/(sigma tau^2)"
+    pairs = [("sc_xx", "contact_xx"), ("sc_yy", "contact_yy"), ("sc_xy", "contact_xy"), ("sc_yx", "contact_yx"),
+             ("s_xx", "pxx"), ("s_yy", "pyy"), ("s_xy", "pxy")]
+    worst = 0.0
+    for name, deck_name in pairs:
+        values = fields[name + unit]
+        mean = sum(values) / len(values)
+        error = mean / deck_values[deck_name] - 1
+        worst = max(worst, abs(error))
+        print(f"shear: {name} {mean:.6g} against the deck's {deck_name} {deck_values[deck_name]:.6g}: {error:+.4f}")
+    if worst > 0.01:
+        sys.exit(f"shear: the profile's mean stress differs from the deck's by {worst:.4f} (> 1 %)")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("case", choices=["pile", "chute"])
+    parser.add_argument("case", choices=["pile", "chute", "shear"])
     parser.add_argument("--lmp", required=True)
     parser.add_argument("--cdpost", required=True)
     parser.add_argument("--work", required=True)
     args = parser.parse_args()
     args.lmp, args.cdpost, args.work = (os.path.abspath(p) for p in (args.lmp, args.cdpost, args.work))
     os.makedirs(args.work, exist_ok=True)
-    {"pile": case_pile, "chute": case_chute}[args.case](args)
+    {"pile": case_pile, "chute": case_chute, "shear": case_shear}[args.case](args)
 
 
 if __name__ == "__main__":

@@ -74,11 +74,16 @@ ContactColumns contact_columns(const DumpFrame& frame)
 struct Box {
   std::array<double, 2> length;
   std::array<bool, 2> periodic;
+  double tilt = 0;  // a triclinic box's xy: the image across y is shifted by it along x
   std::array<double, 2> displacement(double ax, double ay, double bx, double by) const
   {
     std::array<double, 2> d{bx - ax, by - ay};
-    for (int k = 0; k < 2; ++k)
-      if (periodic[k]) d[k] -= length[k] * std::round(d[k] / length[k]);
+    if (periodic[1]) {
+      const double images = std::round(d[1] / length[1]);
+      d[1] -= images * length[1];
+      d[0] -= images * tilt;
+    }
+    if (periodic[0]) d[0] -= length[0] * std::round(d[0] / length[0]);
     return d;
   }
 };
@@ -131,6 +136,9 @@ class FieldAccumulator {
     } else {
       GridAxis along = settings_.along == 0 ? x : y;
       along.cells = cells_for(along, settings_.cells[0], 0.5 * settings_.width);
+      // A sheared box's images across y move at image_velocity: spread them explicitly, unwrapped.
+      sheared_ = settings_.image_velocity && settings_.along == 1 && periodic[1];
+      if (sheared_) along.periodic = false, image_low_ = first.ylo, image_high_ = first.yhi, reach_ = kernel.range();
       const double across = settings_.along == 0 ? box_length[1] : box_length[0];
       grains_.emplace(kernel, settings_.along, along, across, kGrainSums);
       contacts_.emplace(kernel, settings_.along, along, across, kContactSums);
@@ -144,22 +152,35 @@ class FieldAccumulator {
   void add_grains(const DumpFrame& frame)
   {
     box_.length = {frame.xhi - frame.xlo, frame.yhi - frame.ylo};
+    box_.tilt = frame.xy;
+    tilted_ = tilted_ || frame.xy != 0;
+    if (frame.xy != 0 && settings_.along != 1)
+      throw InputError(frame.source, frame.line,
+                       "a tilted (triclinic) box: only a profile along y (--along y) is coarse-grained in it");
     index_.clear();
-    double weights[kGrainSums];
     for (size_t atom = 0; atom < frame.atoms; ++atom) {
       index_[static_cast<long>(frame.value(atom, columns_.id))] = atom;
       const double r = frame.value(atom, columns_.radius);
       const double m = columns_.mass ? frame.value(atom, *columns_.mass) : M_PI * r * r * *settings_.grain_density;
+      const double x = frame.value(atom, columns_.x), y = frame.value(atom, columns_.y);
       const double vx = frame.value(atom, columns_.vx), vy = frame.value(atom, columns_.vy);
-      weights[kMass] = m;
-      weights[kArea] = M_PI * r * r;
-      weights[kMomentumX] = m * vx;
-      weights[kMomentumY] = m * vy;
-      weights[kMvxx] = m * vx * vx;
-      weights[kMvyy] = m * vy * vy;
-      weights[kMvxy] = m * vx * vy;
-      grains_->add_point({frame.value(atom, columns_.x), frame.value(atom, columns_.y)}, weights);
+      for (int image : images(y, y)) {
+        const double ux = vx + image * settings_.image_velocity.value_or(0.0);
+        const double weights[kGrainSums] = {m, M_PI * r * r, m * ux, m * vy, m * ux * ux, m * vy * vy, m * ux * vy};
+        grains_->add_point({x, y + image * box_.length[1]}, weights);
+      }
     }
+  }
+
+  // The images across y (-1, 0, +1) of something spanning [low, high] in y that a sheared box's
+  // unwrapped profile must receive; just itself otherwise.
+  std::vector<int> images(double low, double high) const
+  {
+    if (!sheared_) return {0};
+    std::vector<int> found{0};
+    if (low - reach_ < image_low_) found.push_back(1);     // seen from above the top, one box up
+    if (high + reach_ > image_high_) found.push_back(-1);  // seen from below the floor
+    return found;
   }
 
   // The contacts of the atoms' frame: each force f = p / dt on the first body, spread along the
@@ -195,7 +216,8 @@ class FieldAccumulator {
       weights[kLyFy] = l[1] * fy;
       weights[kLxFy] = l[0] * fy;
       weights[kLyFx] = l[1] * fx;
-      contacts_->add_segment({ax - l[0], ay - l[1]}, l, weights);
+      for (int image : images(std::min(ay, ay - l[1]), std::max(ay, ay - l[1])))
+        contacts_->add_segment({ax - l[0], ay - l[1] + image * box_.length[1]}, l, weights);
     }
     contacts_added_ += frame.atoms;
   }
@@ -203,6 +225,7 @@ class FieldAccumulator {
   const KernelGrid& grains() const { return *grains_; }
   const KernelGrid& contacts() const { return *contacts_; }
   size_t contacts_added() const { return contacts_added_; }
+  bool tilted() const { return tilted_; }
 
  private:
   const FieldsSettings& settings_;
@@ -210,6 +233,9 @@ class FieldAccumulator {
   Box box_{};
   std::optional<KernelGrid> grains_, contacts_;
   std::unordered_map<long, size_t> index_;
+  bool tilted_ = false;   // a frame's box was tilted
+  bool sheared_ = false;  // a profile along y of a box whose images across y move (image_velocity)
+  double image_low_ = 0, image_high_ = 0, reach_ = 0;
   size_t contacts_added_ = 0;
 };
 
@@ -427,6 +453,10 @@ Fields compute_fields(const FieldsSettings& settings)
   if (fields.frames_skipped_no_contacts > 0)
     fields.warnings.push_back(std::to_string(fields.frames_skipped_no_contacts) + " frames of " + settings.dump_path +
                               " have no frame of the same timestep in " + settings.contacts_path + ": not used");
+  if (sums.tilted() && !settings.image_velocity)
+    fields.warnings.push_back(
+        "a tilted box: if fix deform shears it, give --image-velocity (its tilt's rate), or the "
+        "velocity and kinetic stress near the y boundary mix the images' streaming");
   fields.mean_contacts = contact_rows / double(fields.frames);
   derive(fields, sums);
   return fields;

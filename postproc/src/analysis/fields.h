@@ -42,7 +42,10 @@ struct FieldsSettings {
   std::optional<double> timestep_size;          // dt: time = step dt, force = impulse / dt
   std::optional<double> grain_density;          // masses pi r^2 rho when the dump has no mass column
   std::optional<double> diameter;               // d of I; default the first frame's mean diameter
-  double dense_phi = 0.3;                       // mu(I), phi(I): only nodes this dense
+  // A sheared periodic box (fix deform xy, remap v): the image across y moves along x at this
+  // velocity (the tilt's rate, rate x ly); a profile along y then receives the images' velocities.
+  std::optional<double> image_velocity;
+  double dense_phi = 0.5;  // mu(I), phi(I): only nodes this dense
   bool progress = false;
 };
 

@@ -454,7 +454,10 @@ int command_fields(const std::vector<std::string>& arguments)
       {"density", "RHO", "grain density when the dump has no mass column: masses pi r^2 rho (default: chute.params)"},
       {"d", "LENGTH", "grain diameter of I (default: chute.params, else the first frame's mean diameter)"},
       {"units", "si|lj", "units of the dump (default: SI when a chute.params is beside it; needed otherwise)"},
-      {"dense-phi", "PHI", "mu(I) and phi(I) show the nodes at least this dense (default 0.3)"},
+      {"image-velocity", "V",
+       "a sheared periodic box (fix deform xy, remap v): x-velocity of the image across y, the tilt's rate "
+       "(with --along y; default 0)"},
+      {"dense-phi", "PHI", "mu(I) and phi(I) show the nodes at least this dense (default 0.5)"},
       {"out", "DIR", "output directory (default: DIR_OF_DUMP/fields)"},
       {"progress", "", "show progress on stderr even when it is not a terminal"},
       {"help", "", "show this help"}};
@@ -503,6 +506,8 @@ int command_fields(const std::vector<std::string>& arguments)
   if (!s.grain_density) s.grain_density = recorded("density_kgpm3");
   s.diameter = positive_option(*options, "d", command);
   if (!s.diameter) s.diameter = recorded("d_m");
+  s.image_velocity = options->number("image-velocity");
+  if (s.image_velocity && s.along != 1) throw UsageError(command + ": --image-velocity needs --along y");
   s.dense_phi = options->number("dense-phi").value_or(s.dense_phi);
   s.progress = options->flag("progress");
   const auto width = positive_option(*options, "width", command);

@@ -54,7 +54,8 @@ size_t DumpFrame::column_index(const std::string& name) const
 void DumpReader::read_box(DumpFrame& frame, const std::string& flags)
 {
   auto named = split_whitespace(flags);  // "xy xz yz" first in a triclinic box
-  if (!named.empty() && named[0] == "xy") named.erase(named.begin(), named.begin() + std::min<size_t>(3, named.size()));
+  const bool triclinic = !named.empty() && named[0] == "xy";
+  if (triclinic) named.erase(named.begin(), named.begin() + std::min<size_t>(3, named.size()));
   frame.periodic.reset();
   if (!named.empty()) {
     const auto boundary_flag = [](std::string_view t) {
@@ -66,6 +67,7 @@ void DumpReader::read_box(DumpFrame& frame, const std::string& flags)
     frame.periodic = std::array<bool, 3>{named[0] == "pp", named[1] == "pp", named[2] == "pp"};
   }
   double* bounds[2][2] = {{&frame.xlo, &frame.xhi}, {&frame.ylo, &frame.yhi}};
+  double tilt[3] = {0, 0, 0};  // xy, xz, yz
   for (int dim = 0; dim < 3; ++dim) {
     auto line = require_line("a box bounds line");
     auto tokens = split_whitespace(line);
@@ -73,11 +75,18 @@ void DumpReader::read_box(DumpFrame& frame, const std::string& flags)
     double low = parse_number(tokens[0], source_, "box low bound");
     double high = parse_number(tokens[1], source_, "box high bound");
     if (high <= low) source_.fail("box high bound not above the low bound");
+    if (triclinic && tokens.size() > 2) tilt[dim] = parse_number(tokens[2], source_, "box tilt");
     if (dim < 2) {
       *bounds[dim][0] = low;
       *bounds[dim][1] = high;
     }
   }
+  // A triclinic box's bounds hold its tilted cell (LAMMPS's Howto triclinic): back to the cell's own.
+  frame.xy = tilt[0];
+  frame.xlo -= std::min({0.0, tilt[0], tilt[1], tilt[0] + tilt[1]});
+  frame.xhi -= std::max({0.0, tilt[0], tilt[1], tilt[0] + tilt[1]});
+  frame.ylo -= std::min(0.0, tilt[2]);
+  frame.yhi -= std::max(0.0, tilt[2]);
 }
 
 void DumpReader::read_atoms(DumpFrame& frame, const std::string& names)

@@ -17,6 +17,7 @@ struct DumpFrame {
   long timestep = 0;
   std::optional<double> time;                 // "ITEM: TIME" (dump_modify time yes), input time units
   double xlo = 0, xhi = 0, ylo = 0, yhi = 0;  // box bounds, input length units
+  double xy = 0;  // a triclinic box's tilt (x shift of the image across y); xlo..xhi is its cell's
   // Whether x, y, z are periodic, from the flags of "ITEM: BOX BOUNDS" ("pp fm pp": x and z);
   // nothing when the line has no flags (dumps of LAMMPS before 2010).
   std::optional<std::array<bool, 3>> periodic;
