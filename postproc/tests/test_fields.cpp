@@ -197,6 +197,35 @@ TEST(Fields, ContactStressOfAStackIsTheWeightAbove)
   }
 }
 
+// Polar cells on a uniform lattice turning as a rigid body (v = Omega x r about the cells'
+// centre): u_theta = Omega r and u_r = 0 to the lattice's ripple (a kernel-weighted centre of mass
+// off the node), no shear rate, phi as on the map.
+TEST(Fields, PolarCellsOfARigidRotation)
+{
+  const double a = 1e-3, r = 0.45e-3, omega = 3.0, expected = M_PI * r * r / (a * a);
+  const int side = 40;
+  const double centre = 0.5 * side * a;
+  auto disks = lattice(side, side, a, r);
+  for (auto& d : disks) d.vx = -omega * (d.y - centre), d.vy = omega * (d.x - centre);
+  const auto dump = testing::write_file(testing::scratch_dir() / "turning.dump",
+                                        atoms_frame(0, side * a, side * a, "ff ff pp", disks));
+  auto settings = lattice_settings(dump, KernelShape::lucy, 2 * a);
+  settings.polar = PolarCells{centre, centre, 2 * a, 12 * a, 10, 48};
+  const auto fields = compute_fields(settings);
+  const auto& radius = fields.column("r").values;
+  const auto& phi = fields.column("phi").values;
+  const auto& ur = fields.column("u_r").values;
+  const auto& ut = fields.column("u_theta").values;
+  const auto& rate = fields.column("gamma_dot").values;
+  ASSERT_EQ(phi.size(), 480u);
+  for (size_t k = 0; k < phi.size(); ++k) {
+    EXPECT_NEAR(phi[k], expected, 2e-4 * expected) << k;
+    EXPECT_NEAR(ut[k], omega * radius[k], 1e-3 * omega * 12 * a) << k;
+    EXPECT_NEAR(ur[k], 0.0, 1e-3 * omega * 12 * a) << k;
+    EXPECT_LT(rate[k], 0.02 * omega) << k;
+  }
+}
+
 TEST(Fields, ATruncatedDumpFailsNamingItsFileAndLine)
 {
   auto text = atoms_frame(0, 0.01, 0.01, "pp pp pp", lattice(10, 10, 1e-3, 4e-4));

@@ -127,7 +127,18 @@ class FieldAccumulator {
     auto cells_for = [&](const GridAxis& axis, size_t given, double spacing) {
       return given ? given : std::max<size_t>(1, static_cast<size_t>(std::ceil(axis.length() / spacing)));
     };
-    if (settings_.along < 0) {
+    if (settings_.polar) {
+      const PolarCells& c = *settings_.polar;
+      const GridAxis angle{0, 2 * M_PI, c.sectors, true}, radius{c.r_in, c.r_out, c.rings, false};
+      std::vector<std::array<double, 2>> nodes;
+      for (size_t i = 0; i < c.rings; ++i)
+        for (size_t j = 0; j < c.sectors; ++j)
+          nodes.push_back({c.centre_x + radius.node(i) * std::cos(angle.node(j)),
+                           c.centre_y + radius.node(i) * std::sin(angle.node(j))});
+      grains_.emplace(kernel, nodes, kGrainSums);
+      contacts_.emplace(kernel, nodes, kContactSums);
+      fields.axes = {angle, radius};
+    } else if (settings_.along < 0) {
       x.cells = cells_for(x, settings_.cells[0], settings_.width);
       y.cells = cells_for(y, settings_.cells[1], settings_.width);
       grains_.emplace(kernel, x, y, kGrainSums);
@@ -261,6 +272,38 @@ std::vector<double> derivative(const std::vector<double>& u, const std::array<Gr
   return du;
 }
 
+// Polar cells: r and theta of each node, the velocity and the stress in the frame (e_r, e_theta).
+void add_polar_components(Fields& fields)
+{
+  const size_t n = fields.columns.front().values.size(), sectors = fields.axes[0].cells;
+  const FieldUnits& u = fields.settings.units;
+  std::vector<double> r(n), theta(n), ur(n, nan), ut(n, nan), srr(n, nan), stt(n, nan), srt(n, nan), str(n, nan);
+  const auto& ux = fields.column("ux").values;
+  const auto& uy = fields.column("uy").values;
+  const auto& sxx = fields.column("s_xx").values;
+  const auto& syy = fields.column("s_yy").values;
+  const auto& sxy = fields.column("s_xy").values;
+  const auto& syx = fields.column("s_yx").values;
+  for (size_t k = 0; k < n; ++k) {
+    r[k] = fields.axes[1].node(k / sectors), theta[k] = fields.axes[0].node(k % sectors);
+    const double cs = std::cos(theta[k]), sn = std::sin(theta[k]);
+    ur[k] = cs * ux[k] + sn * uy[k];
+    ut[k] = -sn * ux[k] + cs * uy[k];
+    srr[k] = cs * cs * sxx[k] + sn * sn * syy[k] + cs * sn * (sxy[k] + syx[k]);
+    stt[k] = sn * sn * sxx[k] + cs * cs * syy[k] - cs * sn * (sxy[k] + syx[k]);
+    srt[k] = cs * sn * (syy[k] - sxx[k]) + cs * cs * sxy[k] - sn * sn * syx[k];
+    str[k] = cs * sn * (syy[k] - sxx[k]) - sn * sn * sxy[k] + cs * cs * syx[k];
+  }
+  fields.columns.push_back({"r", u.length, "node's distance from the polar centre", r});
+  fields.columns.push_back({"theta", "rad", "node's angle from +x, counter-clockwise", theta});
+  fields.columns.push_back({"u_r", u.velocity(), "radial velocity", ur});
+  fields.columns.push_back({"u_theta", u.velocity(), "azimuthal velocity", ut});
+  fields.columns.push_back({"s_rr", u.stress, "stress rr", srr});
+  fields.columns.push_back({"s_tt", u.stress, "stress theta theta", stt});
+  fields.columns.push_back({"s_rt", u.stress, "stress r theta: force along e_theta across planes normal to e_r", srt});
+  fields.columns.push_back({"s_tr", u.stress, "stress theta r", str});
+}
+
 void derive(Fields& fields, const FieldAccumulator& sums)
 {
   const KernelGrid& g = sums.grains();
@@ -273,7 +316,7 @@ void derive(Fields& fields, const FieldAccumulator& sums)
     fields.columns.push_back({name, unit, description, std::vector<double>(n, nan)});
     return &fields.columns.back().values;
   };
-  fields.columns.reserve(32);
+  fields.columns.reserve(48);  // the references below stay valid
   if (fields.is_profile()) {
     auto& z = *column(fields.settings.along == 0 ? "x" : "y", u.length, "node coordinate");
     for (size_t k = 0; k < n; ++k) z[k] = g.position(k)[0];
@@ -333,7 +376,18 @@ void derive(Fields& fields, const FieldAccumulator& sums)
   const int along = fields.settings.along;
   // Gradients: a profile varies along its axis only.
   std::vector<double> dux_dx(n, 0.0), dux_dy(n, 0.0), duy_dx(n, 0.0), duy_dy(n, 0.0);
-  if (!profile) {
+  if (fields.is_polar()) {
+    // d/dx = cos d/dr - sin / r d/dtheta, d/dy = sin d/dr + cos / r d/dtheta.
+    const auto dux_dt = derivative(ux, fields.axes, false, 0), dux_dr = derivative(ux, fields.axes, false, 1);
+    const auto duy_dt = derivative(uy, fields.axes, false, 0), duy_dr = derivative(uy, fields.axes, false, 1);
+    const size_t sectors = fields.axes[0].cells;
+    for (size_t k = 0; k < n; ++k) {
+      const double r = fields.axes[1].node(k / sectors), theta = fields.axes[0].node(k % sectors);
+      const double cs = std::cos(theta), sn = std::sin(theta);
+      dux_dx[k] = cs * dux_dr[k] - sn / r * dux_dt[k], dux_dy[k] = sn * dux_dr[k] + cs / r * dux_dt[k];
+      duy_dx[k] = cs * duy_dr[k] - sn / r * duy_dt[k], duy_dy[k] = sn * duy_dr[k] + cs / r * duy_dt[k];
+    }
+  } else if (!profile) {
     dux_dx = derivative(ux, fields.axes, false, 0), dux_dy = derivative(ux, fields.axes, false, 1);
     duy_dx = derivative(uy, fields.axes, false, 0), duy_dy = derivative(uy, fields.axes, false, 1);
   } else if (along == 1) {
@@ -353,6 +407,7 @@ void derive(Fields& fields, const FieldAccumulator& sums)
     if (pressure[k] > 0 && phi[k] > 0 && !std::isnan(rate[k]))
       inertial[k] = rate[k] * fields.diameter / std::sqrt(pressure[k] / (rho[k] / phi[k]));
   }
+  if (fields.is_polar()) add_polar_components(fields);
 }
 
 }  // namespace
@@ -517,7 +572,8 @@ void write_fields_tables(const Fields& fields, const std::string& directory)
       << ",\n  \"units\": " << json_text(s.units.describe()) << ",\n  \"length_unit\": " << json_text(s.units.length)
       << ",\n  \"time_unit\": " << json_text(s.units.time) << ",\n  \"stress_unit\": " << json_text(s.units.stress)
       << ",\n  \"kernel\": " << json_text(fields.kernel_description) << ",\n  \"geometry\": "
-      << json_text(s.along < 0    ? "map"
+      << json_text(s.polar        ? "polar cells"
+                   : s.along < 0  ? "map"
                    : s.along == 0 ? "profile along x"
                                   : "profile along y")
       << ",\n  \"frames\": " << fields.frames << ",\n  \"first_timestep\": " << fields.first_step

@@ -27,6 +27,13 @@ struct FieldUnits {
   std::string describe() const;  // "SI: m, s, kg per unit depth, stress Pa (from ...)"
 };
 
+// Polar cells about a drum's axis: `rings` x `sectors` nodes at the cells' centres between radii
+// r_in and r_out (input length units), the angle from +x counter-clockwise.
+struct PolarCells {
+  double centre_x = 0, centre_y = 0, r_in = 0, r_out = 0;
+  size_t rings = 0, sectors = 0;
+};
+
 struct FieldsSettings {
   std::string dump_path;      // dump custom: id x y vx vy radius [mass]
   std::string contacts_path;  // dump local of the fix's local array; empty: no contact stress
@@ -34,6 +41,7 @@ struct FieldsSettings {
   KernelShape kernel = KernelShape::gaussian;
   double width = 0;                            // kernel standard deviation, input length units
   int along = -1;                              // -1: a map; 0 or 1: a profile along x or y, averaged over the other
+  std::optional<PolarCells> polar;             // instead of a map: polar cells (along must be -1)
   std::array<size_t, 2> cells = {0, 0};        // map cells along x, y (a profile: cells[0] along its axis)
   std::optional<std::array<double, 2>> range;  // the profile's or the map's y extent; default the box
   std::optional<std::array<double, 2>> x_range;
@@ -61,7 +69,7 @@ struct Fields {
   std::string kernel_description;
   double diameter = 0;  // d of I, input length units
   std::string diameter_source;
-  std::array<GridAxis, 2> axes;  // a profile uses axes[0]
+  std::array<GridAxis, 2> axes;  // a profile uses axes[0]; polar cells: angle, radius
   size_t frames = 0, frames_skipped_no_contacts = 0;
   long first_step = 0, last_step = 0;
   std::optional<double> first_time, last_time;
@@ -70,6 +78,7 @@ struct Fields {
   std::vector<std::string> warnings;
   const FieldColumn& column(const std::string& name) const;
   bool is_profile() const { return settings.along >= 0; }
+  bool is_polar() const { return settings.polar.has_value(); }
 };
 
 // Reads the dumps frame by frame and averages the fields over the frames in the window.

@@ -6,6 +6,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <sstream>
 
 #include "analysis/creep_results.h"
 #include "analysis/fields.h"
@@ -443,6 +444,8 @@ int command_fields(const std::vector<std::string>& arguments)
       {"kernel", "gauss|lucy", "coarse-graining kernel: Gaussian cut at 3 widths (default) or Lucy's polynomial"},
       {"width", "LENGTH", "kernel width, its standard deviation along an axis (default d / 2)"},
       {"along", "x|y", "a profile along this axis, averaged over the other (default: a map)"},
+      {"polar", "CX,CY,RIN,ROUT",
+       "polar cells about (CX, CY) between radii RIN and ROUT, e.g. a drum (default: a map); --cells NR,NTHETA"},
       {"cells", "N|NX,NY",
        "nodes of the profile or the map (default: spacing width / 2 for a profile, width for a map)"},
       {"range", "LOW:HIGH", "extent of the profile, or the map's y extent (default: the first frame's box)"},
@@ -489,6 +492,24 @@ int command_fields(const std::vector<std::string>& arguments)
     throw UsageError(command + ": --along takes x or y, not '" + *along + "'");
   s.along = along ? (*along == "x" ? 0 : 1) : -1;
   s.cells = cells_option(*options, along.has_value());
+  if (auto polar = options->text("polar")) {
+    if (along) throw UsageError(command + ": --polar and --along are two geometries: give one");
+    std::vector<double> numbers;
+    std::stringstream parts(*polar);
+    for (std::string part; std::getline(parts, part, ',');) {
+      size_t used = 0;
+      double value = std::nan("");
+      try {
+        value = std::stod(part, &used);
+      } catch (const std::exception&) {
+      }
+      if (used != part.size() || !std::isfinite(value)) numbers.clear(), parts.setstate(std::ios::failbit);
+      else numbers.push_back(value);
+    }
+    if (numbers.size() != 4 || !(numbers[2] >= 0 && numbers[3] > numbers[2]))
+      throw UsageError(command + ": --polar takes CX,CY,RIN,ROUT with 0 <= RIN < ROUT, not '" + *polar + "'");
+    s.polar = PolarCells{numbers[0], numbers[1], numbers[2], numbers[3], s.cells[0], s.cells[1]};
+  }
   if (options->text("range")) s.range = interval_option(*options, "range");
   if (options->text("x-range")) {
     if (along) throw UsageError(command + ": --x-range is a map's; a profile takes --range");
@@ -514,6 +535,10 @@ int command_fields(const std::vector<std::string>& arguments)
   if (width) s.width = *width;
   else if (s.diameter) s.width = 0.5 * *s.diameter;
   else throw UsageError(command + ": give --width (or --d, whose half is the default width)");
+  if (s.polar && !s.polar->rings) {  // cells about a width wide
+    s.polar->rings = static_cast<size_t>(std::ceil((s.polar->r_out - s.polar->r_in) / s.width));
+    s.polar->sectors = static_cast<size_t>(std::ceil(M_PI * (s.polar->r_in + s.polar->r_out) / s.width));
+  }
   const auto out = options->text("out").value_or((std::filesystem::path(folder) / "fields").string());
 
   const auto fields = compute_fields(s);

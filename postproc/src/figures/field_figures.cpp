@@ -36,14 +36,28 @@ Figure map_figure(const Fields& fields, const std::string& column, const std::st
   const auto& ux = fields.column("ux").values;
   const auto& uy = fields.column("uy").values;
   const size_t nx = axes[0].cells, ny = axes[1].cells;
+  const auto& node_x = fields.column("x").values;
+  const auto& node_y = fields.column("y").values;
   Curve map;
-  map.style = CurveStyle::Map;
-  for (size_t i = 0; i < nx; ++i) {
-    if (i) map.x.push_back(NAN), map.y.push_back(NAN), map.colour.push_back(NAN);
-    for (size_t j = 0; j < ny; ++j) {
-      map.x.push_back(axes[0].node(i));
-      map.y.push_back(axes[1].node(j));
-      map.colour.push_back(values.values[i + nx * j]);
+  if (fields.is_polar()) {  // a disk a node, as wide as its cell
+    map.style = CurveStyle::Circles;
+    const double dr = axes[1].spacing(), dt = axes[0].spacing();
+    for (size_t k = 0; k < node_x.size(); ++k) {
+      if (!std::isfinite(values.values[k])) continue;
+      map.x.push_back(node_x[k]);
+      map.y.push_back(node_y[k]);
+      map.radius.push_back(0.55 * std::min(dr, axes[1].node(k / nx) * dt));
+      map.colour.push_back(values.values[k]);
+    }
+  } else {
+    map.style = CurveStyle::Map;
+    for (size_t i = 0; i < nx; ++i) {
+      if (i) map.x.push_back(NAN), map.y.push_back(NAN), map.colour.push_back(NAN);
+      for (size_t j = 0; j < ny; ++j) {
+        map.x.push_back(axes[0].node(i));
+        map.y.push_back(axes[1].node(j));
+        map.colour.push_back(values.values[i + nx * j]);
+      }
     }
   }
   Panel panel;
@@ -53,26 +67,31 @@ Figure map_figure(const Fields& fields, const std::string& column, const std::st
   panel.colour_label = with_unit(column, values.unit);
   panel.equal_axes = true;
   panel.key = "off";
-  panel.x_range = std::make_pair(axes[0].low, axes[0].high);
-  panel.y_range = std::make_pair(axes[1].low, axes[1].high);
+  const auto [x_low, x_high] = std::minmax_element(node_x.begin(), node_x.end());
+  const auto [y_low, y_high] = std::minmax_element(node_y.begin(), node_y.end());
+  const double pad = fields.is_polar() ? 0.5 * axes[1].spacing() : 0.5 * axes[0].spacing();
+  const double pad_y = fields.is_polar() ? pad : 0.5 * axes[1].spacing();
+  panel.x_range = std::make_pair(*x_low - pad, *x_high + pad);
+  panel.y_range = std::make_pair(*y_low - pad_y, *y_high + pad_y);
   panel.curves.push_back(map);
-  std::string caption =
-      title + " on " + std::to_string(nx) + " x " + std::to_string(ny) + " nodes; " + averaging(fields);
+  std::string caption = title + " on " + std::to_string(nx) + " x " + std::to_string(ny) +
+                        (fields.is_polar() ? " polar cells (sectors x rings); " : " nodes; ") + averaging(fields);
   if (arrows) {
     // About 24 arrows along the longer side, the fastest as long as their spacing.
     const size_t stride = std::max<size_t>(1, std::max(nx, ny) / 24);
     double fastest = 0;
     for (size_t k = 0; k < ux.size(); ++k)
       if (std::isfinite(ux[k])) fastest = std::max(fastest, std::hypot(ux[k], uy[k]));
-    const double spacing = double(stride) * std::min(axes[0].spacing(), axes[1].spacing());
+    const double spacing =
+        double(stride) * (fields.is_polar() ? axes[1].spacing() : std::min(axes[0].spacing(), axes[1].spacing()));
     Curve vectors;
     vectors.style = CurveStyle::Vectors;
     for (size_t j = stride / 2; j < ny && fastest > 0; j += stride)
       for (size_t i = stride / 2; i < nx; i += stride) {
         const size_t k = i + nx * j;
         if (!std::isfinite(ux[k]) || fields.column("phi").values[k] < 0.5 * fields.settings.dense_phi) continue;
-        vectors.x.push_back(axes[0].node(i));
-        vectors.y.push_back(axes[1].node(j));
+        vectors.x.push_back(node_x[k]);
+        vectors.y.push_back(node_y[k]);
         vectors.dx.push_back(ux[k] * 0.9 * spacing / fastest);
         vectors.dy.push_back(uy[k] * 0.9 * spacing / fastest);
       }
@@ -82,7 +101,7 @@ Figure map_figure(const Fields& fields, const std::string& column, const std::st
     }
   }
   Figure figure{"fields_" + column, caption, {}};
-  const double aspect = axes[0].length() / axes[1].length();
+  const double aspect = (panel.x_range->second - panel.x_range->first) / (panel.y_range->second - panel.y_range->first);
   const double long_side = 900;
   figure.width_px = static_cast<int>(std::lround((aspect >= 1 ? long_side : long_side * aspect) + 260));
   figure.height_px = static_cast<int>(std::lround(std::max(aspect >= 1 ? long_side / aspect : long_side, 150.0) + 130));

@@ -138,8 +138,54 @@ KernelGrid::KernelGrid(const Kernel& kernel, int along_dimension, GridAxis along
 {
 }
 
+KernelGrid::KernelGrid(const Kernel& kernel, std::vector<std::array<double, 2>> nodes, size_t components)
+    : kernel_(kernel),
+      profile_(false),
+      components_(components),
+      values_(nodes.size() * components, 0.0),
+      points_(std::move(nodes))
+{
+  if (points_.empty()) throw std::invalid_argument("no node");
+  double low[2] = {points_[0][0], points_[0][1]}, high[2] = {low[0], low[1]};
+  for (const auto& p : points_)
+    for (int k = 0; k < 2; ++k) low[k] = std::min(low[k], p[k]), high[k] = std::max(high[k], p[k]);
+  const double size = kernel.range();
+  auto axis = [&](int k) {
+    const auto cells = static_cast<size_t>(std::floor((high[k] - low[k]) / size)) + 1;
+    return GridAxis{low[k], low[k] + double(cells) * size, cells, false};
+  };
+  bucket_x_ = axis(0), bucket_y_ = axis(1);
+  buckets_.resize(bucket_x_.cells * bucket_y_.cells);
+  for (size_t n = 0; n < points_.size(); ++n) {
+    const auto i = std::min(bucket_x_.cells - 1, static_cast<size_t>((points_[n][0] - bucket_x_.low) / size));
+    const auto j = std::min(bucket_y_.cells - 1, static_cast<size_t>((points_[n][1] - bucket_y_.low) / size));
+    buckets_[i + bucket_x_.cells * j].push_back(n);
+  }
+}
+
+template <typename Psi>
+void KernelGrid::add_near(double x0, double x1, double y0, double y1, const double* weights, Psi psi)
+{
+  const double size = kernel_.range();
+  auto index_range = [&](const GridAxis& axis, double a, double b) {
+    const long first = std::max(0L, static_cast<long>(std::floor((a - size - axis.low) / size)));
+    const long last = std::min(long(axis.cells) - 1, static_cast<long>(std::floor((b + size - axis.low) / size)));
+    return std::make_pair(first, last);
+  };
+  const auto [i0, i1] = index_range(bucket_x_, x0, x1);
+  const auto [j0, j1] = index_range(bucket_y_, y0, y1);
+  for (long j = j0; j <= j1; ++j)
+    for (long i = i0; i <= i1; ++i)
+      for (size_t n : buckets_[size_t(i) + bucket_x_.cells * size_t(j)]) {
+        const double value = psi(points_[n]);
+        if (value == 0) continue;
+        for (size_t m = 0; m < components_; ++m) values_[n * components_ + m] += weights[m] * value;
+      }
+}
+
 std::array<double, 2> KernelGrid::position(size_t node) const
 {
+  if (!points_.empty()) return points_[node];
   if (profile_) return {axes_[0].node(node), 0.0};
   return {axes_[0].node(node % axes_[0].cells), axes_[1].node(node / axes_[0].cells)};
 }
@@ -163,6 +209,12 @@ std::vector<size_t> KernelGrid::nodes_near(int k, double a, double b) const
 
 void KernelGrid::add_point(std::array<double, 2> at, const double* weights)
 {
+  if (!points_.empty()) {
+    add_near(at[0], at[0], at[1], at[1], weights, [&](const std::array<double, 2>& node) {
+      return kernel_.value(std::hypot(node[0] - at[0], node[1] - at[1]));
+    });
+    return;
+  }
   if (profile_) {
     const double c = at[along_];
     for (size_t i : nodes_near(0, c, c)) {
@@ -186,6 +238,13 @@ void KernelGrid::add_point(std::array<double, 2> at, const double* weights)
 
 void KernelGrid::add_segment(std::array<double, 2> from, std::array<double, 2> l, const double* weights)
 {
+  if (!points_.empty()) {
+    add_near(std::min(from[0], from[0] + l[0]), std::max(from[0], from[0] + l[0]), std::min(from[1], from[1] + l[1]),
+             std::max(from[1], from[1] + l[1]), weights, [&](const std::array<double, 2>& node) {
+               return kernel_.segment(node[0] - from[0], node[1] - from[1], l[0], l[1]);
+             });
+    return;
+  }
   if (profile_) {
     const double a = from[along_], extent = l[along_];
     for (size_t i : nodes_near(0, std::min(a, a + extent), std::max(a, a + extent))) {

@@ -67,13 +67,18 @@ class KernelGrid {
   // `across`, the extent averaged over.
   KernelGrid(const Kernel& kernel, GridAxis x, GridAxis y, size_t components);
   KernelGrid(const Kernel& kernel, int along_dimension, GridAxis along, double across, size_t components);
+  // Nodes at given positions (a polar grid's cell centres), none periodic, found through buckets
+  // of the kernel's range.
+  KernelGrid(const Kernel& kernel, std::vector<std::array<double, 2>> nodes, size_t components);
 
   size_t nodes() const { return values_.size() / components_; }
   size_t components() const { return components_; }
   bool is_profile() const { return profile_; }
+  bool is_scattered() const { return !points_.empty(); }
   const GridAxis& axis(int k) const { return axes_[k]; }
   double value(size_t node, size_t component) const { return values_[node * components_ + component]; }
-  // The node's position: a map's node (i, j) is i + nx j; a profile's coordinate is along axis 0.
+  // The node's position: a map's node (i, j) is i + nx j; a profile's coordinate is along axis 0;
+  // scattered nodes where they were given.
   std::array<double, 2> position(size_t node) const;
 
   // Adds weights[c] psi(node - at) to component c of every node (at: x, y; a profile reads only
@@ -88,6 +93,10 @@ class KernelGrid {
  private:
   // The node indices along axis k within `range` of the interval [a, b] (wrapped when periodic).
   std::vector<size_t> nodes_near(int k, double a, double b) const;
+  // Scattered nodes: adds weights times psi(node) for every node within range of the box
+  // [x0, x1] x [y0, y1].
+  template <typename Psi>
+  void add_near(double x0, double x1, double y0, double y1, const double* weights, Psi psi);
 
   Kernel kernel_;
   std::array<GridAxis, 2> axes_;
@@ -96,6 +105,9 @@ class KernelGrid {
   double across_ = 1;
   size_t components_;
   std::vector<double> values_;
+  std::vector<std::array<double, 2>> points_;  // scattered nodes
+  GridAxis bucket_x_, bucket_y_;               // their buckets, a range wide
+  std::vector<std::vector<size_t>> buckets_;
 };
 
 }  // namespace cdpost
