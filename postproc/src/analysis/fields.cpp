@@ -469,6 +469,7 @@ Fields compute_fields(const FieldsSettings& settings)
   FieldAccumulator sums(settings);
   Progress progress("reading " + settings.dump_path, true, settings.progress);
   double contact_rows = 0;
+  long widest_gap = 0;  // steps between frames used
   while (atoms.next(frame)) {
     progress.update(atoms.source().fraction_read(), "timestep " + std::to_string(frame.timestep));
     const auto time = frame_time(frame, settings);
@@ -498,6 +499,7 @@ Fields compute_fields(const FieldsSettings& settings)
         sums.add_contacts(frame, contact_frame, *settings.timestep_size, *contact_columns_found);
       contact_rows += double(contact_frame.atoms);
     }
+    if (fields.frames > 0) widest_gap = std::max(widest_gap, frame.timestep - fields.last_step);
     fields.last_step = frame.timestep;
     fields.last_time = time;
     ++fields.frames;
@@ -508,6 +510,11 @@ Fields compute_fields(const FieldsSettings& settings)
   if (fields.frames_skipped_no_contacts > 0)
     fields.warnings.push_back(std::to_string(fields.frames_skipped_no_contacts) + " frames of " + settings.dump_path +
                               " have no frame of the same timestep in " + settings.contacts_path + ": not used");
+  if (contacts && widest_gap > 1)
+    fields.warnings.push_back("frames up to " + std::to_string(widest_gap) +
+                              " steps apart: a rigid contact's impulse comes in bursts, and the contact stress of "
+                              "frames apart scatters; dump the contacts every step for a stress to the percent "
+                              "(doc/fields.md)");
   if (sums.tilted() && !settings.image_velocity)
     fields.warnings.push_back(
         "a tilted box: if fix deform shears it, give --image-velocity (its tilt's rate), or the "
