@@ -123,6 +123,21 @@ Curve profile_curve(const Fields& fields, const std::string& name, const std::st
   return curve;
 }
 
+// A step of 1, 2 or 5 times a power of ten that cuts the panel's values in at most four intervals:
+// tick labels of four narrow panels side by side must not touch.
+std::optional<double> four_intervals(const Panel& panel)
+{
+  double low = INFINITY, high = -INFINITY;
+  for (const auto& curve : panel.curves)
+    for (double v : curve.x)
+      if (std::isfinite(v)) low = std::min(low, v), high = std::max(high, v);
+  if (!(high > low)) return std::nullopt;
+  const double quarter = (high - low) / 4, decade = std::pow(10.0, std::floor(std::log10(quarter)));
+  for (double factor : {1.0, 2.0, 5.0})
+    if (factor * decade >= quarter) return factor * decade;
+  return 10 * decade;
+}
+
 // Panels side by side, the profile's coordinate upwards in each.
 Figure profile_figure(const Fields& fields)
 {
@@ -158,6 +173,9 @@ Figure profile_figure(const Fields& fields)
     panels[p].origin_x = double(p) / double(panels.size());
     panels[p].width = 1.0 / double(panels.size());
     panels[p].key = "top right";
+    panels[p].x_tick_step = four_intervals(panels[p]);
+    const auto& coordinate_values = fields.columns.front().values;
+    panels[p].y_range = std::make_pair(coordinate_values.front(), coordinate_values.back());
   }
   Figure figure{"fields_profile", "Profiles along " + fields.columns.front().name + "; " + averaging(fields), panels};
   figure.width_px = 1400;
