@@ -10,7 +10,7 @@ Per run (a folder holding dump.drum and log.lammps), in units of the mean diamet
 sqrt(d/g):
 - the free surface of each frame: in columns 2 d wide over |x| <= R/2, the height where the
   area fraction of the grains' centres in 1 d bins first reaches half the bulk's (0.4), from the
-  top; a straight line fitted through the columns gives the dynamic angle of repose theta (the
+  top, interpolated between bin centres; a straight line fitted through the columns gives the dynamic angle of repose theta (the
   drum turns counter-clockwise: the surface rises towards +x); its mean, standard deviation over
   the frames and standard error over five blocks of frames;
 - the flowing layer along the surface's normal through the drum's axis (a strip 6 d wide): the
@@ -49,16 +49,20 @@ BLOCKS = 5
 
 def surface_height(grains, x_lo, x_hi, top):
     """Height of the free surface over the column [x_lo, x_hi), or None if the column is empty:
-    scanning 1 d bins down from `top`, the top of the first whose centres' area fraction reaches
-    HALF_BULK."""
+    scanning 1 d bins down from `top`, where the area fraction of the centres first reaches
+    HALF_BULK, interpolated between that bin's centre and the one above."""
     areas = {}
     for x, y, _, _, radius in grains:
         if x_lo <= x < x_hi:
             k = int(math.floor((top - y) / BIN))
             areas[k] = areas.get(k, 0.0) + math.pi * radius * radius
+    width = x_hi - x_lo
     for k in sorted(areas):
-        if areas[k] / (BIN * (x_hi - x_lo)) >= HALF_BULK:
-            return top - k * BIN
+        phi = areas[k] / (BIN * width)
+        if phi >= HALF_BULK:
+            above = areas.get(k - 1, 0.0) / (BIN * width)
+            centre = top - (k + 0.5) * BIN
+            return centre + BIN * (phi - HALF_BULK) / (phi - above)
     return None
 
 

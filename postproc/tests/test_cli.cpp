@@ -499,6 +499,51 @@ TEST(Cli, SnapshotDrawsObstaclesApartFromGrains)
             "cdpost: cdpost run: --obstacle-types is for the snapshot: give --dump too (see cdpost --help)\n");
 }
 
+// cdpost fields end to end: the units said in every output, a truncated contact dump named by
+// file and line in one line, and the command line's refusals.
+TEST(Cli, FieldsOfADumpAndItsContacts)
+{
+  const auto dir = testing::scratch_dir();
+  std::vector<testing::DumpAtom> atoms;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 4; ++j) atoms.push_back({long(1 + i + 10 * j), i + 0.5, j + 0.5, 0.1, 0, 0.5});
+  const auto dump = testing::write_file(dir / "dump.stack", testing::dump_frame_text(0, 10, 4, atoms, "pp ff pp") +
+                                                                testing::dump_frame_text(1, 10, 4, atoms, "pp ff pp"));
+  std::string local;
+  for (int step = 0; step < 2; ++step) {
+    local += "ITEM: TIMESTEP\n" + std::to_string(step) +
+             "\nITEM: NUMBER OF ENTRIES\n10\nITEM: BOX BOUNDS pp ff pp\n0 10\n0 4\n-0.5 0.5\n"
+             "ITEM: ENTRIES index f_cd[1] f_cd[2] f_cd[3] f_cd[4] f_cd[5] f_cd[6] f_cd[7]\n";
+    for (int i = 0; i < 10; ++i)
+      local += std::to_string(i + 1) + " " + std::to_string(i + 1) + " 0 1 0.04 0 " + std::to_string(i + 0.5) + " 0\n";
+  }
+  const auto contacts = testing::write_file(dir / "contacts.stack", local);
+  const std::string common =
+      "fields " + dump + " --units lj --density 1 --dt 0.01 --along y --width 0.1 --out " + (dir / "out").string();
+  auto outcome = cdpost(common + " --contacts " + contacts);
+  ASSERT_EQ(outcome.status, 0) << outcome.err;
+  EXPECT_NE(outcome.out.find("fields: units LJ: lengths sigma, times tau"), std::string::npos) << outcome.out;
+  EXPECT_NE(outcome.out.find("2 frames, timesteps 0 to 1; 10 contacts a frame"), std::string::npos) << outcome.out;
+  const auto table = slurp(dir / "out" / "fields.csv");
+  EXPECT_NE(table.find("y_sigma,phi,rho_m/sigma^3,ux_sigma/tau"), std::string::npos) << table.substr(0, 400);
+  EXPECT_NE(slurp(dir / "out" / "fields.json").find("\"stress_unit\": \"m/(sigma tau^2)\""), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "fields_profile.png"));
+
+  testing::write_file(dir / "contacts.stack", local.substr(0, local.size() - 30));  // cut inside the last row
+  outcome = cdpost(common + " --contacts " + contacts);
+  EXPECT_EQ(outcome.status, 1);
+  EXPECT_EQ(line_count(outcome.err), 1u) << outcome.err;
+  EXPECT_EQ(outcome.err.rfind("cdpost: error: " + contacts + ":", 0), 0u) << outcome.err;
+
+  EXPECT_EQ(cdpost("fields " + dump + " --width 0.1").err,
+            "cdpost: cdpost fields: no chute.params beside " + dump +
+                " to take the units from: give --units si or --units lj (see cdpost --help)\n");
+  EXPECT_EQ(cdpost(common + " --kernel box").status, 2);
+  EXPECT_EQ(cdpost(common + " --cells 3,4").status, 2);  // a profile takes N
+  EXPECT_EQ(cdpost(common + " --polar 5,2,1").status, 2);
+  EXPECT_EQ(cdpost(common + " --contacts " + contacts + " --dt 0").status, 2);
+}
+
 // Bins above the measured h (the dilute surface) are drawn apart from the fitted layer and named.
 TEST(Cli, ProfileNamesTheBinsAboveTheLayer)
 {

@@ -234,6 +234,22 @@ TEST(Dump, BoxBoundsFlagsGiveThePeriodicity)
             path + ":5: expected three boundary flags (e.g. 'pp fm pp') after 'ITEM: BOX BOUNDS', found ' pp q'");
 }
 
+// A triclinic box's bounds are those of its tilted cell (xlo + min(0, xy) ...): the frame keeps
+// the cell's own and its tilt.
+TEST(Dump, TriclinicBoundsGiveTheCellAndItsTilt)
+{
+  const auto path = write_file(scratch_dir() / "tilted.txt",
+                               "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS xy xz yz pp pp pp\n"
+                               "-1.5 10 -1.5\n0 5 0\n-0.5 0.5 0\nITEM: ATOMS id x y\n1 2 3\n");
+  DumpReader reader(path);
+  DumpFrame frame;
+  ASSERT_TRUE(reader.next(frame));
+  EXPECT_DOUBLE_EQ(frame.xy, -1.5);
+  EXPECT_DOUBLE_EQ(frame.xlo, 0.0);
+  EXPECT_DOUBLE_EQ(frame.xhi, 10.0);
+  EXPECT_DOUBLE_EQ(frame.yhi - frame.ylo, 5.0);
+}
+
 // chute.params as inputs/in.chute prints it: '#' comments, "name value" lines.
 TEST(ChuteRecord, ReadsNamedValuesAndRefusesMalformedLines)
 {

@@ -1,22 +1,27 @@
 #include "cli/commands.h"
 
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <iostream>
 #include <map>
+#include <sstream>
 
 #include "analysis/creep_results.h"
+#include "analysis/fields.h"
 #include "analysis/published_run.h"
 #include "analysis/run_analysis.h"
 #include "analysis/series_analysis.h"
 #include "analysis/series_comparison.h"
 #include "cli/run_parameters.h"
+#include "figures/field_figures.h"
 #include "figures/run_figures.h"
 #include "figures/series_comparison_figures.h"
 #include "figures/series_figures.h"
 #include "figures/snapshot.h"
 #include "io/ave_time.h"
+#include "io/chute_record.h"
 #include "io/line_source.h"
 #include "io/options.h"
 
@@ -35,6 +40,7 @@ const char* const overview =
     "  spectrum FILE    spectrum of one column of a fix ave/time file\n"
     "  snapshot DUMP    picture of one frame of a dump (grains coloured by x-velocity, walls)\n"
     "  creep PATH       the creep measure of a published profile.csv (or a published run folder holding one)\n"
+    "  fields DUMP      coarse-grained packing, velocity, temperature and stress of a dump (map or profile)\n"
     "\n"
     "Results go to CSV and JSON beside the report; see doc/postproc.md.\n";
 
@@ -330,14 +336,14 @@ int command_spectrum(const std::vector<std::string>& arguments)
 }
 
 // --periodic: "x", "y", "xy" or "none"; nothing when not given.
-std::optional<std::array<bool, 2>> periodic_option(const ParsedOptions& options)
+std::optional<std::array<bool, 2>> periodic_option(const ParsedOptions& options, const std::string& command)
 {
   const auto given = options.text("periodic");
   if (!given) return std::nullopt;
   const std::map<std::string, std::array<bool, 2>> axes = {
       {"x", {true, false}}, {"y", {false, true}}, {"xy", {true, true}}, {"none", {false, false}}};
   const auto found = axes.find(*given);
-  if (found == axes.end()) throw UsageError("cdpost snapshot: --periodic takes x, y, xy or none, not '" + *given + "'");
+  if (found == axes.end()) throw UsageError(command + ": --periodic takes x, y, xy or none, not '" + *given + "'");
   return found->second;
 }
 
@@ -370,7 +376,7 @@ int command_snapshot(const std::vector<std::string>& arguments)
   request.dump_path = options->positional[0];
   request.timestep = options->integer("timestep");
   request.progress = options->flag("progress");
-  request.periodic = periodic_option(*options);
+  request.periodic = periodic_option(*options, "cdpost snapshot");
   request.obstacle_types = obstacle_types(*options, "cdpost snapshot");
   auto out = options->text("out").value_or(std::filesystem::path(request.dump_path).parent_path().string());
   if (out.empty()) out = ".";
@@ -422,16 +428,183 @@ int command_creep(const std::vector<std::string>& arguments)
   return 0;
 }
 
+// "A:B" as two numbers, A below B.
+std::array<double, 2> interval_option(const ParsedOptions& options, const std::string& name)
+{
+  const auto text = *options.text(name);
+  const auto colon = text.find(':');
+  try {
+    if (colon != std::string::npos) {
+      size_t used_low = 0, used_high = 0;
+      const double low = std::stod(text.substr(0, colon), &used_low);
+      const double high = std::stod(text.substr(colon + 1), &used_high);
+      if (used_low == colon && used_high == text.size() - colon - 1 && std::isfinite(low) && std::isfinite(high) &&
+          high > low)
+        return {low, high};
+    }
+  } catch (const std::exception&) {
+  }
+  throw UsageError("cdpost fields: --" + name + " takes LOW:HIGH with LOW below HIGH, not '" + text + "'");
+}
+
+// --cells N or NX,NY.
+std::array<size_t, 2> cells_option(const ParsedOptions& options, bool profile)
+{
+  const auto text = options.text("cells");
+  if (!text) return {0, 0};
+  const auto comma = text->find(',');
+  auto count = [&](const std::string& part) {
+    size_t used = 0;
+    long value = 0;
+    try {
+      value = std::stol(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != part.size() || value < 1 || value > 100000)
+      throw UsageError("cdpost fields: --cells takes N (a profile) or NX,NY (a map), whole numbers from 1, not '" +
+                       *text + "'");
+    return static_cast<size_t>(value);
+  };
+  if (profile != (comma == std::string::npos))
+    throw UsageError(std::string("cdpost fields: --cells takes ") + (profile ? "N for a profile" : "NX,NY for a map") +
+                     ", not '" + *text + "'");
+  if (profile) return {count(*text), 0};
+  return {count(text->substr(0, comma)), count(text->substr(comma + 1))};
+}
+
+int command_fields(const std::vector<std::string>& arguments)
+{
+  const std::string command = "cdpost fields";
+  const std::vector<OptionSpec> specs = {
+      {"contacts", "FILE",
+       "dump local of the fix's local array (f_ID[1] ... f_ID[7]): the contact stress; default none"},
+      {"kernel", "gauss|lucy", "coarse-graining kernel: Gaussian cut at 3 widths (default) or Lucy's polynomial"},
+      {"width", "LENGTH", "kernel width, its standard deviation along an axis (default d / 2)"},
+      {"along", "x|y", "a profile along this axis, averaged over the other (default: a map)"},
+      {"polar", "CX,CY,RIN,ROUT",
+       "polar cells about (CX, CY) between radii RIN and ROUT, e.g. a drum (default: a map); --cells NR,NTHETA"},
+      {"cells", "N|NX,NY",
+       "nodes of the profile or the map (default: spacing width / 2 for a profile, width for a map)"},
+      {"range", "LOW:HIGH", "extent of the profile, or the map's y extent (default: the first frame's box)"},
+      {"x-range", "LOW:HIGH", "the map's x extent (default: the first frame's box)"},
+      {"periodic", "x|y|xy|none", "the periodic dimensions (default: the dump's 'ITEM: BOX BOUNDS' flags)"},
+      {"t-start", "TIME", "first frame averaged (time from 'ITEM: TIME', else timestep x --dt)"},
+      {"t-end", "TIME", "last frame averaged"},
+      {"dt", "TIME", "time step of the run: forces are impulse / dt (default: chute.params beside the dump)"},
+      {"density", "RHO", "grain density when the dump has no mass column: masses pi r^2 rho (default: chute.params)"},
+      {"d", "LENGTH", "grain diameter of I (default: chute.params, else the first frame's mean diameter)"},
+      {"units", "si|lj", "units of the dump (default: SI when a chute.params is beside it; needed otherwise)"},
+      {"image-velocity", "V",
+       "a sheared periodic box (fix deform xy, remap v): x-velocity of the image across y, the tilt's rate "
+       "(with --along y; default 0)"},
+      {"dense-phi", "PHI", "mu(I) and phi(I) show the nodes at least this dense (default 0.5)"},
+      {"out", "DIR", "output directory (default: DIR_OF_DUMP/fields)"},
+      {"progress", "", "show progress on stderr even when it is not a terminal"},
+      {"help", "", "show this help"}};
+  auto options = parse_or_help(command, "cdpost fields DUMP [--contacts LOCAL_DUMP] [options]", arguments, specs, 1);
+  if (!options) return 0;
+  FieldsSettings s;
+  s.dump_path = options->positional[0];
+  s.contacts_path = options->text("contacts").value_or("");
+  const auto folder = folder_of(s.dump_path);
+  const auto record = read_chute_record(folder);
+  const auto units = options->text("units");
+  if (units && *units == "si") s.units = FieldUnits::si("from --units");
+  else if (units && *units == "lj") s.units = FieldUnits::lj("from --units");
+  else if (units) throw UsageError(command + ": --units takes si or lj, not '" + *units + "'");
+  else if (record) s.units = FieldUnits::si("from " + record->source);
+  else
+    throw UsageError(command + ": no chute.params beside " + s.dump_path +
+                     " to take the units from: give --units si or --units lj");
+  const bool record_applies = record && s.units.system == "si";
+  auto recorded = [&](const std::string& name) {
+    return record_applies ? record->find(name) : std::optional<double>();
+  };
+  const auto kernel = options->text("kernel").value_or("gauss");
+  if (kernel == "gauss") s.kernel = KernelShape::gaussian;
+  else if (kernel == "lucy") s.kernel = KernelShape::lucy;
+  else throw UsageError(command + ": --kernel takes gauss or lucy, not '" + kernel + "'");
+  const auto along = options->text("along");
+  if (along && *along != "x" && *along != "y")
+    throw UsageError(command + ": --along takes x or y, not '" + *along + "'");
+  s.along = along ? (*along == "x" ? 0 : 1) : -1;
+  s.cells = cells_option(*options, along.has_value());
+  if (auto polar = options->text("polar")) {
+    if (along) throw UsageError(command + ": --polar and --along are two geometries: give one");
+    std::vector<double> numbers;
+    std::stringstream parts(*polar);
+    for (std::string part; std::getline(parts, part, ',');) {
+      size_t used = 0;
+      double value = std::nan("");
+      try {
+        value = std::stod(part, &used);
+      } catch (const std::exception&) {
+      }
+      if (used != part.size() || !std::isfinite(value)) numbers.clear(), parts.setstate(std::ios::failbit);
+      else numbers.push_back(value);
+    }
+    if (numbers.size() != 4 || !(numbers[2] >= 0 && numbers[3] > numbers[2]))
+      throw UsageError(command + ": --polar takes CX,CY,RIN,ROUT with 0 <= RIN < ROUT, not '" + *polar + "'");
+    s.polar = PolarCells{numbers[0], numbers[1], numbers[2], numbers[3], s.cells[0], s.cells[1]};
+  }
+  if (options->text("range")) s.range = interval_option(*options, "range");
+  if (options->text("x-range")) {
+    if (along) throw UsageError(command + ": --x-range is a map's; a profile takes --range");
+    s.x_range = interval_option(*options, "x-range");
+  }
+  s.periodic = periodic_option(*options, command);
+  s.t_start = options->number("t-start");
+  s.t_end = options->number("t-end");
+  if (s.t_start && s.t_end && !(*s.t_end > *s.t_start))
+    throw UsageError(command + ": --t-end is not after --t-start: the window ends before it starts");
+  s.timestep_size = positive_option(*options, "dt", command);
+  const bool dt_recorded = !s.timestep_size && recorded("dt_s");
+  if (dt_recorded) s.timestep_size = recorded("dt_s");
+  s.grain_density = positive_option(*options, "density", command);
+  if (!s.grain_density) s.grain_density = recorded("density_kgpm3");
+  s.diameter = positive_option(*options, "d", command);
+  if (!s.diameter) s.diameter = recorded("d_m");
+  s.image_velocity = options->number("image-velocity");
+  if (s.image_velocity && s.along != 1) throw UsageError(command + ": --image-velocity needs --along y");
+  s.dense_phi = options->number("dense-phi").value_or(s.dense_phi);
+  s.progress = options->flag("progress");
+  const auto width = positive_option(*options, "width", command);
+  if (width) s.width = *width;
+  else if (s.diameter) s.width = 0.5 * *s.diameter;
+  else throw UsageError(command + ": give --width (or --d, whose half is the default width)");
+  if (s.polar && !s.polar->rings) {  // cells about a width wide
+    s.polar->rings = static_cast<size_t>(std::ceil((s.polar->r_out - s.polar->r_in) / s.width));
+    s.polar->sectors = static_cast<size_t>(std::ceil(M_PI * (s.polar->r_in + s.polar->r_out) / s.width));
+  }
+  const auto out = options->text("out").value_or((std::filesystem::path(folder) / "fields").string());
+
+  const auto fields = compute_fields(s);
+  write_fields_tables(fields, out);
+  std::cout << "fields: units " << s.units.describe() << "\nfields: " << fields.kernel_description << "; "
+            << fields.frames << " frames, timesteps " << fields.first_step << " to " << fields.last_step
+            << (s.contacts_path.empty() ? "; no contact dump: kinetic stress only"
+                                        : "; " + std::to_string(std::lround(fields.mean_contacts)) +
+                                              " contacts a frame from " + s.contacts_path)
+            << "\n";
+  std::vector<std::string> warnings = fields.warnings;
+  if (dt_recorded && !s.contacts_path.empty())
+    warnings.push_back("forces are impulse / dt_s of " + record->source +
+                       ": a run whose step follows the flow (adapt_dt) needs --dt, its step at the dumped frames");
+  for (const auto& figure : field_figures(fields))
+    if (auto problem = render_figure(figure, out)) warnings.push_back(*problem);
+  std::cout << "fields: " << out << "/fields.csv, " << out << "/fields.json, figures " << out << "/fields_*.png\n";
+  print_warnings(warnings);
+  return 0;
+}
+
 }  // namespace
 
 int run_command_line(const std::vector<std::string>& arguments)
 {
   const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
-      {"run", command_run},
-      {"series", command_series},
-      {"spectrum", command_spectrum},
-      {"snapshot", command_snapshot},
-      {"creep", command_creep}};
+      {"run", command_run},           {"series", command_series}, {"spectrum", command_spectrum},
+      {"snapshot", command_snapshot}, {"creep", command_creep},   {"fields", command_fields}};
   if (arguments.empty() || arguments[0] == "--help" || arguments[0] == "-h" || arguments[0] == "help") {
     std::cout << overview;
     return arguments.empty() ? 2 : 0;

@@ -64,15 +64,6 @@ double mean_diameter(const DumpFrame& frame, size_t radius, const std::vector<bo
   return sum / double(grains);
 }
 
-std::array<bool, 2> periodicity(const SnapshotRequest& request, const DumpFrame& frame)
-{
-  if (request.periodic) return *request.periodic;
-  if (!frame.periodic)
-    throw InputError(frame.source, frame.line,
-                     "the 'ITEM: BOX BOUNDS' line names no boundary flags: give --periodic x, y, xy or none");
-  return {(*frame.periodic)[0], (*frame.periodic)[1]};
-}
-
 // "d ...; periodic in ..." with where each came from.
 std::string describe(const Units& used, bool d_from_dump, std::array<bool, 2> periodic, bool periodic_given)
 {
@@ -130,7 +121,7 @@ Snapshot snapshot_figure(const SnapshotRequest& request, const Units& units)
   const auto obstacle = obstacle_atoms(frame, request.obstacle_types);
   Units used = units;
   if (request.diameter_from_dump) used.d_m = mean_diameter(frame, radius, obstacle) * units.length_unit_m;
-  const auto periodic = periodicity(request, frame);
+  const auto periodic = periodic_xy(frame, request.periodic);
   const double to_d = used.length_unit_m / used.d_m;
   const double to_reduced = used.velocity_unit_mps() / used.reduced_velocity_mps();
   const double z0 = request.wall_tops.value_or(0);

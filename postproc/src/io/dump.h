@@ -1,5 +1,6 @@
-// Streaming reader for LAMMPS `dump custom` text files (plain or gzip): one frame in memory
-// at a time, so dumps larger than memory can be scanned.
+// Streaming reader for LAMMPS `dump custom` and `dump local` text files (plain or gzip): one
+// frame in memory at a time, so dumps larger than memory can be scanned. A local dump's entries
+// are read as its frame's rows ("atoms").
 #pragma once
 
 #include <array>
@@ -14,7 +15,9 @@ namespace cdpost {
 
 struct DumpFrame {
   long timestep = 0;
+  std::optional<double> time;                 // "ITEM: TIME" (dump_modify time yes), input time units
   double xlo = 0, xhi = 0, ylo = 0, yhi = 0;  // box bounds, input length units
+  double xy = 0;  // a triclinic box's tilt (x shift of the image across y); xlo..xhi is its cell's
   // Whether x, y, z are periodic, from the flags of "ITEM: BOX BOUNDS" ("pp fm pp": x and z);
   // nothing when the line has no flags (dumps of LAMMPS before 2010).
   std::optional<std::array<bool, 3>> periodic;
@@ -29,6 +32,14 @@ struct DumpFrame {
   size_t column_index(const std::string& name) const;
 };
 
+// The periodicity of x and y: `given` (a command's --periodic), else the frame's box flags;
+// InputError naming the frame when neither says.
+std::array<bool, 2> periodic_xy(const DumpFrame& frame, const std::optional<std::array<bool, 2>>& given);
+
+// The mean of the frame's diameters from its radius column, input length units; InputError
+// (pointing to --d) when the frame has no grain or the mean is not positive.
+double mean_diameter(const DumpFrame& frame, size_t radius);
+
 class DumpReader {
  public:
   explicit DumpReader(const std::string& path);
@@ -39,7 +50,7 @@ class DumpReader {
  private:
   std::string require_line(const std::string& what);
   void read_box(DumpFrame& frame, const std::string& flags);
-  void read_atoms(DumpFrame& frame, const std::string& item);
+  void read_atoms(DumpFrame& frame, const std::string& names);  // the item line after ATOMS/ENTRIES
   LineSource source_;
 };
 

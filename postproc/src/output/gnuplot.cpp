@@ -47,6 +47,7 @@ void write_data_block(std::ostream& out, const std::string& name, const Curve& c
       out << ' ' << curve.radius[i] << ' ' << curve.colour[i];
     if (curve.style == CurveStyle::Obstacles) out << ' ' << curve.radius[i];
     if (curve.style == CurveStyle::Map) out << ' ' << curve.colour[i];
+    if (curve.style == CurveStyle::Vectors) out << ' ' << curve.dx[i] << ' ' << curve.dy[i];
     out << '\n';
   }
   out << "EOD\n";
@@ -79,6 +80,9 @@ std::string plot_clause(const Curve& curve, const std::string& block, size_t ind
              block + " using 1:2 with lines lw 2" + colour + dash;
       break;
     case CurveStyle::Map: with = "using 1:2:3 with image"; break;
+    case CurveStyle::Vectors:
+      with = "using 1:2:3:4 with vectors head filled size screen 0.008,20 lc rgb 'black'";
+      break;
   }
   return block + " " + with + (curve.title.empty() ? " notitle" : " title " + quoted(curve.title));
 }

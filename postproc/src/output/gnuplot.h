@@ -13,7 +13,7 @@ namespace cdpost {
 // fix move). Walls: black lines; in Lines and Walls a NaN point breaks the line. LinesBand: a line with a
 // shaded band y ± y_error of the same colour (a fitted curve and its confidence band). Map: a
 // regular grid of x, y coloured by `colour` (gnuplot's image), one NaN point between scans of
-// constant x.
+// constant x. Vectors: arrows from (x, y) by (dx, dy).
 enum class CurveStyle {
   Points,
   Lines,
@@ -24,16 +24,18 @@ enum class CurveStyle {
   Obstacles,
   Walls,
   LinesBand,
-  Map
+  Map,
+  Vectors
 };
 
 struct Curve {
   std::string title;
   CurveStyle style = CurveStyle::Points;
   std::vector<double> x, y;
-  std::vector<double> y_error;  // ErrorBars, LinesBand
-  std::vector<double> radius;   // Circles, Obstacles: radius in x-axis units
-  std::vector<double> colour;   // Circles, Map: value mapped on the palette
+  std::vector<double> y_error;           // ErrorBars, LinesBand
+  std::vector<double> radius;            // Circles, Obstacles: radius in x-axis units
+  std::vector<double> colour;            // Circles, Map: value mapped on the palette
+  std::vector<double> dx = {}, dy = {};  // Vectors: the arrows
   // gnuplot's line type (its colour) and point type; 0: by the curve's position, filled circles.
   int line_type = 0, point_type = 0;
   bool dashed = false;  // Lines, LinesBand
