@@ -4,7 +4,8 @@ disks, Contact Dynamics) at several widths, its soft twin inputs/examples/in.sil
 springs at the same mu and e) at a few, and the 2D Beverloo law fitted to the flow rates.
 
     studies/silo.py [--widths 4,5,6,8,11,15,20] [--flow 80] [--flow-small 120] [--transient 10]
-                    [--soft-widths 8,11,15] [--soft-flow 30] [--soft-transient 8] [--out runs/silo]
+                    [--soft-widths 8,11,15] [--soft-flow 30] [--soft-transient 8] [--width 50] [--grains 1500]
+                    [--out runs/silo]
 
 For each run: the flow rate W (mass per unit time, areal density 1, g = 1, d = 1) is the slope
 of the discharged mass against the time the orifice flowed, from `transient` after the opening to
@@ -14,7 +15,8 @@ clogs are counted over the whole opening, their frequency per grain discharged (
 pi/4 (1 + 0.4^2/12)). The Beverloo law W = C phi sqrt(g) (D - k d)^(3/2), with phi the packing
 fraction near the floor at rest (the deck's "SILO filled" line), is fitted as a weighted straight
 line W^(2/3) = (C phi)^(2/3) (D - k): C and k with errors from its covariance (scaled by the
-reduced chi^2 when above 1). The CPU per unit of physical time is the flow phase's LAMMPS loop
+reduced chi^2 when above 1). The overlaps of the settled packing (mean and largest over the
+touching pairs, in d) check the soft stiffness. The CPU per unit of physical time is the flow phase's LAMMPS loop
 times times its "% CPU use", over the time simulated. Runs already done (their log ends with
 "SILO done") are read again, not rerun. Writes OUT/silo.csv, OUT/silo_fit.csv and the figure
 OUT/silo.png. Standard library and gnuplot.
@@ -102,10 +104,11 @@ def beverloo_fit(widths, rates, errors, phi):
 
 
 def cpu_per_time(log_text, dt):
-    """CPU s per unit of physical time over the runs after the opening (after "SILO filled"):
-    each run's loop time times its % CPU use."""
-    flow = log_text.split("SILO filled", 1)[1] if "SILO filled" in log_text else log_text
-    cpu, steps = 0.0, 0
+    """(CPU s, loop s) per unit of physical time over the runs after the opening (after "SILO
+    filled"): each run's LAMMPS loop time (wall), and that times its % CPU use."""
+    filled = re.search(r"^SILO filled", log_text, re.M)   # the printed line, not the deck's echo
+    flow = log_text[filled.end():] if filled else log_text
+    cpu, wall, steps = 0.0, 0.0, 0
     loop = None
     for line in flow.splitlines():
         match = LOOP.match(line)
@@ -115,22 +118,44 @@ def cpu_per_time(log_text, dt):
         match = CPU_USE.match(line)
         if match and loop:
             cpu += loop[0] * float(match.group(1)) / 100
+            wall += loop[0]
             steps += loop[1]
             loop = None
-    return cpu / (steps * dt) if steps else math.nan
+    return (cpu / (steps * dt), wall / (steps * dt)) if steps else (math.nan, math.nan)
+
+
+def overlaps(path):
+    """(mean, largest) overlap r_i + r_j - distance over the touching pairs (overlap > 0) of a
+    frame written by write_dump custom id x y radius (the settled packing, silo.filled); (0, 0)
+    if none touch. Pairs within one box, no periodic images (the packing is far from y's ends)."""
+    with open(path) as frame:
+        lines = frame.read().splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("ITEM: ATOMS")) + 1
+    grains = sorted(([float(v) for v in line.split()[1:4]] for line in lines[start:] if line.strip()),
+                    key=lambda g: g[1])
+    found = []
+    for i, (x, y, r) in enumerate(grains):
+        for x2, y2, r2 in grains[i + 1:]:
+            if y2 - y > r + r2:
+                break
+            overlap = r + r2 - math.hypot(x2 - x, y2 - y)
+            if overlap > 0:
+                found.append(overlap)
+    return (sum(found) / len(found), max(found)) if found else (0.0, 0.0)
 
 
 def measure(folder, transient, dt):
     """The run's phi, W, its error, flowing time, clogs and their frequency, CPU per time unit."""
     log = open(os.path.join(folder, "log.lammps")).read()
-    phi = float(re.search(r"SILO filled .*? phi (\S+)", log).group(1))
+    phi = float(re.search(r"^SILO filled .*? phi (\S+)", log, re.M).group(1))
     samples = sorted({row[0]: row[1] for row in read_columns(os.path.join(folder, "silo.flow"))}.items())
     stops = [(row[0], row[1]) for row in read_columns(os.path.join(folder, "silo.clogs"))]
     W, W_se, flowed = flow_rate(samples, stops, transient)
     grains = samples[-1][1] / GRAIN_MASS
-    return {"phi": phi, "W": W, "W_se": W_se, "flowed": flowed, "clogs": len(stops), "grains": grains,
+    overlap_mean, overlap_max = overlaps(os.path.join(folder, "silo.filled"))
+    return {"phi": phi, "overlap_mean": overlap_mean, "overlap_max": overlap_max, "W": W, "W_se": W_se, "flowed": flowed, "clogs": len(stops), "grains": grains,
             "clogs_per_grain": len(stops) / grains if grains > 0 else math.nan,
-            "cpu_per_time": cpu_per_time(log, dt)}
+            "cpu_per_time": cpu_per_time(log, dt)[0], "loop_per_time": cpu_per_time(log, dt)[1]}
 
 
 def run_one(args, model, D, flow, folder):
@@ -138,8 +163,9 @@ def run_one(args, model, D, flow, folder):
     log = os.path.join(folder, "log.lammps")
     if os.path.exists(log) and "SILO done" in open(log).read():
         return
-    variables = {"D": D, "flow": flow}
+    variables = {"D": D, "flow": flow, "width": args.width, "grains": args.grains}
     if model == "soft":
+        del variables["grains"]     # the rigid packing's
         variables.update({"fill": args.soft_fill, "start": os.path.join(args.out, f"rigid_D{D}", "silo.filled.data")})
     # A copy: LAMMPS reads a deck as it goes (and jumps back in it), so an edit must not reach a run.
     os.makedirs(folder, exist_ok=True)
@@ -165,7 +191,8 @@ set xrange [3:25]
 set xlabel 'orifice width D (mean diameters)'
 set ylabel 'flow rate W (mass per sqrt(d/g), areal density 1)'
 set key top left
-plot '{csv}' using ($1==0 ? 1/0 : ($2 > 0 && strcol(1) eq 'rigid' ? $2 : 1/0)):3:4 with yerrorbars pt 7 lc 'black' title 'rigid (contact/dynamics)', \\
+set xtics (4, 5, 6, 8, 11, 15, 20)
+plot '{csv}' using (strcol(1) eq 'rigid' && $3 > 0 ? $2 : 1/0):3:4 with yerrorbars pt 7 lc 'black' title 'rigid (contact/dynamics)', \\
      '{csv}' using (strcol(1) eq 'soft' ? $2 : 1/0):3:4 with yerrorbars pt 6 ps 1.5 lc 'red' title 'soft (Hooke)'{curve}
 """
     subprocess.run(["gnuplot"], input=script, text=True, check=True)
@@ -181,6 +208,8 @@ def main():
     parser.add_argument("--soft-flow", type=float, default=30)
     parser.add_argument("--soft-fill", type=float, default=2, help="settling of the soft grains from the rigid packing")
     parser.add_argument("--soft-transient", type=float, default=8)
+    parser.add_argument("--width", type=float, default=50, help="the silo's width (d)")
+    parser.add_argument("--grains", type=int, default=1500)
     parser.add_argument("--out", default=os.path.join(run.TOP, "runs", "silo"))
     parser.add_argument("--lmp", default=run.BUILT_LMP_CD)
     args = parser.parse_args()
@@ -193,7 +222,7 @@ def main():
         folder = os.path.join(args.out, f"{model}_D{D}")
         run_one(args, model, D, flow, folder)
         if dt is None:    # the soft deck's step, from its log
-            dt = float(re.search(r"SILO soft dt (\S+)", open(os.path.join(folder, "log.lammps")).read()).group(1))
+            dt = float(re.search(r"^SILO soft dt (\S+)", open(os.path.join(folder, "log.lammps")).read(), re.M).group(1))
         rows.append(dict(model=model, D=float(D), **measure(folder, transient, dt)))
         r = rows[-1]
         print(f"{model} D {D}: W {r['W']:.4g} +- {r['W_se']:.2g}, clogs {r['clogs']}, phi {r['phi']:.4f}, "
@@ -201,10 +230,12 @@ def main():
 
     csv = os.path.join(args.out, "silo.csv")
     with open(csv, "w") as out:
-        out.write("model,D,W,W_se,flowing_time,clogs,grains_discharged,clogs_per_grain,phi,cpu_s_per_time\n")
+        out.write("model,D,W,W_se,flowing_time,clogs,grains_discharged,clogs_per_grain,phi,rest_overlap_mean,"
+                  "rest_overlap_max,cpu_s_per_time,loop_s_per_time\n")
         for r in rows:
             out.write(f"{r['model']},{r['D']:g},{r['W']:.5g},{r['W_se']:.3g},{r['flowed']:.4g},{r['clogs']},"
-                      f"{r['grains']:.1f},{r['clogs_per_grain']:.3g},{r['phi']:.4f},{r['cpu_per_time']:.4g}\n")
+                      f"{r['grains']:.1f},{r['clogs_per_grain']:.3g},{r['phi']:.4f},{r['overlap_mean']:.3g},{r['overlap_max']:.3g},"
+                      f"{r['cpu_per_time']:.4g},{r['loop_per_time']:.4g}\n")
     fits = {}
     for model in ("rigid", "soft"):
         mine = [r for r in rows if r["model"] == model]
