@@ -1,18 +1,18 @@
 #!/usr/bin/env python3
 """The 2D rotating drum: inputs/examples/in.drum_rigid (rigid disks, the drum a turning LAMMPS
-region) or reference/in.drum_granular (its soft twin) run at several Froude numbers Fr =
-omega^2 R / g, each measured over its turns after the first half.
+region) or inputs/examples/in.drum_granular (its soft twin: --deck, with --lmp lmp) run at several
+Froude numbers Fr = omega^2 R / g, each measured over its turns after the first half.
 
     studies/drum.py --run [--froude 1e-4,1e-3,3e-3,1e-2] [--dt 0.04,0.02,0.01,0.01] [--out runs/drum]
-    studies/drum.py --analyse DIR [DIR ...] [--table OUT.csv]
+    studies/drum.py --analyse DIR [DIR ...] [--out OUT]
 
 Per run (a folder holding dump.drum and log.lammps), in units of the mean diameter d and
 sqrt(d/g):
 - the free surface of each frame: in columns 2 d wide over |x| <= R/2, the height where the
   area fraction of the grains' centres in 1 d bins first reaches half the bulk's (0.4), from the
-  top, interpolated between bin centres; a straight line fitted through the columns gives the dynamic angle of repose theta (the
-  drum turns counter-clockwise: the surface rises towards +x); its mean, standard deviation over
-  the frames and standard error over five blocks of frames;
+  top, interpolated between bin centres; a straight line fitted through the columns gives the
+  dynamic angle of repose theta (the drum turns counter-clockwise: the surface rises towards
+  +x); its mean, standard deviation over the frames and standard error over five blocks;
 - the flowing layer along the surface's normal through the drum's axis (a strip 6 d wide): the
   grains' mean velocity down the slope against depth in 1 d bins over all frames; the layer's
   thickness h is the depth where that velocity changes sign (below, the bed turns with the drum
@@ -141,7 +141,8 @@ def plane_shear_mu(inertial):
     """mu at inertial number I from plane shear's table, interpolated linearly in log I (None
     outside it)."""
     with open(PLANE_SHEAR) as src:
-        rows = sorted((float(r["I"]), float(r["mu"])) for r in csv.DictReader(l for l in src if not l.startswith("#")))
+        table = csv.DictReader(line for line in src if not line.startswith("#"))
+        rows = sorted((float(r["I"]), float(r["mu"])) for r in table)
     for (i0, m0), (i1, m1) in zip(rows, rows[1:]):
         if i0 <= inertial <= i1:
             return m0 + (m1 - m0) * math.log(inertial / i0) / math.log(i1 / i0)
@@ -169,7 +170,8 @@ def layer_rheology(profile, packing, h, angle_deg):
         return {"phi_layer": None, "U_layer": None, "I_layer": None, "theta_mu_I": None, "theta_pouliquen": None}
     inside = [u for depth, u in profile if depth < h]
     mean_velocity = sum(inside) / len(inside)
-    phi = sum(packing[k] for k in packing if (k + 0.5) * BIN < h) / max(1, sum(1 for k in packing if (k + 0.5) * BIN < h))
+    in_layer = [k for k in packing if (k + 0.5) * BIN < h]
+    phi = sum(packing[k] for k in in_layer) / max(1, len(in_layer))
     pressure = math.cos(math.radians(angle_deg)) * sum(packing.get(k, 0.0) * BIN for k in range(int(h / 2 / BIN)))
     pressure += math.cos(math.radians(angle_deg)) * packing.get(int(h / 2 / BIN), 0.0) * (h / 2 % BIN)
     inertial = profile[0][1] / h / math.sqrt(pressure)

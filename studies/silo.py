@@ -153,9 +153,11 @@ def measure(folder, transient, dt):
     W, W_se, flowed = flow_rate(samples, stops, transient)
     grains = samples[-1][1] / GRAIN_MASS
     overlap_mean, overlap_max = overlaps(os.path.join(folder, "silo.filled"))
-    return {"phi": phi, "overlap_mean": overlap_mean, "overlap_max": overlap_max, "W": W, "W_se": W_se, "flowed": flowed, "clogs": len(stops), "grains": grains,
+    cpu, loop = cpu_per_time(log, dt)
+    return {"phi": phi, "overlap_mean": overlap_mean, "overlap_max": overlap_max, "W": W, "W_se": W_se,
+            "flowed": flowed, "clogs": len(stops), "grains": grains,
             "clogs_per_grain": len(stops) / grains if grains > 0 else math.nan,
-            "cpu_per_time": cpu_per_time(log, dt)[0], "loop_per_time": cpu_per_time(log, dt)[1]}
+            "cpu_per_time": cpu, "loop_per_time": loop}
 
 
 def run_one(args, model, D, flow, folder):
@@ -192,7 +194,8 @@ set xlabel 'orifice width D (mean diameters)'
 set ylabel 'flow rate W (mass per sqrt(d/g), areal density 1)'
 set key top left
 set xtics (4, 5, 6, 8, 11, 15, 20)
-plot '{csv}' using (strcol(1) eq 'rigid' && $3 > 0 ? $2 : 1/0):3:4 with yerrorbars pt 7 lc 'black' title 'rigid (contact/dynamics)', \\
+plot '{csv}' using (strcol(1) eq 'rigid' && $3 > 0 ? $2 : 1/0):3:4 with yerrorbars pt 7 lc 'black' \\
+       title 'rigid (contact/dynamics)', \\
      '{csv}' using (strcol(1) eq 'soft' ? $2 : 1/0):3:4 with yerrorbars pt 6 ps 1.5 lc 'red' title 'soft (Hooke)'{curve}
 """
     subprocess.run(["gnuplot"], input=script, text=True, check=True)
@@ -222,7 +225,8 @@ def main():
         folder = os.path.join(args.out, f"{model}_D{D}")
         run_one(args, model, D, flow, folder)
         if dt is None:    # the soft deck's step, from its log
-            dt = float(re.search(r"^SILO soft dt (\S+)", open(os.path.join(folder, "log.lammps")).read(), re.M).group(1))
+            with open(os.path.join(folder, "log.lammps")) as log:
+                dt = float(re.search(r"^SILO soft dt (\S+)", log.read(), re.M).group(1))
         rows.append(dict(model=model, D=float(D), **measure(folder, transient, dt)))
         r = rows[-1]
         print(f"{model} D {D}: W {r['W']:.4g} +- {r['W_se']:.2g}, clogs {r['clogs']}, phi {r['phi']:.4f}, "
@@ -234,7 +238,8 @@ def main():
                   "rest_overlap_max,cpu_s_per_time,loop_s_per_time\n")
         for r in rows:
             out.write(f"{r['model']},{r['D']:g},{r['W']:.5g},{r['W_se']:.3g},{r['flowed']:.4g},{r['clogs']},"
-                      f"{r['grains']:.1f},{r['clogs_per_grain']:.3g},{r['phi']:.4f},{r['overlap_mean']:.3g},{r['overlap_max']:.3g},"
+                      f"{r['grains']:.1f},{r['clogs_per_grain']:.3g},{r['phi']:.4f},{r['overlap_mean']:.3g},"
+                      f"{r['overlap_max']:.3g},"
                       f"{r['cpu_per_time']:.4g},{r['loop_per_time']:.4g}\n")
     fits = {}
     for model in ("rigid", "soft"):

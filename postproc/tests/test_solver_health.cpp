@@ -109,8 +109,13 @@ TEST(SolverHealth, BadFilesAreOneLineNamingFileAndLine)
       dir / "solver.time", testing::ave_time_text(kColumns, {{100, 10, 1e-3, 0.001, 1}, {200, 20, 1e-3, 0.002, 1.5}}));
   EXPECT_EQ(error_of([&] { read_solver_record(dir.string()); }),
             path + ":4: fraction of converged steps 1.5 is not in [0, 1]");
+  // A solver.time of another layout gives no health, and says why; read as one of the fix's, it
+  // is one line naming the missing column.
   testing::write_file(path, testing::ave_time_text({"TimeStep", "f_cd[1]"}, {{100, 10}}));
-  EXPECT_EQ(error_of([&] { read_solver_record(dir.string()); }),
+  const SolverRecord other_layout = read_solver_record(dir.string());
+  EXPECT_FALSE(other_layout.health);
+  EXPECT_EQ(other_layout.no_health_why, path + " holds no fix outputs 1, 5 and 7");
+  EXPECT_EQ(error_of([&] { solver_health(read_ave_time(path)); }),
             path + ": no column f_ID[5] (fix contact/dynamics output 5) among TimeStep, f_cd[1]");
   testing::write_file(path, testing::ave_time_text(kColumns, {{200, 10, 1e-3, 0.001, 1}, {100, 10, 1e-3, 0.001, 1}}));
   EXPECT_EQ(error_of([&] { read_solver_record(dir.string()); }),

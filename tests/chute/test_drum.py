@@ -50,7 +50,8 @@ def main():
         check(abs(measured - angle) < 0.5, f"surface angle {measured:.2f} for a packing tilted by {angle}")
         check(abs(height - 2.0) < 1.0, f"surface height {height:.2f} over the axis for 2.0")
     grains = tilted_packing(20.0, 0.0)
-    check(drum.deepest_overlap(grains) < 1e-9, f"a lattice of touching disks overlaps by {drum.deepest_overlap(grains)}")
+    overlap = drum.deepest_overlap(grains)
+    check(overlap < 1e-9, f"a lattice of touching disks overlaps by {overlap}")
     x, y, vx, vy, r = grains[10]
     grains.append((x + 0.9, y, vx, vy, r))  # 0.1 d into its right-hand neighbour at most
     check(abs(drum.deepest_overlap(grains) - 0.1) < 1e-9 or drum.deepest_overlap(grains) > 0.1,

@@ -107,7 +107,8 @@ def case_chute(args):
     bulk = [k for k, (phi, y) in enumerate(zip(fields["phi"], fields["y_m"])) if phi >= 0.7 and y >= 1.5e-3]
     normal = [fields["s_yy_Pa"][k] / (above[k] * cos) - 1 for k in bulk]
     shear = [-fields["s_yx_Pa"][k] / (above[k] * sin) - 1 for k in bulk]
-    print(f"chute: {len(bulk)} bulk nodes, y {fields['y_m'][bulk[0]] * 1e3:.2f} to {fields['y_m'][bulk[-1]] * 1e3:.2f} mm;"
+    y_low, y_high = fields['y_m'][bulk[0]] * 1e3, fields['y_m'][bulk[-1]] * 1e3
+    print(f"chute: {len(bulk)} bulk nodes, y {y_low:.2f} to {y_high:.2f} mm;"
           f" sigma_yy / (W cos theta) - 1 from {min(normal):+.4f} to {max(normal):+.4f},"
           f" -sigma_yx / (W sin theta) - 1 from {min(shear):+.4f} to {max(shear):+.4f}")
     if len(bulk) < 20 or max(map(abs, normal + shear)) > 0.02:

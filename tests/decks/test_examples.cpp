@@ -204,8 +204,8 @@ TEST(SiloExample, SettlesThenDischargesThroughTheOrifice)
   EXPECT_NEAR(printed_value(run.output, "SILO done", "discharged"), last, 1e-5);
   const auto filled = run.folder / "silo.filled.data";
   ASSERT_TRUE(std::filesystem::exists(filled));
-  const auto soft = run_example("in.silo_granular", "-var D 6 -var width 20 -var fill 0.2 -var flow 1 -var start " +
-                                                        filled.string());
+  const auto soft =
+      run_example("in.silo_granular", "-var D 6 -var width 20 -var fill 0.2 -var flow 1 -var start " + filled.string());
   expect_clean(soft);
   EXPECT_EQ(printed_value(soft.output, "SILO filled", "grains"), 300);
   EXPECT_EQ(printed_value(soft.output, "SILO done", "grains"), 300);

@@ -15,14 +15,22 @@ namespace cdpost {
 
 namespace {
 
-// The column f_ID[K] of the fix's output K, whatever the ID.
-const std::vector<double>& fix_output(const ColumnTable& table, int output)
+// The name of the column f_ID[K] of the fix's output K, whatever the ID; none if absent.
+const std::string* fix_output_name(const ColumnTable& table, int output)
 {
   const std::string suffix = "[" + std::to_string(output) + "]";
   for (const auto& name : table.names)
     if (name.rfind("f_", 0) == 0 && name.size() > suffix.size() &&
         name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
-      return table.column(name);
+      return &name;
+  return nullptr;
+}
+
+// The column f_ID[K] of the fix's output K, whatever the ID.
+const std::vector<double>& fix_output(const ColumnTable& table, int output)
+{
+  if (const std::string* name = fix_output_name(table, output)) return table.column(*name);
+  const std::string suffix = "[" + std::to_string(output) + "]";
   throw InputError(table.source, 0,
                    "no column f_ID" + suffix + " (fix contact/dynamics output " + std::to_string(output) + ") among " +
                        join_names(table.names));
@@ -102,7 +110,15 @@ SolverRecord read_solver_record(const std::string& directory)
   SolverRecord record;
   record.solver_file = (std::filesystem::path(directory) / kSolverFile).string();
   record.log_file = (std::filesystem::path(directory) / kLogFile).string();
-  if (std::filesystem::exists(record.solver_file)) record.health = solver_health(read_ave_time(record.solver_file));
+  // A solver.time of another layout (a deck that averages other outputs, e.g. the soft-sphere
+  // comparison's rigid runs) gives no health of its own: the log's solver lines still do.
+  record.no_health_why = "no " + record.solver_file;
+  if (std::filesystem::exists(record.solver_file)) {
+    const ColumnTable table = read_ave_time(record.solver_file);
+    if (fix_output_name(table, 1) && fix_output_name(table, 5) && fix_output_name(table, 7))
+      record.health = solver_health(table);
+    else record.no_health_why = record.solver_file + " holds no fix outputs 1, 5 and 7";
+  }
   std::ifstream log(record.log_file);
   record.log_found = static_cast<bool>(log);
   for (std::string line; std::getline(log, line);) {
@@ -145,7 +161,7 @@ void add_solver_results(ResultTable& results, const SolverRecord& record)
   for (const auto& row : rows) {
     if (record.health) results.add(row.name, (*record.health).*row.member, row.unit, row.description);
     else
-      results.add_not_recorded(row.name, row.unit, row.description + ": not recorded (no " + record.solver_file + ")");
+      results.add_not_recorded(row.name, row.unit, row.description + ": not recorded (" + record.no_health_why + ")");
   }
   const std::string extremes = " of any step of the chute run, from the SOLVER line of " + record.log_file;
   const std::string missing = ": not recorded (" + record.log_file + " holds no SOLVER line)";
@@ -184,8 +200,8 @@ std::string solver_health_text(const SolverRecord& record)
            " (of the interval means); largest interpenetration " + number(h->overlap_max_d) +
            " d (the largest interval mean of each step's largest).";
   else
-    text = "Unconverged steps, sweeps per step and the largest interpenetration: not recorded (no " +
-           record.solver_file + ").";
+    text = "Unconverged steps, sweeps per step and the largest interpenetration: not recorded (" +
+           record.no_health_why + ").";
   if (!record.log_found) return text + " The fix's solver lines: not recorded (no " + record.log_file + ").";
   if (record.largest_overlap_d)
     text += " Over every step of the chute run (the log's SOLVER line): largest sweeps " +

@@ -32,11 +32,13 @@ struct SolverHealth {
 // increasing or a file without rows.
 SolverHealth solver_health(const ColumnTable& table);
 
-// The run folder's solver health: solver.time's (nothing when it is absent) and the fix's
+// The run folder's solver health: solver.time's (nothing when it is absent or lacks outputs 1, 5
+// and 7) and the fix's
 // solver lines of log.lammps (the text after "solver: ", one per LAMMPS run; empty without them).
 struct SolverRecord {
   std::string solver_file, log_file;  // the paths looked at
   std::optional<SolverHealth> health;
+  std::string no_health_why;  // without health: no solver.time, or one of another layout
   bool log_found = false;
   std::vector<std::string> log_lines;
   // The last "SOLVER max_sweeps_per_step S max_interpenetration_d P" line of the log
