@@ -66,15 +66,6 @@ def surface_height(grains, x_lo, x_hi, top):
     return None
 
 
-def fit_line(xs, ys):
-    """Least-squares (intercept, slope)."""
-    n = len(xs)
-    mx, my = sum(xs) / n, sum(ys) / n
-    sxx = sum((x - mx) ** 2 for x in xs)
-    slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx
-    return my - slope * mx, slope
-
-
 def frame_surface(grains):
     """(height over the axis, angle in degrees) of one frame's free surface."""
     xs, ys = [], []
@@ -87,7 +78,7 @@ def frame_surface(grains):
         x += COLUMN
     if len(xs) < 3:
         raise ValueError("fewer than three surface columns: is the drum filled?")
-    intercept, slope = fit_line(xs, ys)
+    intercept, slope = stats.least_squares_line(xs, ys)
     return intercept, math.degrees(math.atan(slope))
 
 

@@ -30,6 +30,8 @@ import re
 import statistics
 import sys
 
+from . import stats
+
 PAGES = ("results/README.md", "results/runs/README.md", "results/series/README.md", "doc/source.md")
 MARKER = re.compile(r"(?<!`)<!--\s*check:\s*(\S+?)\s*-->(?!`)")  # in `code`: shown, not a marker
 NUMBER = re.compile(r"(?<![\w.])([−+-]?)(\d+(?:\.\d+)?)(?:e([−+-]?\d+))?(?![\w])")
@@ -129,11 +131,7 @@ class Data:
 
 def least_squares(xs, ys):
     """(intercept, slope) of the unweighted line."""
-    n = len(xs)
-    mx, my = sum(xs) / n, sum(ys) / n
-    sxx = sum((x - mx) ** 2 for x in xs)
-    slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx
-    return my - slope * mx, slope
+    return stats.least_squares_line(xs, ys)
 
 
 def weighted_slope(xs, ys, sigmas):

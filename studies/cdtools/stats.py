@@ -29,6 +29,15 @@ def difference_in_errors(x, error, x_ref, error_ref):
     return (x - x_ref) / combined if combined > 0 else math.nan
 
 
+def least_squares_line(xs, ys):
+    """(intercept, slope) of the unweighted least-squares line through (x, y)."""
+    n = len(xs)
+    mx, my = sum(xs) / n, sum(ys) / n
+    sxx = sum((x - mx) ** 2 for x in xs)
+    slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx
+    return my - slope * mx, slope
+
+
 def least_squares_slope(ts, ys):
     """Slope of the least-squares line through (t, y), and its R^2 (0 for constant y)."""
     n = len(ts)
