@@ -347,7 +347,7 @@ void FixContactDynamics::final_integrate()
   }
   if (neighbor->ago == 0) check_subdomains();
   place_obstacles();
-  region_walls.begin_step(update->dt, step_parameters().theta);
+  region_walls.begin_step(step_parameters());
   sheared_cell.begin_step(step_parameters());
   if (sheared_cell.deforms()) {
     sheared_cell.clear_image_shifts(atom->nlocal + atom->nghost);

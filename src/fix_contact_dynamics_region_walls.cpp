@@ -69,15 +69,15 @@ void RegionWalls::check_usable(const Region& region, const std::string& wall_reg
   }
 }
 
-RegionWalls::Pose RegionWalls::pose_of(const Region& region)
+cd::WallPose RegionWalls::pose_of(const Region& region)
 {
   return {region.moveflag ? region.dx : 0.0, region.moveflag ? region.dy : 0.0, region.rotateflag ? region.theta : 0.0};
 }
 
-void RegionWalls::place(Region& region, const Pose& pose)
+void RegionWalls::place(Region& region, const cd::WallPose& pose)
 {
   if (region.moveflag) region.dx = pose.dx, region.dy = pose.dy;
-  if (region.rotateflag) region.theta = pose.theta;
+  if (region.rotateflag) region.theta = pose.angle;
 }
 
 void RegionWalls::record_start()
@@ -90,7 +90,7 @@ void RegionWalls::record_start()
   }
 }
 
-void RegionWalls::begin_step(double dt, double theta)
+void RegionWalls::begin_step(const cd::StepParameters& step)
 {
   for (Wall& wall : walls_) {
     Region& region = *wall.region;
@@ -100,18 +100,19 @@ void RegionWalls::begin_step(double dt, double theta)
       error->all(FLERR, "Fix contact/dynamics: wall region {} moves along z (by {}); a 2D wall moves in the plane",
                  region.id, region.dz);
     wall.end = pose_of(region);
-    const Pose travel{wall.end.dx - wall.start.dx, wall.end.dy - wall.start.dy, wall.end.theta - wall.start.theta};
-    wall.at_solve = {wall.end.dx - theta * travel.dx, wall.end.dy - theta * travel.dy,
-                     wall.end.theta - theta * travel.theta};
-    wall.motion = {travel.dx / dt, travel.dy / dt, 0.0, 0.0, 0.0};
+    wall.at_solve = cd::wall_at_solve(wall.start, wall.end, step);
+    // LAMMPS turns about the axis (0, 0, +-1) through the pivot: a turn by theta is one of
+    // axis_z theta counter-clockwise.
+    cd::WallPose start = wall.start, end = wall.end;
+    double pivot_x = 0.0, pivot_y = 0.0;
     if (region.rotateflag) {
-      // LAMMPS turns the region about its original pivot, then moves it: the pivot stands at
-      // pivot + displacement.
-      const double* pivot = RegionRotation::pivot(region);
-      wall.motion.spin = RegionRotation::axis(region)[2] * travel.theta / dt;
-      wall.motion.centre_x = pivot[0] + wall.at_solve.dx;
-      wall.motion.centre_y = pivot[1] + wall.at_solve.dy;
+      const double sense = RegionRotation::axis(region)[2];
+      start.angle *= sense;
+      end.angle *= sense;
+      pivot_x = RegionRotation::pivot(region)[0];
+      pivot_y = RegionRotation::pivot(region)[1];
     }
+    wall.motion = cd::wall_motion(start, end, pivot_x, pivot_y, step);
     wall.start = wall.end;  // the next step's
   }
 }

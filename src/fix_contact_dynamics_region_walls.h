@@ -11,6 +11,7 @@
 
 #include "cd/contact.h"
 #include "cd/contact_geometry.h"
+#include "cd/at_solve.h"
 #include "cd/walls.h"
 #include "pointers.h"
 
@@ -39,8 +40,8 @@ class RegionWalls : protected Pointers {
   // The poses now start the next step (at a run's setup and after every step).
   void record_start();
   // The poses at the step's end (LAMMPS's variables at this timestep) and the motion over the
-  // step, met at x_m (theta: the step's, cd::StepParameters).
-  void begin_step(double dt, double theta);
+  // step, met at x_m (cd::wall_at_solve, cd::wall_motion).
+  void begin_step(const cd::StepParameters& step);
 
   // A disk's contact with one region wall; the geometry's image velocity is the surface's.
   struct Touch {
@@ -67,20 +68,17 @@ class RegionWalls : protected Pointers {
   };
 
  private:
-  struct Pose {
-    double dx = 0.0, dy = 0.0, theta = 0.0;
-  };
   struct Wall {
     Region* region = nullptr;
-    Pose start, end, at_solve;
+    cd::WallPose start, end, at_solve;
     cd::SurfaceMotion motion;  // over the step; zero for a region that does not move
     bool moves = false;
   };
 
   void check_usable(const Region& region, const std::string& wall_region) const;
   void check_in_plane(const Region& region, double delx, double dely, double delz, double distance) const;
-  static Pose pose_of(const Region& region);
-  static void place(Region& region, const Pose& pose);
+  static cd::WallPose pose_of(const Region& region);
+  static void place(Region& region, const cd::WallPose& pose);
 
   const std::vector<RegionWallSetting>& settings_;
   std::vector<Wall> walls_;

@@ -47,4 +47,30 @@ inline double wall_image_reach(const PeriodicBox& box, const StepParameters& ste
   return step.advance() * (std::fabs(box.rate_x) + std::fabs(box.rate_y) + std::fabs(box.rate_xy));
 }
 
+// A rigid wall's pose: its displacement and its turn (rad, counter-clockwise) about a pivot, which
+// it turns about first and then carries along (LAMMPS's region move and rotate).
+struct WallPose {
+  double dx = 0.0, dy = 0.0;  // m
+  double angle = 0.0;         // rad
+};
+
+// Where a wall that went from `start` to `end` over the step stands at the grains' instant x_m:
+// the same fraction of its travel, end - theta (end - start).
+inline WallPose wall_at_solve(const WallPose& start, const WallPose& end, const StepParameters& step)
+{
+  const double back = step.theta;
+  return {end.dx - back * (end.dx - start.dx), end.dy - back * (end.dy - start.dy),
+          end.angle - back * (end.angle - start.angle)};
+}
+
+// That wall's rigid motion over the step (the chords of its travel), met at x_m: it turns about
+// its pivot (pivot_x, pivot_y), carried by the displacement at x_m.
+inline SurfaceMotion wall_motion(const WallPose& start, const WallPose& end, double pivot_x, double pivot_y,
+                                 const StepParameters& step)
+{
+  const WallPose at_solve = wall_at_solve(start, end, step);
+  return {(end.dx - start.dx) / step.dt, (end.dy - start.dy) / step.dt, (end.angle - start.angle) / step.dt,
+          pivot_x + at_solve.dx, pivot_y + at_solve.dy};
+}
+
 }  // namespace cd

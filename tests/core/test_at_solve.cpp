@@ -57,3 +57,23 @@ TEST(AtSolve, AWallsImagesReachAtMostOneEdgeVectorAtEachRate)
 }
 
 }  // namespace
+
+// A wall carried from (0, 0) to (0.1, 0) m and turned from 0 to 0.02 rad about the pivot (1, 2)
+// over the step stands at end - theta (end - start) at x_m; its surface moves as a rigid body at
+// the chords' rates, turning about the pivot where the displacement has carried it by then.
+TEST(AtSolve, AMovingWallIsMetAtTheGrainsFractionOfItsTravel)
+{
+  const cd::WallPose start{0.0, 0.0, 0.0}, end{0.1, 0.0, 0.02};
+  const cd::WallPose met = cd::wall_at_solve(start, end, step);
+  EXPECT_DOUBLE_EQ(met.dx, 0.1 - 0.06);
+  EXPECT_DOUBLE_EQ(met.dy, 0.0);
+  EXPECT_DOUBLE_EQ(met.angle, 0.02 - 0.012);
+  const cd::SurfaceMotion motion = cd::wall_motion(start, end, 1.0, 2.0, step);
+  double vx = 0.0, vy = 0.0;
+  motion.velocity_at(1.04, 3.0, vx, vy);  // 1 m above the pivot at x_m: spin 2 rad/s adds -2 m/s along x
+  EXPECT_DOUBLE_EQ(vx, 10.0 - 2.0);
+  EXPECT_DOUBLE_EQ(vy, 0.0);
+  motion.velocity_at(2.04, 2.0, vx, vy);  // 1 m to its right: +2 m/s along y
+  EXPECT_DOUBLE_EQ(vx, 10.0);
+  EXPECT_DOUBLE_EQ(vy, 2.0);
+}
