@@ -9,7 +9,7 @@ sudo_cmd=""; [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
 
 packages=(build-essential cmake dpkg-dev pkg-config
           lammps liblammps-dev libopenmpi-dev openmpi-bin
-          libgtest-dev libgmock-dev libbenchmark-dev libsiconos-numerics-dev
+          libgtest-dev libgmock-dev libbenchmark-dev libsiconos-numerics-dev libfclib-dev
           libfftw3-dev libgsl-dev libeigen3-dev zlib1g-dev gnuplot-nox hyperfine
           liggghts clang-format flake8)
 
