@@ -30,7 +30,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-from cdtools import lammps_files, logs, run, stats
+from cdtools import lammps_files, logs, plane_shear, run, stats
 
 DECK = os.path.join(run.TOP, "inputs", "examples", "in.drum_rigid")
 # The same grains' rheology, measured elsewhere in the project: plane shear's mu(I) at contact
@@ -129,15 +129,8 @@ def deepest_overlap(grains):
 
 
 def plane_shear_mu(inertial):
-    """mu at inertial number I from plane shear's table, interpolated linearly in log I (None
-    outside it)."""
-    with open(PLANE_SHEAR) as src:
-        table = csv.DictReader(line for line in src if not line.startswith("#"))
-        rows = sorted((float(r["I"]), float(r["mu"])) for r in table)
-    for (i0, m0), (i1, m1) in zip(rows, rows[1:]):
-        if i0 <= inertial <= i1:
-            return m0 + (m1 - m0) * math.log(inertial / i0) / math.log(i1 / i0)
-    return None
+    """mu at inertial number I from plane shear's table, linear in log I (None outside it)."""
+    return plane_shear.at_inertial(plane_shear.read_table(PLANE_SHEAR), inertial, "mu")
 
 
 def pouliquen_angle(h, mean_velocity):

@@ -638,6 +638,8 @@ BAD_VARS = [
     ("thta", "30", "-var thta: the deck has no such variable (the nearest is theta)"),
     ("frozen_dept", "2", "-var frozen_dept: the deck has no such variable (the nearest is frozen_depth)"),
     ("grains", "100", "-var grains 100: too few to cover the wall tops (at least 1425"),
+    ("fields_every", "2.5", "-var fields_every 2.5: must be a whole number of steps >= 0"),
+    ("fields_every", "1", "-var fields_every 1: needs -var adapt_dt no"),
 ]
 
 
