@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The 45 d chute's local rheology from its stresses: `cdpost fields` on a window of the steady
 flow dumped every step (grains and the fix's contacts), across the flow; at each node of the
-flowing layer mu = sigma_yx / sigma_yy and I = gamma_dot d / sqrt(sigma_yy / rho_s) (plane
+flowing layer mu = -sigma_yx / sigma_yy and I = gamma_dot d / sqrt(sigma_yy / rho_s) (plane
 shear's definitions, doc/plane_shear_results.md), set against plane shear's mu(I) and phi(I) of the
 same friction at 1e-4 (results/plane_shear/), read at the node's I (linear in log I).
 
@@ -80,11 +80,12 @@ def read_params(folder):
         return {k: v for k, v in (line.split() for line in src if line.strip() and not line.startswith("#"))}
 
 
-def profile(folder, cdpost):
-    """`cdpost fields` across the flow of a window folder: [row of fields.csv as floats]."""
+def profile(folder, params, cdpost):
+    """`cdpost fields` across the flow of a window folder: [row of fields.csv as floats]. The
+    window ran at the fixed step of its chute.params (the deck refuses fields_every with adapt_dt)."""
     out = os.path.join(folder, "profile")
     command = [cdpost, "fields", os.path.join(folder, "fields.dump.gz"), "--contacts",
-               os.path.join(folder, "fields.contacts.gz"), "--along", "y", "--out", out]
+               os.path.join(folder, "fields.contacts.gz"), "--along", "y", "--dt", params["dt_s"], "--out", out]
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
     with open(os.path.join(out, "fields.csv"), newline="") as src:
         rows = csv.DictReader(line for line in src if not line.startswith("#"))
@@ -106,7 +107,7 @@ def layer_nodes(nodes, params, table):
     for n in nodes:
         if not (y_top < n["y_m"] < top) or n["phi"] < DENSE_PHI or not n["s_yy_Pa"] or n["s_yy_Pa"] <= 0:
             continue
-        mu = n["s_yx_Pa"] / n["s_yy_Pa"]
+        mu = -n["s_yx_Pa"] / n["s_yy_Pa"]    # compression positive: the layer above drags this one down the slope
         inertial = n["gamma_dot_1/s"] * d / math.sqrt(n["s_yy_Pa"] / rho_s)
         mu_ps = plane_shear.at_inertial(table, inertial, "mu")
         if mu_ps is None:
@@ -117,20 +118,25 @@ def layer_nodes(nodes, params, table):
     return layer
 
 
-def summary(mu, theta, layer):
-    """One row per case: the layer's nodes and their spreads."""
-    def spread(key):
-        values = [n[key] for n in layer]
-        return stats.mean_sd_se(values)[0], min(values), max(values)
+def summary(mu, theta, layer, table):
+    """One row per case: the layer's nodes, their means and spreads. The node-to-node scatter of
+    I is mostly the window's noise in the shear rate: the layer's mean (mu, I, phi) against plane
+    shear at the mean I is the comparison; the nodes' range bounds it."""
+    def mean(key):
+        return stats.mean_sd_se([n[key] for n in layer])[0]
     tan = math.tan(math.radians(theta))
     balance = [n["mu"] / tan - 1 for n in layer]
-    dtheta, dphi = spread("dtheta_deg"), [n["phi"] - n["phi_ps"] for n in layer]
-    return {"mu": mu, "theta_deg": theta, "nodes": len(layer),
+    dtheta, dphi = [n["dtheta_deg"] for n in layer], [n["phi"] - n["phi_ps"] for n in layer]
+    mean_i = mean("I")
+    return {"contact_mu": mu, "theta_deg": theta, "nodes": len(layer),
             "z_low_d": min(n["z_d"] for n in layer), "z_high_d": max(n["z_d"] for n in layer),
-            "I_low": min(n["I"] for n in layer), "I_high": max(n["I"] for n in layer),
+            "I_mean": mean_i, "I_low": min(n["I"] for n in layer), "I_high": max(n["I"] for n in layer),
+            "mu_mean": mean("mu"), "phi_mean": mean("phi"),
             "balance_min": min(balance), "balance_max": max(balance),
-            "dtheta_mean_deg": dtheta[0], "dtheta_min_deg": dtheta[1], "dtheta_max_deg": dtheta[2],
-            "dphi_mean": sum(dphi) / len(dphi), "dphi_min": min(dphi), "dphi_max": max(dphi)}
+            "dtheta_at_mean_deg": math.degrees(math.atan(mean("mu"))
+                                               - math.atan(plane_shear.at_inertial(table, mean_i, "mu"))),
+            "dphi_at_mean": mean("phi") - plane_shear.at_inertial(table, mean_i, "phi"),
+            "dtheta_min_deg": min(dtheta), "dtheta_max_deg": max(dtheta), "dphi_min": min(dphi), "dphi_max": max(dphi)}
 
 
 def write_csv(path, rows):
@@ -153,14 +159,14 @@ set multiplot layout 1,2
 set logscale x
 set xlabel 'I'
 set key left top
-set ylabel 'mu = sigma_yx / sigma_yy'
+set ylabel 'mu = -sigma_yx / sigma_yy'
 plot for [m in "{' '.join(f'{mu:g}' for mu, _, _ in cases)}"] '{nodes}' every ::1 \\
-       using ($1 == m ? $5 : 1/0):6 pt 7 ps 0.5 title 'chute, mu '.m, \\
+       using (sprintf('%g', $1) eq m ? $5 : 1/0):6 pt 7 ps 0.5 title 'chute, mu '.m, \\
      for [f in "{tables}"] f using 2:4 with linespoints lt -1 dt 2 pt 6 notitle
 set ylabel 'phi'
 set key left bottom
 plot for [m in "{' '.join(f'{mu:g}' for mu, _, _ in cases)}"] '{nodes}' every ::1 \\
-       using ($1 == m ? $5 : 1/0):4 pt 7 ps 0.5 title 'chute, mu '.m, \\
+       using (sprintf('%g', $1) eq m ? $5 : 1/0):4 pt 7 ps 0.5 title 'chute, mu '.m, \\
      for [f in "{tables}"] f using 2:1 with linespoints lt -1 dt 2 pt 6 notitle
 unset multiplot
 """
@@ -176,22 +182,23 @@ def analyse(cases, out, results, cdpost):
     for mu, theta, _ in cases:
         window = os.path.join(case_folder(out, mu, theta), "window")
         table = plane_shear.read_table(plane_shear.table_path(mu))
-        layer = layer_nodes(profile(window, cdpost), read_params(window), table)
+        params = read_params(window)
+        layer = layer_nodes(profile(window, params, cdpost), params, table)
         if not layer:
             sys.exit(f"chute_local_rheology.py: {window}: no node of the flowing layer within plane shear's range of I")
-        all_nodes += [dict({"mu": mu, "theta_deg": theta}, **n) for n in layer]
-        rows.append(summary(mu, theta, layer))
+        all_nodes += [dict({"contact_mu": mu, "theta_deg": theta}, **n) for n in layer]
+        rows.append(summary(mu, theta, layer, table))
     write_csv(os.path.join(results, "nodes.csv"), all_nodes)
     write_csv(os.path.join(results, "summary.csv"), rows)
     draw(results, cases)
     for r in rows:
-        print(f"mu {r['mu']:g}, {r['theta_deg']:g} deg: {r['nodes']} nodes, "
-              f"z {r['z_low_d']:.1f}-{r['z_high_d']:.1f} d, "
-              f"I {r['I_low']:.3g}-{r['I_high']:.3g}; sigma_yx/sigma_yy / tan theta - 1 in "
-              f"[{r['balance_min']:+.3f}, {r['balance_max']:+.3f}]; "
-              f"angle - plane shear's {r['dtheta_mean_deg']:+.2f} deg "
-              f"([{r['dtheta_min_deg']:+.2f}, {r['dtheta_max_deg']:+.2f}]); phi - plane shear's {r['dphi_mean']:+.4f} "
-              f"([{r['dphi_min']:+.4f}, {r['dphi_max']:+.4f}])")
+        print(f"mu {r['contact_mu']:g}, {r['theta_deg']:g} deg: {r['nodes']} nodes, "
+              f"z {r['z_low_d']:.1f}-{r['z_high_d']:.1f} d; mean I {r['I_mean']:.3g} (nodes {r['I_low']:.3g}-"
+              f"{r['I_high']:.3g}), mu {r['mu_mean']:.4f}, phi {r['phi_mean']:.4f}; "
+              f"-sigma_yx/sigma_yy / tan theta - 1 in [{r['balance_min']:+.3f}, {r['balance_max']:+.3f}]; "
+              f"against plane shear at the mean I: {r['dtheta_at_mean_deg']:+.2f} deg, phi {r['dphi_at_mean']:+.4f} "
+              f"(nodes {r['dtheta_min_deg']:+.2f} to {r['dtheta_max_deg']:+.2f} deg, "
+              f"phi {r['dphi_min']:+.4f} to {r['dphi_max']:+.4f})")
 
 
 def main(argv=None):
