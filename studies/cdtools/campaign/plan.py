@@ -27,12 +27,22 @@ SERIES = {
 LAYER_SERIES = {"layer_" + name: [dict(point, reading="layer") for point in SERIES[name]]
                 for name in ("mu0.05", "mu0.5", "mu2", "replicas")}
 SERIES.update(LAYER_SERIES)
+# The evidence for the solver health of runs that did not record it (issue 63; doc/campaign.md,
+# *Solver health*): one fresh 10 s run per friction and reading at the deck's defaults, named
+# health_<run>. Their runs take no --var (DEFAULTS_ONLY) and join no analysis.
+SERIES["health_evidence"] = [dict(mu=mu, theta=theta, L=45, reading=r) for mu, theta in ((0.05, 20), (0.5, 24), (2, 28))
+                             for r in ("count", "layer")]
+NAME_PREFIX = {"health_evidence": "health_"}
+DEFAULTS_ONLY = {"health_evidence"}
+# The series whose runs measure the flow of the 45 d cell at the published settings: the readings'
+# means and the replica pairs are made of these alone.
+FLOW_SERIES = ("mu0.05", "mu0.5", "mu2", "replicas") + tuple(LAYER_SERIES)
 # The cdpost series analyses: the flow rules need every mu together; the L series also takes
 # the 45 d run at the same (mu, theta) from the mu = 0.5 series.
 ANALYSES = {
     "flow_rules": lambda job: job.series in ("mu0.05", "mu0.5", "mu2"),
-    "L_series": lambda job: (float(job.vars["mu"]) == 0.5 and float(job.vars["theta"]) == 22
-                             and reading(job.vars) == "count"),
+    "L_series": lambda job: (job.series in ("L", "mu0.5") and float(job.vars["mu"]) == 0.5
+                             and float(job.vars["theta"]) == 22 and reading(job.vars) == "count"),
     "layer_flow_rules": lambda job: job.series in ("layer_mu0.05", "layer_mu0.5", "layer_mu2"),
 }
 
@@ -59,14 +69,16 @@ def deck_defaults():
     return defaults
 
 
-def run_variables(args, defaults, point):
+def run_variables(args, defaults, point, series=None):
     """The deck variables of one series point: the deck's defaults, the point's values, then
-    --var (which wins), the wall laws following the grains' unless set."""
+    --var (which wins; not for a series of DEFAULTS_ONLY), the wall laws following the grains'
+    unless set."""
+    given = {} if series in DEFAULTS_ONLY else args.var
     variables = dict(defaults, duration=parameter(args.duration))
     variables.update({key: parameter(value) for key, value in point.items()})
-    variables.update(args.var)
+    variables.update(given)
     for wall, grain in WALL_DEFAULTS.items():
-        if not args.var.get(wall):
+        if not given.get(wall):
             variables[wall] = variables[grain]
     return variables
 
@@ -80,8 +92,8 @@ def reading_suffix(variables):
     return "" if reading(variables) == "count" else "_" + reading(variables)
 
 
-def run_name(variables, defaults):
-    name = f"mu{variables['mu']}_theta{variables['theta']}_L{variables['L']}"
+def run_name(variables, defaults, series=None):
+    name = NAME_PREFIX.get(series, "") + f"mu{variables['mu']}_theta{variables['theta']}_L{variables['L']}"
     name += f"_seed{variables['seed']}" if variables["seed"] != defaults["seed"] else ""
     return name + reading_suffix(variables)
 
@@ -92,8 +104,8 @@ def build_jobs(args):
     depositions, runs = {}, {}
     for series in args.series or list(SERIES):
         for point in SERIES[series]:
-            variables = run_variables(args, defaults, point)
-            name = run_name(variables, defaults)
+            variables = run_variables(args, defaults, point, series)
+            name = run_name(variables, defaults, series)
             if args.only and not any(fnmatch.fnmatch(name, p) for p in args.only):
                 continue
             for pattern, values in getattr(args, "run_var", []):
