@@ -330,12 +330,16 @@ def family_local(data, reading, mu, quantity, part="range"):
 
 
 def family_replica(data, quantity, reading="both"):
-    """Scatter of one run from the replica pairs (runs named *_seed*): sqrt(sum d^2 / 2n), as the
-    runs page's table; reading 'count' or 'layer': that reading's pairs alone."""
+    """Scatter of one run from the replica pairs (runs of a replicas series, named *_seed*):
+    sqrt(sum d^2 / 2n), as the runs page's table; reading 'count' or 'layer': that reading's pairs
+    alone."""
     differences = []
     for name in sorted(os.listdir(data.path("results", "runs"))):
         if "_seed" not in name or (reading != "both" and name.endswith("_layer") != (reading == "layer")):
             continue
+        with open(data.path("results", "runs", name, "params.json")) as src:
+            if not json.load(src).get("series", "").endswith("replicas"):
+                continue  # another rain of another study (the creep series' seeds)
         base = re.sub(r"_seed\d+", "", name)
         a, b = data.run(name).get(quantity), data.run(base).get(quantity)
         if a and b:

@@ -26,7 +26,7 @@ import json
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "studies"))
 
 from cdtools import lammps_files, logs, run, stats, text
-from cdtools.campaign import plan, report
+from cdtools.campaign import plan, post, report
 
 
 def check(condition, message):
@@ -220,6 +220,32 @@ def check_run_vars(work):
     check(all(job.vars["max_iterations"] == defaults["max_iterations"] and job.vars["duration"] == "10"
               and not any(belongs(job) for belongs in plan.ANALYSES.values()) for job in evidence),
           "the evidence runs take the deck's defaults and join no analysis")
+    check_creep_series(work)
+
+
+def check_creep_series(work):
+    """The creep length's series (issue 63, item 3): names apart from the published runs (walls
+    other than 30 d named), a deeper bed given the grains of the 30 d cell's layer plus the bed
+    added, its own depositions, and the runs in the creep analysis only."""
+    args = argparse.Namespace(out=work, var={}, series=list(plan.CREEP_SERIES), only=None, duration=10.0)
+    jobs = plan.build_jobs(args)
+    runs = {job.name: job for job in jobs if job.kind == "run"}
+    check(len(runs) == 14 and "mu0.5_theta22_L45_seed20261123_wall60" in runs and "mu2_theta28_L102" in runs
+          and "mu0.5_theta22_L152_wall60" in runs and "mu0.5_theta22_L72_seed20261125" in runs, f"runs {sorted(runs)}")
+    # 3967 x 102/45 = 8992.1, plus 0.82 x 102 x 30 / (pi/4 x (1 + 0.4^2/12)) = 3152.5
+    check(plan.grains_for_walls(102, 60) == 12145 and plan.grains_for_walls(45, 30) == 3967
+          and plan.grains_for_walls(45, 15) == 3967 - 695, f"grains {plan.grains_for_walls(102, 60)}")
+    check(runs["mu0.5_theta22_L102_wall60"].vars["grains"] == "12145", "the deep bed's grains")
+    check(runs["mu0.5_theta22_L45_wall15"].deposition.name == "mu0.5_L45_seed20261122_wall15",
+          "a bed between other walls rains its own packing")
+    check(all([a for a, belongs in plan.ANALYSES.items() if belongs(job)] == ["creep_length"] for job in runs.values()),
+          "a creep run joins the creep analysis alone")
+    walls_by_var = argparse.Namespace(out=work, var={"wall_height": "4", "L": "8"}, series=["mu0.5"],
+                                      only=["mu0.5_theta24_*"], duration=10.0)
+    check([job.name for job in plan.build_jobs(walls_by_var)] == ["mu0.5_L8_seed20261122", "mu0.5_theta24_L8"],
+          "walls set by --var name no run (chute.runner_resume's)")
+    check(post.creep_depth_option(runs["mu0.5_theta22_L45_wall60"].vars) == ["--creep-depth", "60"]
+          and post.creep_depth_option(runs["mu2_theta28_L22"].vars) == [], "the creep measure reads the whole bed")
 
 
 def check_readings():
