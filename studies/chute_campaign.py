@@ -73,6 +73,9 @@ def argument_parser():
     parser.add_argument("--publish-unconverged", action="store_true",
                         help="with --report: publish runs with more than 0.1 %% of their steps unconverged "
                              "(flagged) instead of refusing them")
+    parser.add_argument("--count-without-health", action="store_true",
+                        help="with --report: count runs whose solver health is neither recorded nor inferred "
+                             "(series health_evidence) in the fits and verdicts, flagged, instead of refusing")
     parser.add_argument("--dry-run", action="store_true", help="print the commands of the pending jobs")
     parser.add_argument("--progress-interval", type=float, default=60.0, help="seconds between progress lines")
     parser.add_argument("--poll", type=float, default=2.0, help=argparse.SUPPRESS)

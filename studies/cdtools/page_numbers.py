@@ -8,12 +8,13 @@ does not show:
 
 KEY is a family and its arguments, separated by ':'. The family computes a tuple of values from
 the committed files (each run's results.json through its series' manifest.csv, the series'
-runs.csv, fits.csv and source_comparison.csv, the plane-shear tables), with the estimator the
-tables use; the marker checks the last len(tuple) numbers before it in its paragraph, in order.
-A printed number agrees when it is its value rounded to the decimals printed (half a unit of its
-last digit, and a sign that matches). A number's sign is '−' (U+2212), '-' or '+' written just
-before its digits after a space or an opening bracket, '^' or '×'; '–' (U+2013) between two
-numbers is a range; in '4e-05' the last digit is the fifth decimal.
+runs.csv, fits.csv and source_comparison.csv, the plane-shear tables, the re-runs' table of
+results/series/local_rheology/), with the estimator the tables use; the marker checks the last
+len(tuple) numbers before it in its paragraph, in order. A printed number agrees when it is its
+value rounded to the decimals printed (half a unit of its last digit, and a sign that matches).
+A number's sign is '−' (U+2212), '-' or '+' written just before its digits after a space or an
+opening bracket, '^' or '×'; '–' (U+2013) between two numbers is a range; in '4e-05' the last
+digit is the fifth decimal.
 
     check_pages(root)       [(page, line, key, problem)] over PAGES; empty when every number agrees
     check_text(text, data)  the same for one text
@@ -294,13 +295,51 @@ def family_packing(data, reading, mu, part="mean"):
     return {"mean": (mean, se), "mean_only": (mean,), "range": (low, high), "runs": (runs,)}[part]
 
 
+def _local(data):
+    def make():
+        studies = data.path("studies")
+        if studies not in sys.path:
+            sys.path.insert(0, studies)
+        import local_rheology
+        fits, rows = local_rheology.load(data.path("results", "series", "local_rheology", local_rheology.RERUN_TABLE))
+        return fits, rows, local_rheology.summary(rows)
+    return data._memo("local", make)
+
+
+def family_local(data, reading, mu, quantity, part="range"):
+    """The chute's mid-layer point against plane shear's fits (studies/local_rheology.py). READING
+    count or layer, MU a friction or 'all', QUANTITY dtheta (theta - arctan mu_ps(I), deg) or dphi
+    (phi - phi_ps(I)) with PART 'range' (smallest, largest), 'mean' (mean, standard error) or
+    'mean_only'; QUANTITY runs, reruns or outside: how many. READING 'fit': plane shear's fit at MU,
+    QUANTITY rms_deg or rms_phi. READING 'rerun': the re-run named MU, QUANTITY counts: its phi_local
+    from the grain counts minus from the measured phi(z)."""
+    fits, rows, groups = _local(data)
+    if reading == "fit":
+        fit = fits[float(mu)]
+        return (fit["rms_deg"],) if quantity == "rms_deg" else (fit["phi"]["rms"],)
+    if reading == "rerun":
+        import local_rheology
+        row = local_rheology.rerun_rows(data.path("results", "series", "local_rheology",
+                                                  local_rheology.RERUN_TABLE))[mu]
+        return (float(row["phi_local_from_counts"]) - float(row["phi_local"]),)
+    group = groups[(reading, mu if mu == "all" else float(mu))]
+    if quantity in ("runs", "reruns", "outside"):
+        return (group[quantity],)
+    low, high, mean, se = group[quantity]
+    return {"range": (low, high), "mean": (mean, se), "mean_only": (mean,)}[part]
+
+
 def family_replica(data, quantity, reading="both"):
-    """Scatter of one run from the replica pairs (runs named *_seed*): sqrt(sum d^2 / 2n), as the
-    runs page's table; reading 'count' or 'layer': that reading's pairs alone."""
+    """Scatter of one run from the replica pairs (runs of a replicas series, named *_seed*):
+    sqrt(sum d^2 / 2n), as the runs page's table; reading 'count' or 'layer': that reading's pairs
+    alone."""
     differences = []
     for name in sorted(os.listdir(data.path("results", "runs"))):
         if "_seed" not in name or (reading != "both" and name.endswith("_layer") != (reading == "layer")):
             continue
+        with open(data.path("results", "runs", name, "params.json")) as src:
+            if not json.load(src).get("series", "").endswith("replicas"):
+                continue  # another rain of another study (the creep series' seeds)
         base = re.sub(r"_seed\d+", "", name)
         a, b = data.run(name).get(quantity), data.run(base).get(quantity)
         if a and b:
@@ -463,7 +502,7 @@ FAMILIES = {"fit": family_fit, "run": family_run, "range": family_range, "median
             "f_L_without": family_f_L_without, "size_law": family_size_law,
             "cmp": family_cmp, "change": family_change, "ends": family_ends,
             "fit_scaled": family_fit_scaled, "cmp_range": family_cmp_range,
-            "fit_diff": family_fit_diff}
+            "fit_diff": family_fit_diff, "local": family_local}
 
 
 def values_of(key, data):

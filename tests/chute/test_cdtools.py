@@ -26,7 +26,7 @@ import json
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "studies"))
 
 from cdtools import lammps_files, logs, run, stats, text
-from cdtools.campaign import plan, report
+from cdtools.campaign import plan, post, report
 
 
 def check(condition, message):
@@ -208,6 +208,44 @@ def check_run_vars(work):
     deposition = next(job for job in plan.build_jobs(args) if job.kind == "deposition")
     check("max_iterations" not in deposition.vars and deposition.vars["max_iterations_deposition"] == "1000",
           f"the rain's cap is its own: {deposition.vars}")
+    # The health evidence: a run per friction and reading at the deck's defaults whatever --var says,
+    # named apart from the published runs of the same point, in no analysis.
+    evidence = [job for job in plan.build_jobs(argparse.Namespace(out=work, var={"max_iterations": "1000"},
+                                                                  series=["health_evidence"], only=None, duration=10.0))
+                if job.kind == "run"]
+    defaults = plan.deck_defaults()
+    check(sorted(job.name for job in evidence) == sorted(f"health_mu{mu}_theta{t}_L45{suffix}" for mu, t in
+                                                         (("0.05", 20), ("0.5", 24), ("2", 28))
+                                                         for suffix in ("", "_layer")), f"{[j.name for j in evidence]}")
+    check(all(job.vars["max_iterations"] == defaults["max_iterations"] and job.vars["duration"] == "10"
+              and not any(belongs(job) for belongs in plan.ANALYSES.values()) for job in evidence),
+          "the evidence runs take the deck's defaults and join no analysis")
+    check_creep_series(work)
+
+
+def check_creep_series(work):
+    """The creep length's series (issue 63, item 3): names apart from the published runs (walls
+    other than 30 d named), a deeper bed given the grains of the 30 d cell's layer plus the bed
+    added, its own depositions, and the runs in the creep analysis only."""
+    args = argparse.Namespace(out=work, var={}, series=list(plan.CREEP_SERIES), only=None, duration=10.0)
+    jobs = plan.build_jobs(args)
+    runs = {job.name: job for job in jobs if job.kind == "run"}
+    check(len(runs) == 14 and "mu0.5_theta22_L45_seed20261123_wall60" in runs and "mu2_theta28_L102" in runs
+          and "mu0.5_theta22_L152_wall60" in runs and "mu0.5_theta22_L72_seed20261125" in runs, f"runs {sorted(runs)}")
+    # 3967 x 102/45 = 8992.1, plus 0.82 x 102 x 30 / (pi/4 x (1 + 0.4^2/12)) = 3152.5
+    check(plan.grains_for_walls(102, 60) == 12145 and plan.grains_for_walls(45, 30) == 3967
+          and plan.grains_for_walls(45, 15) == 3967 - 695, f"grains {plan.grains_for_walls(102, 60)}")
+    check(runs["mu0.5_theta22_L102_wall60"].vars["grains"] == "12145", "the deep bed's grains")
+    check(runs["mu0.5_theta22_L45_wall15"].deposition.name == "mu0.5_L45_seed20261122_wall15",
+          "a bed between other walls rains its own packing")
+    check(all([a for a, belongs in plan.ANALYSES.items() if belongs(job)] == ["creep_length"] for job in runs.values()),
+          "a creep run joins the creep analysis alone")
+    walls_by_var = argparse.Namespace(out=work, var={"wall_height": "4", "L": "8"}, series=["mu0.5"],
+                                      only=["mu0.5_theta24_*"], duration=10.0)
+    check([job.name for job in plan.build_jobs(walls_by_var)] == ["mu0.5_L8_seed20261122", "mu0.5_theta24_L8"],
+          "walls set by --var name no run (chute.runner_resume's)")
+    check(post.creep_depth_option(runs["mu0.5_theta22_L45_wall60"].vars) == ["--creep-depth", "60"]
+          and post.creep_depth_option(runs["mu2_theta28_L22"].vars) == [], "the creep measure reads the whole bed")
 
 
 def check_readings():
@@ -263,14 +301,49 @@ def check_solver_health(work):
           "a run without a record is published (and shown as not recorded)")
     check(report.solver_cells(dict(solver=first)) == ["3 (0.15 %) ⚠", "138 / 900"], "the runs table's cells")
 
-    def run(mu, cost):
-        return argparse.Namespace(results={"U": 1}, vars=dict(mu=mu, L="45", reading="layer"), cost=cost)
-    records = [run("2", dict(solver=first)), run("2", {}), run("0.5", dict(solver=second))]
+    def run(mu, cost, series="layer_mu2", name="r", which="layer"):
+        return argparse.Namespace(name=name, series=series, results={"U": 1}, cost=cost,
+                                  vars=dict(mu=mu, L="45", reading=which, theta="24"))
+    records = [run("2", dict(solver=first)), run("2", {}), run("0.5", dict(solver=second), "layer_mu0.5")]
+    check(report.health_refusal(records, argparse.Namespace(count_without_health=True)) is None,
+          "--count-without-health counts a run without health")
     caveat = report.solver_caveat("pouliquen_curve_angle_mu2", "layer", records)
     check(caveat == " (⚠ 1 run(s) above 0.1 % unconverged; solver health not recorded for 1 of 2 runs)",
           f"a mu 2 row's caveat: {caveat}")
     check(report.solver_caveat("pouliquen_curve_angle_mu0.5", "layer", records) == "", "a mu 0.5 row's caveat")
     check("1 of 3 runs" in report.solver_caveat("phi_law_k", "layer", records), "a row of every friction")
+    check_health_rule(run, first, second)
+
+
+def check_health_rule(run, first, second):
+    """A run a verdict counts needs its solver health, recorded or inferred from the evidence run of
+    its friction and reading (at most 0.01 % unconverged); else --report refuses in one line naming it."""
+    told, untold = argparse.Namespace(count_without_health=False), argparse.Namespace()
+    old = run("2", {}, "mu2", "mu2_theta25_L45", "count")
+    replica = run("2", {}, "replicas", "mu2_theta28_L45_seed20261123", "count")  # in no verdict
+    refusal = report.health_refusal([old, replica, run("0.5", dict(solver=second), "mu0.5")], told)
+    check(refusal is not None and "\n" not in refusal and refusal.startswith("refusing to count 1 runs without solver "
+          "health (no evidence run of their friction and reading: mu2_theta25_L45)"), f"the refusal: {refusal}")
+    layer_proof = run("2", dict(solver=second), "health_evidence", "health_mu2_theta28_L45_layer", "layer")
+    check(report.health_refusal([old, layer_proof], untold) is not None, "evidence of the other reading counts not")
+    clean = dict(second, unconverged=1, unconverged_fraction=0.5e-4)
+    proof = run("2", dict(solver=clean), "health_evidence", "health_mu2_theta28_L45", "count")
+    inferred = report.health_refusal([old, replica, proof], untold) is None
+    check(inferred and old.inferred == ("health_mu2_theta28_L45", 0.5e-4), f"health inferred: {old.inferred}")
+    check(report.solver_cells({}, old.inferred)[0] == "inferred: ≤ 0.01 % (health_mu2_theta28_L45)",
+          "the runs table shows the inferred health with its evidence")
+    check(report.solver_caveat("phi_c_mu2", "count", [old, proof]) == " (solver health inferred for 1 of 1 runs)",
+          "a verdict on inferred health says so (the evidence run counts in none)")
+    dirty = run("2", dict(solver=first), "health_evidence", "health_mu2_theta28_L45", "count")  # 0.15 %
+    refusal = report.health_refusal([old, dirty], untold)
+    check(refusal is not None and "health_mu2_theta28_L45 0.15 % unconverged: mu2_theta25_L45" in refusal,
+          f"evidence above 0.01 %: {refusal}")
+    with tempfile.TemporaryDirectory() as destination:
+        report.health_refusal([old, proof], untold)
+        report.write_health_marks([old, proof], destination)
+        with open(os.path.join(destination, "runs", report.HEALTH_MARKS)) as src:
+            marks = [line for line in src if not line.startswith("#")]
+        check(marks[1].strip() == "mu2_theta25_L45,2,count,health_mu2_theta28_L45,5e-05", f"the marks: {marks}")
 
 
 def main():

@@ -12,7 +12,8 @@ deck wrote one), recover the laws from the series fit, show both readings side b
 reading's fits as its own series made them), measure the replica scatter, list the unstarted
 run, hold no dump or restart, read a run whose raw outputs are gone back from what it
 published, use no run (its own or published) made with other deck variables than the report's,
-keep a hand-written discussion when it is made again, and show a rigid/soft comparison's table.
+keep a hand-written discussion when it is made again, and show a rigid/soft comparison's table; a
+run without its solver health is refused in one line unless --count-without-health counts it.
 Standard library only.
 """
 
@@ -126,10 +127,15 @@ def write_record(folder):
                   f"sample_rate_hz {SAMPLE_RATE}\nd_m {D}\ng_mps2 {G}\nL_d 45\nwall_height_d 30\n")
 
 
-def write_run(campaign, name, theta, seed_shift, frequency, u=None, h=H, record=True):
-    """A finished run folder as the runner leaves it, with one leg and its timers, and its
-    chute.params unless made before the deck wrote one; the layer flows by the mu(I) rule unless
-    u (sqrt(g d)) is given."""
+# The fix's end-of-run solver line: the run's solver health.
+SOLVER_LINE = ("Fix contact/dynamics cd solver: 40000 steps, 0 unconverged (0 %), largest final norm 0.001, "
+               "sweeps per step median 120, 99th percentile 400, max 900, 0 rescued from a stall\n")
+
+
+def write_run(campaign, name, theta, seed_shift, frequency, u=None, h=H, record=True, health=True):
+    """A finished run folder as the runner leaves it, with one leg and its timers (and the solver's
+    health unless told), and its chute.params unless made before the deck wrote one; the layer
+    flows by the mu(I) rule unless u (sqrt(g d)) is given."""
     folder = os.path.join(campaign, "runs", name)
     leg = os.path.join(folder, "legs", "00")
     os.makedirs(leg)
@@ -145,7 +151,8 @@ def write_run(campaign, name, theta, seed_shift, frequency, u=None, h=H, record=
         open(os.path.join(folder, restart), "w").write("a restart the report must not copy\n")
     shutil.copy(os.path.join(folder, "flow.time"), leg)
     with open(os.path.join(leg, "log.lammps"), "w") as out:
-        out.write("Loop time of 400 on 1 procs for 40000 steps with 3967 atoms\n\n100.0% CPU use with 1 MPI tasks\n")
+        out.write("Loop time of 400 on 1 procs for 40000 steps with 3967 atoms\n\n100.0% CPU use with 1 MPI tasks\n"
+                  + (SOLVER_LINE if health else ""))
     with open(os.path.join(leg, "command.sh"), "w") as out:
         out.write(f"#!/bin/sh\n# synthetic leg of {name}\n")
     open(os.path.join(folder, "DONE"), "w").close()
@@ -301,6 +308,27 @@ def main():
         scatter = float(line.split("|")[2])
         expected = REPLICA_SHIFT / math.sqrt(2)
         check(abs(scatter - expected) < 0.05 * expected, f"replica scatter of U {scatter}, expected {expected:.3g}")
+
+        # A run a verdict counts without its solver health: --report refuses, in one line naming it,
+        # and writes nothing; --count-without-health counts it, flagged.
+        unhealthy = "mu0.5_theta26_L45"
+        shutil.rmtree(os.path.join(campaign, "runs", unhealthy))
+        write_run(campaign, unhealthy, 26, 0.0, 19.0, health=False)
+        before = open(os.path.join(results, "README.md")).read()
+        cmd = [sys.executable, RUNNER, "--out", campaign, "--cdpost", os.path.abspath(args.cdpost), "--report",
+               results] + SERIES_ARGS
+        done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+        lines = done.stderr.strip().splitlines()
+        check(done.returncode == 2 and len(lines) == 1 and lines[0].startswith("refusing to count 1 runs without "
+              f"solver health (no evidence run of their friction and reading: {unhealthy})"),
+              "a run without health was not refused in one line:\n" + done.stdout + done.stderr)
+        check(open(os.path.join(results, "README.md")).read() == before, "a refused report wrote its README")
+        flagged = report(os.path.abspath(args.cdpost), campaign, results, "--count-without-health")
+        check("solver health not recorded for 1 of" in flagged and f"| {unhealthy} |" in flagged,
+              "--count-without-health did not count the run, flagged")
+        shutil.rmtree(os.path.join(campaign, "runs", unhealthy))
+        write_run(campaign, unhealthy, 26, 0.0, 19.0)
+        report(os.path.abspath(args.cdpost), campaign, results)
 
         # A run whose raw outputs are gone is read back from results/runs: same table, same fits.
         lost = "mu0.5_theta25_L45"

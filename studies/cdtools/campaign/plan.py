@@ -2,6 +2,7 @@
 they start from), and the parameters each job records and must keep."""
 
 import fnmatch
+import math
 import os
 import re
 import subprocess
@@ -27,13 +28,56 @@ SERIES = {
 LAYER_SERIES = {"layer_" + name: [dict(point, reading="layer") for point in SERIES[name]]
                 for name in ("mu0.05", "mu0.5", "mu2", "replicas")}
 SERIES.update(LAYER_SERIES)
+# The evidence for the solver health of runs that did not record it (issue 63; doc/campaign.md,
+# *Solver health*): one fresh 10 s run per friction and reading at the deck's defaults, named
+# health_<run>. Their runs take no --var (DEFAULTS_ONLY) and join no analysis.
+SERIES["health_evidence"] = [dict(mu=mu, theta=theta, L=45, reading=r) for mu, theta in ((0.05, 20), (0.5, 24), (2, 28))
+                             for r in ("count", "layer")]
+NAME_PREFIX = {"health_evidence": "health_"}
+
+# The creep length: the grains' or the cell's (issue 63, item 3; doc/creep.md, *Grains or cell*).
+# Count reading throughout. The deck's grains 0 scales the count with L alone, so a bed between
+# other walls than the source's 30 d is given its grains: the 45 d cell's count scaled with L,
+# plus the bed added (or taken away) at the trapped bed's packing, BED_PACKING (the layer
+# reading's and the re-runs' phi over -29 < z < -1 d: 0.811-0.833), so that the same flowing layer
+# stands over it.
+SOURCE_WALLS, BED_PACKING, COUNT_PER_45D = 30, 0.82, 3967
+CREEP_SEEDS = (20261124, 20261125)
+
+
+def grains_for_walls(length, wall_height, dispersity=0.4):
+    """Grains of the count reading's cell of `length` d between walls of `wall_height` d."""
+    grain_area = math.pi / 4 * (1 + dispersity ** 2 / 12)   # in d^2 (the deck's, size law diameter)
+    return round(COUNT_PER_45D * length / 45 + BED_PACKING * length * (wall_height - SOURCE_WALLS) / grain_area)
+
+
+SERIES.update({
+    # mu 0.5, 22 deg, L 45 between 15 and 60 d walls, two rains each.
+    "creep_walls": [dict(mu=0.5, theta=22, L=45, wall_height=w, grains=grains_for_walls(45, w), seed=seed)
+                    for w in (15, 60) for seed in (20261122, REPLICA_SEED)],
+    # two more rains at L 22, 45, 72 (the L series' runs and the replica seed are the first).
+    "creep_seeds": [dict(mu=0.5, theta=22, L=n, seed=seed) for n in (22, 45, 72) for seed in CREEP_SEEDS],
+    # mu 2, 28 deg at L 22 and 102 (L 45: the count reading's mu 2 series re-run, mu2_theta28_L45).
+    "creep_mu2": [dict(mu=2, theta=28, L=n) for n in (22, 102)],
+    # the bed deepened to 60 d at L 102 and 152, where the creep reaches the 30 d bed's bottom.
+    "creep_deep": [dict(mu=0.5, theta=22, L=n, wall_height=60, grains=grains_for_walls(n, 60)) for n in (102, 152)],
+})
+CREEP_SERIES = ("creep_walls", "creep_seeds", "creep_mu2", "creep_deep")
+DEFAULTS_ONLY = {"health_evidence"}
+# The series whose runs measure the flow of the 45 d cell at the published settings: the readings'
+# means and the replica pairs are made of these alone.
+FLOW_SERIES = ("mu0.05", "mu0.5", "mu2", "replicas") + tuple(LAYER_SERIES)
 # The cdpost series analyses: the flow rules need every mu together; the L series also takes
 # the 45 d run at the same (mu, theta) from the mu = 0.5 series.
 ANALYSES = {
     "flow_rules": lambda job: job.series in ("mu0.05", "mu0.5", "mu2"),
-    "L_series": lambda job: (float(job.vars["mu"]) == 0.5 and float(job.vars["theta"]) == 22
-                             and reading(job.vars) == "count"),
+    "L_series": lambda job: (job.series in ("L", "mu0.5") and float(job.vars["mu"]) == 0.5
+                             and float(job.vars["theta"]) == 22 and reading(job.vars) == "count"),
     "layer_flow_rules": lambda job: job.series in ("layer_mu0.05", "layer_mu0.5", "layer_mu2"),
+    # The creep length against L and the walls: the creep series, the L series, and the 45 d runs
+    # they extend (mu 0.5 at 22 deg, mu 2 at 28 deg; count reading, first rain).
+    "creep_length": lambda job: (job.series in CREEP_SERIES + ("L",)
+                                 or (job.series, float(job.vars["theta"])) in (("mu0.5", 22), ("mu2", 28))),
 }
 
 # Deck variables that shape the deposition: one packing serves every run with the same
@@ -59,14 +103,16 @@ def deck_defaults():
     return defaults
 
 
-def run_variables(args, defaults, point):
+def run_variables(args, defaults, point, series=None):
     """The deck variables of one series point: the deck's defaults, the point's values, then
-    --var (which wins), the wall laws following the grains' unless set."""
+    --var (which wins; not for a series of DEFAULTS_ONLY), the wall laws following the grains'
+    unless set."""
+    given = {} if series in DEFAULTS_ONLY else args.var
     variables = dict(defaults, duration=parameter(args.duration))
     variables.update({key: parameter(value) for key, value in point.items()})
-    variables.update(args.var)
+    variables.update(given)
     for wall, grain in WALL_DEFAULTS.items():
-        if not args.var.get(wall):
+        if not given.get(wall):
             variables[wall] = variables[grain]
     return variables
 
@@ -80,10 +126,17 @@ def reading_suffix(variables):
     return "" if reading(variables) == "count" else "_" + reading(variables)
 
 
-def run_name(variables, defaults):
-    name = f"mu{variables['mu']}_theta{variables['theta']}_L{variables['L']}"
+def wall_suffix(point):
+    """'_wall<h>' for a series point whose walls are not the source's 30 d, else '' (walls set by
+    --var name no run: the whole campaign stands between them)."""
+    walls = (point or {}).get("wall_height", SOURCE_WALLS)
+    return "" if same_value(walls, SOURCE_WALLS) else f"_wall{walls}"
+
+
+def run_name(variables, defaults, series=None, point=None):
+    name = NAME_PREFIX.get(series, "") + f"mu{variables['mu']}_theta{variables['theta']}_L{variables['L']}"
     name += f"_seed{variables['seed']}" if variables["seed"] != defaults["seed"] else ""
-    return name + reading_suffix(variables)
+    return name + wall_suffix(point) + reading_suffix(variables)
 
 
 def build_jobs(args):
@@ -92,23 +145,24 @@ def build_jobs(args):
     depositions, runs = {}, {}
     for series in args.series or list(SERIES):
         for point in SERIES[series]:
-            variables = run_variables(args, defaults, point)
-            name = run_name(variables, defaults)
+            variables = run_variables(args, defaults, point, series)
+            name = run_name(variables, defaults, series, point)
             if args.only and not any(fnmatch.fnmatch(name, p) for p in args.only):
                 continue
             for pattern, values in getattr(args, "run_var", []):
                 if fnmatch.fnmatch(name, pattern):
                     variables.update(values)
-            deposition = deposition_of(args, variables, depositions)
+            deposition = deposition_of(args, variables, depositions, point)
             if name not in runs:
                 runs[name] = new_run(args, name, series, variables, deposition)
     return list(depositions.values()) + list(runs.values())
 
 
-def deposition_of(args, variables, depositions):
+def deposition_of(args, variables, depositions, point=None):
     """The deposition a run starts from, added to `depositions` if new."""
     dep_vars = {k: variables[k] for k in DEPOSITION_VARS if k in variables}
-    name = f"mu{dep_vars['mu_deposition']}_L{dep_vars['L']}_seed{dep_vars['seed']}" + reading_suffix(dep_vars)
+    name = (f"mu{dep_vars['mu_deposition']}_L{dep_vars['L']}_seed{dep_vars['seed']}" + wall_suffix(point)
+            + reading_suffix(dep_vars))
     if name not in depositions:
         depositions[name] = Job("deposition", name, os.path.join(args.out, "depositions", name), dep_vars)
     return depositions[name]

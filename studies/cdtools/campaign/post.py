@@ -29,6 +29,13 @@ def recorded_options(folders, variables):
             "--z0", repr(wall_top(variables)), "--cell-length", variables["L"]]
 
 
+def creep_depth_option(variables):
+    """cdpost's --creep-depth for a bed between walls other than its default 30 d: the creep
+    measure then reads the whole bed (doc/creep.md)."""
+    walls = variables.get("wall_height", "30")
+    return [] if float(walls) == 30 else ["--creep-depth", str(walls)]
+
+
 def run_logged(cmd, log):
     """Runs cmd; its command line and output go to `log`. Returns (ok, last line of its
     standard error)."""
@@ -43,7 +50,7 @@ def postprocess_run(job, cdpost, args):
     # The run's wall tops and sample rate (the spectra's grid even where a leg ran at a refined step
     # throughout) come from its chute.params, or from its variables.
     cmd = [cdpost, "run", job.folder] + recorded_options([job.folder], job.vars) + \
-        ["--dump", os.path.join(job.folder, "dump.chute.gz")]
+        ["--dump", os.path.join(job.folder, "dump.chute.gz")] + creep_depth_option(job.vars)
     return run_logged(cmd + args.cdpost_option, os.path.join(job.folder, "cdpost.log"))
 
 

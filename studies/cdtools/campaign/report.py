@@ -27,7 +27,7 @@ from ..stats import mean_sd_se, pooled_sd
 from ..text import markdown_table, number, with_error
 from .jobs import read_json
 from .legs import run_cost
-from .plan import ANALYSES, build_jobs, changed_vars, reading, same_value
+from .plan import ANALYSES, FLOW_SERIES, build_jobs, changed_vars, reading, same_value
 from .post import postprocess_run, run_comparison, run_series, window_bounds
 from .schedule import campaign_cdpost
 
@@ -180,6 +180,80 @@ def publication_refusal(record, args):
             f"{100 * UNCONVERGED_LIMIT:g} %); --publish-unconverged publishes it anyway, flagged")
 
 
+# A run that did not record its solver health counts in a verdict only with its health inferred:
+# the fresh run of its friction and reading at the deck's defaults (series health_evidence) ended
+# with at most this fraction of its steps unconverged. The marks are results/runs/HEALTH_MARKS.
+INFERRED_LIMIT = 1e-4
+EVIDENCE_SERIES = "health_evidence"
+HEALTH_MARKS = "health_inferred.csv"
+
+
+def health_evidence(records):
+    """{(mu, reading): record} of the analysed evidence runs that recorded their health."""
+    return {(float(r.vars["mu"]), reading(r.vars)): r for r in records
+            if r.series == EVIDENCE_SERIES and r.results and unconverged_share(r.cost) is not None}
+
+
+def counted(record):
+    """The run enters a series analysis, whose fits and verdicts count it."""
+    return bool(record.results) and any(belongs(record) for belongs in ANALYSES.values())
+
+
+def infer_health(records):
+    """Marks every counted run without recorded health whose friction and reading have evidence at
+    most INFERRED_LIMIT unconverged: record.inferred = (evidence name, its unconverged fraction).
+    Returns the runs left without health, each with why: [(name, why)]."""
+    evidence = health_evidence(records)
+    missing = []
+    for r in records:
+        r.inferred = None
+        if not counted(r) or unconverged_share(r.cost) is not None:
+            continue
+        proof = evidence.get((float(r.vars["mu"]), reading(r.vars)))
+        share = unconverged_share(proof.cost) if proof else None
+        if proof and share <= INFERRED_LIMIT:
+            r.inferred = (proof.name, share)
+        else:
+            missing.append((r.name, f"{proof.name} {100 * share:.3g} % unconverged" if proof
+                            else "no evidence run of their friction and reading"))
+    return missing
+
+
+def health_refusal(records, args):
+    """One line naming the runs a verdict would count without solver health (recorded or
+    inferred), or None; --count-without-health counts them, flagged."""
+    missing = infer_health(records)
+    if not missing or getattr(args, "count_without_health", False):
+        return None
+    by_why = {}
+    for name, why in missing:
+        by_why.setdefault(why, []).append(name)
+    names = "; ".join(f"{why}: " + ", ".join(runs) for why, runs in by_why.items())
+    return (f"refusing to count {len(missing)} runs without solver health ({names}); run the series "
+            f"{EVIDENCE_SERIES} at the deck's defaults to infer it (at most {100 * INFERRED_LIMIT:g} % unconverged, "
+            "doc/studies.md), or --count-without-health to count them flagged")
+
+
+def write_health_marks(records, destination):
+    """results/runs/HEALTH_MARKS: each run whose health is inferred, with its evidence (no file
+    when none is)."""
+    path = os.path.join(destination, "runs", HEALTH_MARKS)
+    marked = [r for r in records if getattr(r, "inferred", None)]
+    if not marked:
+        if os.path.exists(path):
+            os.remove(path)
+        return
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w", newline="") as out:
+        out.write(f"# runs whose solver health is inferred: the evidence run of their friction and reading, at the "
+                  f"deck's defaults, ended with at most {100 * INFERRED_LIMIT:g} % of its steps unconverged "
+                  "(studies/cdtools/campaign/report.py, infer_health)\n")
+        writer = csv.writer(out)
+        writer.writerow(["run", "mu", "reading", "evidence", "evidence_unconverged_fraction"])
+        for r in marked:
+            writer.writerow([r.name, r.vars["mu"], reading(r.vars), r.inferred[0], r.inferred[1]])
+
+
 def add_solver_health(results_json, cost):
     """The run's solver health (cost.json's) beside cdpost's results in results.json."""
     if not os.path.exists(results_json) or not cost.get("solver"):
@@ -219,7 +293,7 @@ def write_run(record, destination, changes):
 def replica_pairs(records):
     """(replica, original) pairs: a run of another seed and the run at the same mu, theta, L."""
     by_point = {}
-    for r in records:
+    for r in (r for r in records if r.series in FLOW_SERIES):
         by_point.setdefault((r.vars["mu"], r.vars["theta"], r.vars["L"], reading(r.vars)), []).append(r)
     pairs = []
     for runs in by_point.values():
@@ -241,10 +315,13 @@ def replica_scatter(pairs):
     return scatter
 
 
-def solver_cells(cost):
+def solver_cells(cost, inferred=None):
     """The runs table's solver columns: unconverged steps (count, %, flagged above the limit), and
-    sweeps per step (median / 99th percentile); '–' for runs that did not record them."""
+    sweeps per step (median / 99th percentile); '–' for runs that did not record them, their
+    health 'inferred' with its evidence where it is."""
     solver = (cost or {}).get("solver")
+    if not solver and inferred:
+        return [f"inferred: ≤ {100 * INFERRED_LIMIT:g} % ({inferred[0]})", "–"]
     if not solver:
         return ["not recorded", "–"]
     share = solver["unconverged_fraction"]
@@ -258,12 +335,14 @@ def section_runs(records):
     for r in records:
         cost = r.cost.get("cpu_per_physical_second")
         rows.append([r.name, r.vars["mu"], r.vars["theta"], r.vars["L"], r.vars["seed"], r.vars["duration"],
-                     r.window_text(), number(cost, 3) if cost else "–"] + solver_cells(r.cost) + [r.state])
+                     r.window_text(), number(cost, 3) if cost else "–"]
+                    + solver_cells(r.cost, getattr(r, "inferred", None)) + [r.state])
     return ("## The runs\n\nEach run rains its packing (seed), tilts gravity and flows for the chute time "
             "given; cdpost finds the stationary window of each. CPU s per physical s from LAMMPS's own "
             "timers over the chute time the runs covered. Unconverged: the steps whose solve met the "
             f"iteration cap (the fix's end-of-run line), ⚠ above {100 * UNCONVERGED_LIMIT:g} % of the run's "
-            "steps; runs made before the fix printed that line show 'not recorded'. Sweeps: per step, "
+            "steps; runs made before the fix printed that line show 'not recorded', or 'inferred' with the "
+            f"evidence run of their friction and reading ([{HEALTH_MARKS}]({HEALTH_MARKS})). Sweeps: per step, "
             "median / 99th percentile.\n\n"
             + markdown_table(["run", "mu", "θ (°)", "L (d)", "seed", "chute time (s)", "window (s)",
                               "CPU s / phys s", "unconverged steps", "sweeps", "state"], rows))
@@ -337,7 +416,8 @@ def paired_readings(records, name):
     of `name` over the analysed L = 45 d runs of each series' own rain (replicas left out)."""
     values = {}
     for r in records:
-        if r.results and r.get(name) and float(r.vars["L"]) == 45 and not r.series.endswith("replicas"):
+        if (r.results and r.get(name) and float(r.vars["L"]) == 45 and r.series in FLOW_SERIES
+                and not r.series.endswith("replicas")):
             values[(reading(r.vars), r.vars["mu"], r.vars["theta"])] = r.get(name)[0]
     by_mu = {}
     for (which, mu, theta), value in values.items():
@@ -563,12 +643,14 @@ def solver_caveat(key, reading_name, records):
     """What a comparison row of one reading rests on, if not every run of its friction (all
     frictions for a row of none) recorded at most 0.1 % of its steps unconverged: '' or a caveat."""
     friction = re.search(r"_mu([0-9.]+?)(?:_|$)", key)
-    runs = [r for r in records if r.results and reading(r.vars) == reading_name and r.vars.get("L") == "45"
+    runs = [r for r in records if counted(r) and reading(r.vars) == reading_name and r.vars.get("L") == "45"
             and (friction is None or same_value(r.vars["mu"], friction.group(1)))]
     shares = [unconverged_share(r.cost) for r in runs]
     flagged = sum(1 for share in shares if share is not None and share > UNCONVERGED_LIMIT)
-    unrecorded = sum(1 for share in shares if share is None)
+    inferred = sum(1 for r, share in zip(runs, shares) if share is None and getattr(r, "inferred", None))
+    unrecorded = sum(1 for share in shares if share is None) - inferred
     parts = ([f"⚠ {flagged} run(s) above {100 * UNCONVERGED_LIMIT:g} % unconverged"] if flagged else []) + \
+        ([f"solver health inferred for {inferred} of {len(runs)} runs"] if inferred else []) + \
         ([f"solver health not recorded for {unrecorded} of {len(runs)} runs"] if unrecorded else [])
     return " (" + "; ".join(parts) + ")" if parts else ""
 
@@ -716,8 +798,14 @@ def write_results(args):
         if refusal:
             print(refusal, flush=True)
             r.source, r.results, r.state = None, None, refusal
-        elif r.local:
+    refusal = health_refusal(records, args)
+    if refusal:  # before anything of results/ is written
+        print(refusal, file=sys.stderr, flush=True)
+        return 2
+    for r in records:
+        if r.results and r.local:
             write_run(r, args.report, changes)
+    write_health_marks(records, args.report)
     series = publish_series(records, cdpost, args, changes)
     readings = publish_readings(series, cdpost, args)
     command = " ".join(shlex.quote(a) for a in ["studies/chute_campaign.py"] + args.argv)
