@@ -94,7 +94,7 @@ bool in_branch_sums(const StepContacts& contacts, std::size_t k)
 {
   const Contact& c = contacts.solved[k];
   const bool finite = std::isfinite(c.impulse.n) && std::isfinite(c.impulse.t);
-  return c.body_b != world_body && !(finite && c.impulse.n <= 0.0);  // as for_each_loaded
+  return !(finite && c.impulse.n <= 0.0);  // as for_each_loaded
 }
 
 BranchImpulseSums branch_impulse(const StepContacts& contacts, std::size_t k)

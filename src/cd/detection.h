@@ -157,7 +157,8 @@ bool promote_closing_pairs(StepContacts& contacts, const BodySet& bodies, const 
 
 // The contact part of the pressure tensor times area and step (N s m), compressive positive: over
 // the loaded contacts (StepContacts::for_each_loaded) between two bodies (not walls), the branch
-// vector l (from b's centre to a's, at the predicted configuration) times a's impulse p, xy = l_x p_y.
+// vector l (from b's centre to a's, at the predicted configuration; from the contact point on a wall)
+// times a's impulse p, xy = l_x p_y.
 struct BranchImpulseSums {
   double xx = 0.0;
   double yy = 0.0;
@@ -165,7 +166,7 @@ struct BranchImpulseSums {
   double yx = 0.0;
 };
 
-// l p of solved contact k, and whether it enters the sums (a loaded pair, not a wall).
+// l p of solved contact k, and whether it enters the sums (a loaded contact, walls' too).
 bool in_branch_sums(const StepContacts& contacts, std::size_t k);
 BranchImpulseSums branch_impulse(const StepContacts& contacts, std::size_t k);
 
@@ -173,7 +174,7 @@ BranchImpulseSums branch_impulse_sums(const StepContacts& contacts);
 
 // The sums body by body, as a pair style splits its virial: visit(body, share) for each contact
 // in the sums, half to each body when both move, all of it to the one that moves against an
-// immovable body (an obstacle, inverse mass 0). The shares add up to branch_impulse_sums.
+// immovable body (a wall or an obstacle, inverse mass 0). The shares add up to branch_impulse_sums.
 template <class Visit>
 void for_each_branch_impulse_share(const StepContacts& contacts, Visit&& visit)
 {

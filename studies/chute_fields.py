@@ -10,9 +10,9 @@ from the deposition to `--spin-up` s of chute time (skipped if MU:THETA=RUN name
 finished steady run, its chute.restart and flow.time), then a `--window` s more from there at a
 fixed step with `-var fields_every 1` (doc/fields.md).
 
-    studies/chute_local_rheology.py --run --deposition DEPOSITION.restart [--case 0.05:18 --case 0.5:24 \\
+    studies/chute_fields.py --run --deposition DEPOSITION.restart [--case 0.05:18 --case 0.5:24 \\
         --case 2:25=RUN] [--out runs/chute_fields]
-    studies/chute_local_rheology.py --analyse [--out runs/chute_fields] [--results results/chute_fields]
+    studies/chute_fields.py --analyse [--out runs/chute_fields] [--results results/chute_fields]
 
 Writes RESULTS/nodes.csv (every node of every case), RESULTS/summary.csv (per case: the layer's
 nodes, the momentum balance sigma_yx / sigma_yy against tan theta, and the angle and packing
@@ -173,7 +173,7 @@ unset multiplot
     try:
         subprocess.run(["gnuplot"], input=script, text=True, check=True)
     except (OSError, subprocess.CalledProcessError) as failure:
-        print(f"chute_local_rheology.py: no figure ({failure})", file=sys.stderr)
+        print(f"chute_fields.py: no figure ({failure})", file=sys.stderr)
 
 
 def analyse(cases, out, results, cdpost):
@@ -185,7 +185,7 @@ def analyse(cases, out, results, cdpost):
         params = read_params(window)
         layer = layer_nodes(profile(window, params, cdpost), params, table)
         if not layer:
-            sys.exit(f"chute_local_rheology.py: {window}: no node of the flowing layer within plane shear's range of I")
+            sys.exit(f"chute_fields.py: {window}: no node of the flowing layer within plane shear's range of I")
         all_nodes += [dict({"contact_mu": mu, "theta_deg": theta}, **n) for n in layer]
         rows.append(summary(mu, theta, layer, table))
     write_csv(os.path.join(results, "nodes.csv"), all_nodes)
