@@ -164,8 +164,7 @@ TEST_F(SettledPile, AtRestPerAtomSumIsTheGlobalAndTheWeightsMoment)
   EXPECT_LT(sum_over_ranks(s, kinetic_local), 1e-6 * mass * g * d) << "the pile must be at rest";
   EXPECT_NEAR(pair.per_atom.yy * area, moment, 1e-4 * moment);
   if (s.lmp->comm->me == 0)
-    fmt::print("pile: per-atom sum of yy times area {:.10g}, M g mean y {:.10g}\n", pair.per_atom.yy * area,
-               moment);
+    fmt::print("pile: per-atom sum of yy times area {:.10g}, M g mean y {:.10g}\n", pair.per_atom.yy * area, moment);
 }
 
 // The pile tipped into a chute: gravity tilted by 35 degrees (beyond the floor's friction angle),
