@@ -27,7 +27,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-from cdtools import plane_shear, run, stats  # noqa: E402
+from cdtools import lammps_files, plane_shear, run, stats  # noqa: E402
 
 DEFAULT_CASES = ("0.05:18", "0.5:24", "2:25")
 # A node is in the flowing layer when it is above the walls' tops, dense (the kernel reaches out of
@@ -51,12 +51,10 @@ def case_folder(out, mu, theta):
 
 
 def end_time(folder):
-    """The chute time a finished run ended at: the last row of its flow.time."""
-    with open(os.path.join(folder, "flow.time")) as src:
-        rows = [line.split() for line in src if line.strip() and not line.startswith("#")]
-    if not rows or not os.path.exists(os.path.join(folder, "chute.restart")):
-        raise RuntimeError(f"{folder}: not a finished chute run (flow.time and chute.restart)")
-    return float(rows[-1][0])
+    """The chute time a finished run ended at: the last sample of its flow.time."""
+    if not os.path.exists(os.path.join(folder, "chute.restart")):
+        raise RuntimeError(f"{folder}: not a finished chute run (no chute.restart)")
+    return lammps_files.time_span(os.path.join(folder, "flow.time"))[1]
 
 
 def run_case(mu, theta, start_run, deposition, spin_up, window, folder, lmp):
