@@ -195,9 +195,19 @@ class FieldAccumulator {
   }
 
   // The contacts of the atoms' frame: each force f = p / dt on the first body, spread along the
-  // branch vector l from the second body's centre (the contact point for a wall) to the first's.
+  // branch vector l from the second body's centre (the contact point for a wall) to the first's,
+  // all at the step's predicted configuration x_m, where the fix solved them (its normal is l's):
+  // taken at the step's end instead, a sheared pair's normal has turned by theta dt times its
+  // rotation rate, and the shear stress with it.
   void add_contacts(const DumpFrame& atoms, const DumpFrame& frame, double dt, const ContactColumns& c)
   {
+    const double back = settings_.theta * dt;  // x_m = x - theta dt v
+    Box predicted = box_;                      // a deforming box's tilt at x_m
+    if (settings_.image_velocity) predicted.tilt -= back * *settings_.image_velocity;
+    auto at_predicted = [&](size_t atom) {
+      return std::array<double, 2>{atoms.value(atom, columns_.x) - back * atoms.value(atom, columns_.vx),
+                                   atoms.value(atom, columns_.y) - back * atoms.value(atom, columns_.vy)};
+    };
     double weights[kContactSums];
     auto atom_of = [&](double id, size_t row) {
       const auto found = index_.find(static_cast<long>(id));
@@ -208,16 +218,11 @@ class FieldAccumulator {
       return found->second;
     };
     for (size_t row = 0; row < frame.atoms; ++row) {
-      const size_t a = atom_of(frame.value(row, c.first), row);
-      const double ax = atoms.value(a, columns_.x), ay = atoms.value(a, columns_.y);
-      double bx, by;
-      if (frame.value(row, c.second) != 0) {
-        const size_t b = atom_of(frame.value(row, c.second), row);
-        bx = atoms.value(b, columns_.x), by = atoms.value(b, columns_.y);
-      } else {
-        bx = frame.value(row, c.point_x), by = frame.value(row, c.point_y);
-      }
-      const auto l = box_.displacement(bx, by, ax, ay);  // from b to a
+      const auto [ax, ay] = at_predicted(atom_of(frame.value(row, c.first), row));
+      const auto [bx, by] = frame.value(row, c.second) != 0
+                                ? at_predicted(atom_of(frame.value(row, c.second), row))
+                                : std::array<double, 2>{frame.value(row, c.point_x), frame.value(row, c.point_y)};
+      const auto l = predicted.displacement(bx, by, ax, ay);  // from b to a
       const double length = std::hypot(l[0], l[1]);
       if (!(length > 0)) continue;
       const double nx = l[0] / length, ny = l[1] / length;

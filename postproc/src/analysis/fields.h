@@ -53,6 +53,9 @@ struct FieldsSettings {
   // A sheared periodic box (fix deform xy, remap v): the image across y moves along x at this
   // velocity (the tilt's rate, rate x ly); a profile along y then receives the images' velocities.
   std::optional<double> image_velocity;
+  // The fix's Moreau-Jean theta: a step's contacts act at its predicted configuration
+  // x_m = x - theta dt v (x, v the dumped end of the step), where their branch vectors are taken.
+  double theta = 0.5;
   double dense_phi = 0.5;  // mu(I), phi(I): only nodes this dense
   bool progress = false;
 };

@@ -498,6 +498,9 @@ int command_fields(const std::vector<std::string>& arguments)
       {"image-velocity", "V",
        "a sheared periodic box (fix deform xy, remap v): x-velocity of the image across y, the tilt's rate "
        "(with --along y; default 0)"},
+      {"theta", "THETA",
+       "the fix's Moreau-Jean theta: contacts' branch vectors at x - theta dt v, where the fix solved them (default "
+       "0.5, the fix's)"},
       {"dense-phi", "PHI", "mu(I) and phi(I) show the nodes at least this dense (default 0.5)"},
       {"out", "DIR", "output directory (default: DIR_OF_DUMP/fields)"},
       {"progress", "", "show progress on stderr even when it is not a terminal"},
@@ -567,6 +570,9 @@ int command_fields(const std::vector<std::string>& arguments)
   if (!s.diameter) s.diameter = recorded("d_m");
   s.image_velocity = options->number("image-velocity");
   if (s.image_velocity && s.along != 1) throw UsageError(command + ": --image-velocity needs --along y");
+  s.theta = options->number("theta").value_or(s.theta);
+  if (!(s.theta >= 0.5 && s.theta <= 1))
+    throw UsageError(command + ": --theta " + std::to_string(s.theta) + ": the fix's theta lies in [0.5, 1]");
   s.dense_phi = options->number("dense-phi").value_or(s.dense_phi);
   s.progress = options->flag("progress");
   const auto width = positive_option(*options, "width", command);
