@@ -101,8 +101,8 @@ void check_matrix(const std::string& path, const fclib_matrix* w, int size)
 {
   if (!w) refuse(path, "no matrix W");
   if (w->m != size || w->n != size)
-    refuse(path, "W is " + std::to_string(w->m) + " x " + std::to_string(w->n) + ", expected " +
-                     std::to_string(size) + " x " + std::to_string(size));
+    refuse(path, "W is " + std::to_string(w->m) + " x " + std::to_string(w->n) + ", expected " + std::to_string(size) +
+                     " x " + std::to_string(size));
   if (w->nz != -1) refuse(path, "W is not stored by compressed columns");
   if (w->p[0] != 0 || w->p[size] < 0 || w->p[size] > w->nzmax) refuse(path, "W's column pointers are inconsistent");
   for (int j = 0; j < size; j++) {
@@ -153,7 +153,8 @@ std::vector<double> reaction_of(const LocalProblem& local, const std::vector<cd:
 {
   std::vector<double> r;
   r.reserve(2 * contacts.size());
-  for (const cd::Contact& c : contacts) r.insert(r.end(), {local.impulse_scale * c.impulse.n, local.impulse_scale * c.impulse.t});
+  for (const cd::Contact& c : contacts)
+    r.insert(r.end(), {local.impulse_scale * c.impulse.n, local.impulse_scale * c.impulse.t});
   return r;
 }
 

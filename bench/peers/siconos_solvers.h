@@ -15,9 +15,9 @@
 namespace peers {
 
 struct SiconosSettings {
-  double tolerance = 1e-4;        // the solver's own stopping error (its dparam[SICONOS_DPARAM_TOL])
-  int max_iterations = 1000000;   // its iparam[SICONOS_IPARAM_MAX_ITER]
-  int dense_contacts_limit = 1500;  // fc2d CPG, Lemke and Enum take W dense: refused above this
+  double tolerance = 1e-4;       // the solver's own stopping error (its dparam[SICONOS_DPARAM_TOL])
+  int max_iterations = 1000000;  // its iparam[SICONOS_IPARAM_MAX_ITER]
+  int dense_rows_limit = 3000;   // solvers that take W dense are refused above this many rows
 };
 
 struct SiconosResult {
@@ -25,8 +25,11 @@ struct SiconosResult {
   int iterations = 0;            // the solver's iparam[SICONOS_IPARAM_ITER_DONE]
   int info = -1;                 // 0: the solver reports convergence
   double error = 0.0;            // peers::error of the answer
-  double seconds = 0.0;          // the driver's call alone (wall clock)
+  double seconds = 0.0;          // the driver's call alone (CPU time of the process)
 };
+
+// CPU time of the process (s): what the comparison times, robust to a loaded machine.
+double cpu_seconds();
 
 // The solvers that apply to a 2D problem, e.g. "fc2d_nsgs", "fc3d_nsn_ac"; names in
 // doc/peers.md. Throws std::invalid_argument for another name.
