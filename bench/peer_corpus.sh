@@ -12,8 +12,9 @@
 #    the unconverged first; with them the saved hard steps of tests/data (chute at mu 2, 28-30 deg; plane shear at mu 2;
 #    the 12 d cell at mu 0.5);
 # 4. each kept step as FCLIB (bench/peers/cdp_to_fclib) in OUT/corpus/<class>/, beside its .cdp;
-# 5. bench/peers/peer_bench: every solver at 1e-3 on three problems (OUT/screen.csv), then those
-#    that solved one on every problem (OUT/solves.csv), time limit PEER_TIME_LIMIT CPU s (0.5);
+# 5. bench/peers/peer_bench: every solver at 1e-3 on three problems (OUT/screen.csv, kept if
+#    there), then those that solved one on the first PEER_PER_CLASS problems of every class
+#    (OUT/solves.csv), time limit PEER_TIME_LIMIT CPU s (0.5);
 # 6. bench/peer_profiles.py: OUT/profiles.png and OUT/profiles.md.
 # Environment: LMP (build/lmp_cd), PEER_TOOLS (build/bench/peers), PEER_SOLVERS (the screened
 # solvers, peer_bench's --solvers; default: every one, peer_bench --list).
@@ -84,10 +85,14 @@ limit=${PEER_TIME_LIMIT:-0.5}
 first() { for f in "$@"; do echo "$f"; return; done; }
 screen=("$(first "$out/corpus/chute_mu0.5"/*.hdf5)" "$(first "$out/corpus/stall_mu2_e0.5"/*.hdf5)"
         "$(first "$out/corpus/saved_hard"/growing*.hdf5)")
-"$tools/peer_bench" --out "$out/screen.csv" --time-limit "$limit" --targets 1e-3 \
-  --solvers "${PEER_SOLVERS:-$("$tools/peer_bench" --list)}" "${screen[@]}" \
-  2> "$out/screen.log"
+[ -f "$out/screen.csv" ] || "$tools/peer_bench" --out "$out/screen.csv" --time-limit "$limit" --targets 1e-3 \
+  --solvers "${PEER_SOLVERS:-$("$tools/peer_bench" --list)}" "${screen[@]}" 2> "$out/screen.log"
 solvers=$(awk -F, 'NR > 1 && $7 == "solved" && !seen[$4]++ { printf "%s%s", sep, $4; sep = "," }' "$out/screen.csv")
-"$tools/peer_bench" --out "$out/solves.csv" --time-limit "$limit" --solvers "$solvers" \
-  "$out/corpus"/*/*.hdf5 2> "$out/peer_bench.log"
-python3 "$here/peer_profiles.py" --out "$out/profiles" --screen "$out/screen.csv" "$out/solves.csv"
+problems=()
+for folder in "$out/corpus"/*/; do
+  mapfile -t some < <(ls "$folder"*.hdf5 | head -"${PEER_PER_CLASS:-100}")
+  problems+=("${some[@]}")
+done
+"$tools/peer_bench" --out "$out/solves.csv" --time-limit "$limit" --solvers "$solvers" "${problems[@]}" \
+  2> "$out/peer_bench.log"
+python3 "$here/peer_profiles.py" --out "$out/profiles" --screen "$out/screen.csv" --time-limit "$limit" "$out/solves.csv"

@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """Performance profiles (Dolan and Moré 2002) of the solvers of bench/peers/peer_bench.
 
-    bench/peer_profiles.py --out PREFIX [--screen SCREEN.csv] SOLVES.csv
+    bench/peer_profiles.py --out PREFIX [--screen SCREEN.csv] [--time-limit S] SOLVES.csv
 
 An instance is one problem, one start (cold or warm) and one target error; a solver's cost on it
 is its CPU time if it reached the target within the time limit, else infinite. rho_s(tau) is
 the fraction of instances a solver solves within tau times the best solver's time. Writes
 PREFIX.md (tables: per group and target, per class; the screening) and PREFIX.png (the
 profiles: a panel per group and target). Groups: ordinary (chute_*, pile_*), hard (stall_*,
-saved_hard). Standard library and gnuplot.
+saved_hard). --time-limit: a solve over S CPU seconds counts as not solved (the screening's
+limit may be longer). Standard library and gnuplot.
 """
 
 import argparse
@@ -78,7 +79,8 @@ def class_table(rows, solvers):
     for r in rows:
         seconds = float(r["seconds"]) if r["status"] == "solved" else math.inf
         by[(r["class"], float(r["target"]))][(r["problem"], r["start"])][r["solver"]] = seconds
-    lines = ["| class | target | instances | ours solved | ours fastest | fastest most often | ours median s | its median s |",
+    lines = ["| class | target | instances | ours solved | ours fastest | fastest most often | ours median s "
+             "| its median s |",
              "|---|---|---|---|---|---|---|---|"]
     for (cls, target) in sorted(by, key=lambda k: (k[0], -k[1])):
         inst = by[(cls, target)]
@@ -154,9 +156,13 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", required=True)
     parser.add_argument("--screen")
+    parser.add_argument("--time-limit", type=float, default=math.inf)
     parser.add_argument("solves")
     args = parser.parse_args()
     rows = read(args.solves)
+    for r in rows:
+        if r["status"] == "solved" and float(r["seconds"]) > args.time_limit:
+            r["status"] = "time_limit"
     solvers = list(dict.fromkeys(r["solver"] for r in rows))
     table, _ = costs(rows)
     profile, counts = profile_tables(table, solvers)
