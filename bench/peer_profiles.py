@@ -1,0 +1,183 @@
+#!/usr/bin/env python3
+"""Performance profiles (Dolan and Moré 2002) of the solvers of bench/peers/peer_bench.
+
+    bench/peer_profiles.py --out PREFIX [--screen SCREEN.csv] [--time-limit S] SOLVES.csv
+
+An instance is one problem, one start (cold or warm) and one target error; a solver's cost on it
+is its CPU time if it reached the target within the time limit, else infinite. rho_s(tau) is
+the fraction of instances a solver solves within tau times the best solver's time. Writes
+PREFIX.md (tables: per group and target, per class; the screening) and PREFIX.png (the
+profiles: a panel per group and target). Groups: ordinary (chute_*, pile_*), hard (stall_*,
+saved_hard). --time-limit: a solve over S CPU seconds counts as not solved (the screening's
+limit may be longer). Standard library and gnuplot.
+"""
+
+import argparse
+import collections
+import csv
+import math
+import os
+import subprocess
+import tempfile
+
+TAUS = [10 ** (k / 20) for k in range(0, 61)]  # 1 to 1000
+
+
+def group_of(cls):
+    return "ordinary" if cls.startswith(("chute_", "pile_")) else "hard"
+
+
+def read(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def costs(rows):
+    """{(group, target): {instance: {solver: seconds or inf}}} and the class of each instance."""
+    table = collections.defaultdict(lambda: collections.defaultdict(dict))
+    classes = {}
+    for r in rows:
+        instance = (r["class"], r["problem"], r["start"])
+        classes[instance] = r["class"]
+        seconds = float(r["seconds"]) if r["status"] == "solved" else math.inf
+        table[(group_of(r["class"]), float(r["target"]))][instance][r["solver"]] = max(seconds, 1e-6)
+    return table, classes
+
+
+def ratios(instances):
+    """{solver: [ratio per instance]} (inf: not solved)."""
+    out = collections.defaultdict(list)
+    for per_solver in instances.values():
+        best = min(per_solver.values())
+        for solver, t in per_solver.items():
+            out[solver].append(t / best if math.isfinite(t) else math.inf)
+    return out
+
+
+def share(values, tau):
+    return sum(1 for v in values if math.isfinite(v) and v <= tau) / len(values) if values else 0.0
+
+
+def profile_tables(table, solvers):
+    keys = sorted(table, key=lambda k: (k[0] != "ordinary", -k[1]))
+    lines = ["| solver | " + " | ".join(f"{g} {t:g}" for g, t in keys) + " |",
+             "|---|" + "---|" * len(keys)]
+    per_key = {k: ratios(table[k]) for k in keys}
+    for s in solvers:
+        cells = []
+        for k in keys:
+            r = per_key[k].get(s, [])
+            cells.append(f"{100 * share(r, math.inf):.0f} / {100 * share(r, 1.0):.0f}")
+        lines.append(f"| {s} | " + " | ".join(cells) + " |")
+    counts = " · ".join(f"{g} {t:g}: {len(table[(g, t)])}" for g, t in keys)
+    return lines, f"Instances (problem x start): {counts}."
+
+
+def class_table(rows, solvers):
+    """Per class and target: ours solved, ours fastest, the solver fastest most often."""
+    by = collections.defaultdict(lambda: collections.defaultdict(dict))
+    for r in rows:
+        seconds = float(r["seconds"]) if r["status"] == "solved" else math.inf
+        by[(r["class"], float(r["target"]))][(r["problem"], r["start"])][r["solver"]] = seconds
+    lines = ["| class | target | instances | ours solved | ours fastest | fastest most often | ours median s "
+             "| its median s |",
+             "|---|---|---|---|---|---|---|---|"]
+    for (cls, target) in sorted(by, key=lambda k: (k[0], -k[1])):
+        inst = by[(cls, target)]
+        wins = collections.Counter()
+        for per in inst.values():
+            best = min(per.values())
+            if math.isfinite(best):
+                wins.update(s for s, t in per.items() if t == best)
+        ours = [per.get("ours", math.inf) for per in inst.values()]
+        leader = max(wins, key=wins.get) if wins else "none"
+        theirs = [per.get(leader, math.inf) for per in inst.values()]
+        lines.append(f"| {cls} | {target:g} | {len(inst)} | {sum(map(math.isfinite, ours))} | {wins.get('ours', 0)} | "
+                     f"{leader} ({wins.get(leader, 0)}) | {median(ours)} | {median(theirs)} |")
+    return lines
+
+
+def median(values):
+    finite = sorted(v for v in values if math.isfinite(v))
+    return f"{finite[len(finite) // 2]:.3g}" if finite else "-"
+
+
+def hard_check(rows):
+    """Hard instances where a Siconos solver reached the target faster than ours (or ours failed)."""
+    by = collections.defaultdict(dict)
+    for r in rows:
+        if group_of(r["class"]) == "hard":
+            seconds = float(r["seconds"]) if r["status"] == "solved" else math.inf
+            by[(r["class"], r["problem"], r["start"], float(r["target"]))][r["solver"]] = seconds
+    lost = []
+    for key, per in sorted(by.items()):
+        ours = per.get("ours", math.inf)
+        faster = sorted((t, s) for s, t in per.items() if s != "ours" and t < ours)
+        if faster:
+            lost.append(f"{key[0]}/{key[1]} {key[2]} {key[3]:g}: ours "
+                        f"{ours:.3g} s, " + ", ".join(f"{s} {t:.3g} s" for t, s in faster[:3]))
+    return len(by), lost
+
+
+def screen_table(rows):
+    lines = ["| solver | screening problems solved at 1e-3 (cold, warm) | outcomes |", "|---|---|---|"]
+    by = collections.defaultdict(list)
+    for r in rows:
+        by[r["solver"]].append(r["status"])
+    for s, statuses in by.items():
+        counts = collections.Counter(statuses)
+        lines.append(f"| {s} | {counts['solved']} of {len(statuses)} | "
+                     + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())) + " |")
+    return lines
+
+
+def draw(table, solvers, png):
+    keys = sorted(table, key=lambda k: (k[0] != "ordinary", -k[1]))
+    with tempfile.TemporaryDirectory() as work:
+        script = [f"set terminal pngcairo noenhanced size 1500,{450 * ((len(keys) + 2) // 3)} font ',10'",
+                  f"set output '{png}'", f"set multiplot layout {(len(keys) + 2) // 3},3",
+                  "set logscale x", "set xrange [1:1000]", "set yrange [0:1.02]", "set key bottom right font ',8'",
+                  "set xlabel 'tau (time / best time)'", "set ylabel 'fraction of instances'"]
+        for k in keys:
+            r = ratios(table[k])
+            plots = []
+            for i, s in enumerate(solvers):
+                path = os.path.join(work, f"{k[0]}_{k[1]:g}_{i}.dat")
+                with open(path, "w") as f:
+                    f.writelines(f"{tau} {share(r.get(s, []), tau)}\n" for tau in TAUS)
+                width = 3 if s == "ours" else 1
+                plots.append(f"'{path}' with steps lw {width} title '{s}'")
+            script += [f"set title '{k[0]}, error {k[1]:g} ({len(table[k])} instances)'", "plot " + ", ".join(plots)]
+        script.append("unset multiplot")
+        subprocess.run(["gnuplot"], input="\n".join(script), text=True, check=True)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--screen")
+    parser.add_argument("--time-limit", type=float, default=math.inf)
+    parser.add_argument("solves")
+    args = parser.parse_args()
+    rows = read(args.solves)
+    for r in rows:
+        if r["status"] == "solved" and float(r["seconds"]) > args.time_limit:
+            r["status"] = "time_limit"
+    solvers = list(dict.fromkeys(r["solver"] for r in rows))
+    table, _ = costs(rows)
+    profile, counts = profile_tables(table, solvers)
+    total, lost = hard_check(rows)
+    lines = ["Solved / fastest, % of instances (performance profile at tau = infinity and tau = 1):", "",
+             *profile, "", counts, "", *class_table(rows, solvers), "",
+             f"Hard instances (problem x start x target) where a Siconos solver reached the target faster than ours: "
+             f"{len(lost)} of {total}.", ""]
+    lines += [f"- {line}" for line in lost]
+    if args.screen:
+        lines += ["", "Screening:", "", *screen_table(read(args.screen))]
+    with open(args.out + ".md", "w") as f:
+        f.write("\n".join(lines) + "\n")
+    draw(table, solvers, args.out + ".png")
+
+
+if __name__ == "__main__":
+    main()
