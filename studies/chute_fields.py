@@ -8,7 +8,7 @@ same friction at 1e-4 (results/plane_shear/), read at the node's I (linear in lo
 A case is MU:THETA (the count reading, seed 20261122, the deck's defaults otherwise). Each runs
 from the deposition to `--spin-up` s of chute time (skipped if MU:THETA=RUN names the folder of a
 finished steady run, its chute.restart and flow.time), then a `--window` s more from there at a
-fixed step with `-var fields_every 1` (doc/fields.md).
+fixed step (`--window-dt`) with `-var fields_every 1` (doc/fields.md).
 
     studies/chute_fields.py --run --deposition DEPOSITION.restart [--case 0.05:18 --case 0.5:24 \\
         --case 2:25=RUN] [--out runs/chute_fields]
@@ -57,7 +57,7 @@ def end_time(folder):
     return lammps_files.time_span(os.path.join(folder, "flow.time"))[1]
 
 
-def run_case(mu, theta, start_run, deposition, spin_up, window, folder, lmp):
+def run_case(mu, theta, start_run, deposition, spin_up, window, window_dt, folder, lmp):
     """The spin-up (unless a finished run is given) and the dumped window, each skipped if done."""
     common = {"stage": "flow", "mu": f"{mu:g}", "theta": f"{theta:g}"}
     if start_run is None:
@@ -69,7 +69,8 @@ def run_case(mu, theta, start_run, deposition, spin_up, window, folder, lmp):
     dumped = os.path.join(folder, "window")
     if not os.path.exists(os.path.join(dumped, "chute.restart")):
         variables = dict(common, start=os.path.abspath(os.path.join(start_run, "chute.restart")),
-                         duration=f"{end_time(start_run) + window:g}", adapt_dt="no", fields_every=1)
+                         duration=f"{end_time(start_run) + window:g}", adapt_dt="no", dt=f"{window_dt:g}",
+                         fields_every=1)
         run.run_checked(run.lmp_command(lmp, run.deck_copy(dumped), variables, screen="none"), dumped)
 
 
@@ -207,6 +208,8 @@ def main(argv=None):
     parser.add_argument("--deposition", help="the deposition restart the spin-ups start from")
     parser.add_argument("--spin-up", type=float, default=10.0, help="chute time of the spin-up (s)")
     parser.add_argument("--window", type=float, default=0.2, help="chute time dumped every step (s)")
+    parser.add_argument("--window-dt", type=float, default=1e-4,
+                        help="the window's fixed step (s): at most the step the spin-up's adaptive step took")
     parser.add_argument("--out", default="runs/chute_fields")
     parser.add_argument("--results", default=os.path.join(run.TOP, "results", "chute_fields"))
     parser.add_argument("--lmp", default=run.BUILT_LMP_CD)
@@ -221,7 +224,7 @@ def main(argv=None):
         for mu, theta, start in cases:
             deposition = args.deposition and os.path.abspath(args.deposition)
             folder = case_folder(args.out, mu, theta)
-            run_case(mu, theta, start, deposition, args.spin_up, args.window, folder, args.lmp)
+            run_case(mu, theta, start, deposition, args.spin_up, args.window, args.window_dt, folder, args.lmp)
     if args.analyse:
         analyse(cases, args.out, args.results, args.cdpost)
 
