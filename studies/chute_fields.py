@@ -30,10 +30,15 @@ sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 from cdtools import lammps_files, plane_shear, run, stats  # noqa: E402
 
 DEFAULT_CASES = ("0.05:18", "0.5:24", "2:25")
-# A node is in the flowing layer when it is above the walls' tops, dense (the kernel reaches out of
-# the grains near the free surface) and inside plane shear's measured range of I.
+# A node is in the flowing layer when it is 2 d above the walls' tops (the grains below touch their
+# ends), dense and 2 d below the free surface (the kernel reaches out of the grains there), and
+# inside plane shear's measured range of I.
 DENSE_PHI = 0.6
 SURFACE_MARGIN_D = 2.0
+BASE_MARGIN_D = 2.0
+# The momentum balance is read in the bulk too: 10 d and more below the free surface, where the
+# weight above is not a few grains'.
+BULK_DEPTH_D = 10.0
 
 
 def parse_case(text):
@@ -97,23 +102,43 @@ def free_surface(nodes, y_top):
     return max(dense) if dense else y_top
 
 
+def weight_above(nodes, g):
+    """g times the mass per area above each node: the profile's density integrated up to its top
+    (trapezoids between nodes); {y: weight}."""
+    ordered = sorted(nodes, key=lambda n: n["y_m"])
+    weights, above = {}, 0.0
+    for upper, lower in zip(reversed(ordered), list(reversed(ordered))[1:]):
+        weights.setdefault(upper["y_m"], above)
+        above += 0.5 * g * (upper["rho_kg/m^3"] + lower["rho_kg/m^3"]) * (upper["y_m"] - lower["y_m"])
+        weights[lower["y_m"]] = above
+    return weights
+
+
 def layer_nodes(nodes, params, table):
-    """The flowing layer's nodes with their local mu, I and plane shear's mu and phi at that I."""
+    """The flowing layer's nodes with their local mu, I, plane shear's mu and phi at that I, and
+    the momentum balance: sigma_yy and -sigma_yx over the weight above times cos and sin theta."""
     d, y_top = float(params["d_m"]), float(params["y_top_m"])
     rho_s = float(params["density_kgpm3"])
-    top = free_surface(nodes, y_top) - SURFACE_MARGIN_D * d
+    theta = math.radians(float(params["theta_deg"]))
+    weights = weight_above(nodes, float(params["g_mps2"]))
+    surface = free_surface(nodes, y_top)
+    top = surface - SURFACE_MARGIN_D * d
     layer = []
     for n in nodes:
-        if not (y_top < n["y_m"] < top) or n["phi"] < DENSE_PHI or not n["s_yy_Pa"] or n["s_yy_Pa"] <= 0:
+        inside = y_top + BASE_MARGIN_D * d < n["y_m"] < top
+        if not inside or n["phi"] < DENSE_PHI or not n["s_yy_Pa"] or n["s_yy_Pa"] <= 0:
             continue
         mu = -n["s_yx_Pa"] / n["s_yy_Pa"]    # compression positive: the layer above drags this one down the slope
         inertial = n["gamma_dot_1/s"] * d / math.sqrt(n["s_yy_Pa"] / rho_s)
         mu_ps = plane_shear.at_inertial(table, inertial, "mu")
         if mu_ps is None:
             continue
-        layer.append({"z_d": (n["y_m"] - y_top) / d, "phi": n["phi"], "I": inertial, "mu": mu, "mu_ps": mu_ps,
+        layer.append({"z_d": (n["y_m"] - y_top) / d, "depth_d": (surface - n["y_m"]) / d, "phi": n["phi"],
+                      "I": inertial, "mu": mu, "mu_ps": mu_ps,
                       "phi_ps": plane_shear.at_inertial(table, inertial, "phi"),
-                      "dtheta_deg": math.degrees(math.atan(mu) - math.atan(mu_ps))})
+                      "dtheta_deg": math.degrees(math.atan(mu) - math.atan(mu_ps)),
+                      "syy_over_weight": n["s_yy_Pa"] / (weights[n["y_m"]] * math.cos(theta)),
+                      "syx_over_weight": -n["s_yx_Pa"] / (weights[n["y_m"]] * math.sin(theta))})
     return layer
 
 
@@ -127,11 +152,20 @@ def summary(mu, theta, layer, table):
     balance = [n["mu"] / tan - 1 for n in layer]
     dtheta, dphi = [n["dtheta_deg"] for n in layer], [n["phi"] - n["phi_ps"] for n in layer]
     mean_i = mean("I")
+    bulk = [n for n in layer if n["depth_d"] >= BULK_DEPTH_D]
     return {"contact_mu": mu, "theta_deg": theta, "nodes": len(layer),
             "z_low_d": min(n["z_d"] for n in layer), "z_high_d": max(n["z_d"] for n in layer),
             "I_mean": mean_i, "I_low": min(n["I"] for n in layer), "I_high": max(n["I"] for n in layer),
             "mu_mean": mean("mu"), "phi_mean": mean("phi"),
             "balance_min": min(balance), "balance_max": max(balance),
+            "syy_weight_min": min(n["syy_over_weight"] for n in layer) - 1,
+            "syy_weight_max": max(n["syy_over_weight"] for n in layer) - 1,
+            "syx_weight_min": min(n["syx_over_weight"] for n in layer) - 1,
+            "syx_weight_max": max(n["syx_over_weight"] for n in layer) - 1,
+            "bulk_syy_weight_min": min(n["syy_over_weight"] for n in bulk) - 1,
+            "bulk_syy_weight_max": max(n["syy_over_weight"] for n in bulk) - 1,
+            "bulk_syx_weight_min": min(n["syx_over_weight"] for n in bulk) - 1,
+            "bulk_syx_weight_max": max(n["syx_over_weight"] for n in bulk) - 1,
             "dtheta_at_mean_deg": math.degrees(math.atan(mean("mu"))
                                                - math.atan(plane_shear.at_inertial(table, mean_i, "mu"))),
             "dphi_at_mean": mean("phi") - plane_shear.at_inertial(table, mean_i, "phi"),
@@ -195,6 +229,10 @@ def analyse(cases, out, results, cdpost):
               f"z {r['z_low_d']:.1f}-{r['z_high_d']:.1f} d; mean I {r['I_mean']:.3g} (nodes {r['I_low']:.3g}-"
               f"{r['I_high']:.3g}), mu {r['mu_mean']:.4f}, phi {r['phi_mean']:.4f}; "
               f"-sigma_yx/sigma_yy / tan theta - 1 in [{r['balance_min']:+.3f}, {r['balance_max']:+.3f}]; "
+              f"sigma_yy, -sigma_yx against the weight above: {r['syy_weight_min']:+.3f} to "
+              f"{r['syy_weight_max']:+.3f}, {r['syx_weight_min']:+.3f} to {r['syx_weight_max']:+.3f} "
+              f"(10 d and more below the surface {r['bulk_syy_weight_min']:+.3f} to {r['bulk_syy_weight_max']:+.3f}, "
+              f"{r['bulk_syx_weight_min']:+.3f} to {r['bulk_syx_weight_max']:+.3f}); "
               f"against plane shear at the mean I: {r['dtheta_at_mean_deg']:+.2f} deg, phi {r['dphi_at_mean']:+.4f} "
               f"(nodes {r['dtheta_min_deg']:+.2f} to {r['dtheta_max_deg']:+.2f} deg, "
               f"phi {r['dphi_min']:+.4f} to {r['dphi_max']:+.4f})")
