@@ -20,16 +20,6 @@ struct ContactLaw {
   double restitution = 0.0;  // Newton normal restitution e in [0, 1]
 };
 
-struct StepParameters {
-  double dt = 0.0;     // time step (s)
-  double theta = 0.5;  // Moreau–Jean theta: x_{n+1} = x_n + dt((1-theta) v_n + theta v_{n+1})
-
-  // The time from x_n to the predicted configuration x_m, where the step is solved (s).
-  double lead() const { return (1.0 - theta) * dt; }
-  // The time from x_m to x_{n+1}, over which v_{n+1} moves the bodies (s).
-  double advance() const { return theta * dt; }
-};
-
 // State of every body for one step. Index 0 is the world (walls): zero inverse mass and zero
 // velocity, so wall contacts run through the same code as grain contacts.
 struct BodySet {

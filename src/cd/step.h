@@ -1,7 +1,7 @@
 // One Moreau–Jean step of rigid disks, owned by the core: the host (the LAMMPS fix, the testbed)
 // holds positions, forces and the per-body storage of carried impulses; the step does the rest.
 //
-//   predictor   x_m = x_n + (1 - theta) dt v_n                       (host applies predicted_motion)
+//   predictor   x_m = x_n + (1 - theta) dt v_n                       (host applies predicted_motion, cd/kinematics.h)
 //   free        v_free = v_n + dt F / m, spin likewise                 (free_velocity)
 //   pairs       the host offers the pairs near each other (StepHost::collect_pairs): solved if
 //               candidates, watched otherwise, each with its key and the impulse it carried,
@@ -22,48 +22,13 @@
 
 #include "cd/contact.h"
 #include "cd/detection.h"
+#include "cd/kinematics.h"
 #include "cd/gauss_seidel.h"
 #include "cd/order.h"
 #include "cd/problem_file.h"
 #include "cd/solver.h"
 
 namespace cd {
-
-// Displacement of a body's centre (m).
-struct Displacement {
-  double dx = 0.0;
-  double dy = 0.0;
-};
-
-// Predictor: the step's first displacement, to x_m = x_n + (1 - theta) dt v_n.
-inline Displacement predicted_motion(const BodyVelocity& start, const StepParameters& step)
-{
-  const double shift = step.lead();
-  return {shift * start.vx, shift * start.vy};
-}
-
-// Corrector: from x_m to x_{n+1} = x_m + theta dt v_{n+1}.
-inline Displacement corrected_motion(const BodyVelocity& end, const StepParameters& step)
-{
-  const double advance = step.advance();
-  return {advance * end.vx, advance * end.vy};
-}
-
-// The whole step's displacement, dt ((1 - theta) v_n + theta v_{n+1}).
-inline Displacement step_motion(const BodyVelocity& start, const BodyVelocity& end, const StepParameters& step)
-{
-  const Displacement first = predicted_motion(start, step);
-  const Displacement second = corrected_motion(end, step);
-  return {first.dx + second.dx, first.dy + second.dy};
-}
-
-// v_n + dt (force / m, torque / I): the velocity the step would end with without contacts.
-inline BodyVelocity free_velocity(const BodyVelocity& start, const BodyInertia& inertia, double fx, double fy,
-                                  double torque, double dt)
-{
-  return {start.vx + dt * fx * inertia.inv_mass, start.vy + dt * fy * inertia.inv_mass,
-          start.spin + dt * torque * inertia.inv_inertia};
-}
 
 // What a step asks of its host: the pairs near each other. The host keeps the carried impulses
 // (per body, e.g. cd::impulse_row): it hands each pair's with the pair, and after the step
