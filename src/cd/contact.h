@@ -108,6 +108,10 @@ inline WorldImpulse world_impulse(const Contact& c, Local2 p)
   b.spin -= c.spin_gain_b * dp.t;
 }
 
+// Adds the contacts' impulses (e.g. the warm start) to the body velocities: what a step does
+// before its solver's first sweep.
+void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity);
+
 // The frame of a candidate contact: bodies, normal, levers and gap; no mechanics yet.
 Contact contact_frame(const ContactGeometry& geometry);
 

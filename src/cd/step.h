@@ -7,7 +7,7 @@
 //               candidates, watched otherwise, each with its key and the impulse it carried,
 //               which starts a solved one (the warm start)
 //   order       interleaved (cd::interleaved_order) or shuffled; keys travel with the contacts
-//   solve       the solver (cd/solver.h: Gauss–Seidel); watched pairs the solution would drive into overlap join and the
+//   solve       the solver the settings name (cd/solver.h, cd::make_solver); watched pairs the solution would drive into overlap join and the
 //               solve goes on (the solve loop, step.cpp)
 //   store       the host keeps every loaded contact's impulse, by key (StepContacts::for_each_loaded)
 //   corrector   x_{n+1} = x_m + theta dt v_{n+1}                       (host applies corrected_motion)
@@ -23,7 +23,6 @@
 #include "cd/contact.h"
 #include "cd/detection.h"
 #include "cd/kinematics.h"
-#include "cd/gauss_seidel.h"
 #include "cd/order.h"
 #include "cd/problem_file.h"
 #include "cd/solver.h"
@@ -55,7 +54,7 @@ inline constexpr double default_alert_diameters = 0.01;
 
 struct StepSettings {
   double theta = 0.5;
-  SolverSettings solver;
+  SolverSettings solver;  // the method the step builds (cd::make_solver) and its knobs
   // m: candidate selection (cd::is_candidate); not given, default_alert_diameters times the
   // grains' mean diameter, which the host tells as it learns it (MoreauJeanStep::set_mean_diameter).
   std::optional<double> alert;
@@ -112,7 +111,7 @@ class MoreauJeanStep {
 
   StepSettings settings_;
   double alert_ = 0.0;                     // m: settings_.alert, or the default's for the grain size
-  std::unique_ptr<ContactSolver> solver_;  // settings_.solver's method
+  std::unique_ptr<ContactSolver> solver_;  // settings_.solver's method (cd::make_solver)
   PairReach reach_;
   StepContacts contacts_;
   std::mt19937_64 shuffle_rng_;
