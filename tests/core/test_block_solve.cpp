@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cd/block_solve.h"
+#include "cd/dense_solve.h"
 #include "cd/friction_states.h"
 #include "cd/lemke.h"
 #include "cd/problem_file.h"
@@ -464,6 +465,22 @@ TEST(FrictionStates, LemkeOnTheCyclingContactsAloneGivesTheWholeAnswer)
   ASSERT_TRUE(solve.solved);
   EXPECT_GE(solve.solves, 2);  // the two held ones wrong: a second problem
   EXPECT_EQ(law_breakers(trapped.problem, solve.answer), 0u);
+}
+
+// The states' dense solve: a system that needs a row swap (a zero first pivot), two right-hand
+// sides at once, solved to round-off; a singular one refused.
+TEST(DenseSolve, SolvesWithPivotingAndRefusesASingularSystem)
+{
+  std::vector<double> A{0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0};
+  const std::vector<double> x{1.0, -2.0, 0.5, 3.0, 4.0, -1.0};  // 3 x 2, row-major
+  std::vector<double> B(6, 0.0);
+  for (std::size_t row = 0; row < 3; row++)
+    for (std::size_t c = 0; c < 2; c++)
+      for (std::size_t j = 0; j < 3; j++) B[row * 2 + c] += A[row * 3 + j] * x[j * 2 + c];
+  ASSERT_TRUE(cd::solve_dense(A, B, 3, 2));
+  for (std::size_t k = 0; k < x.size(); k++) EXPECT_NEAR(B[k], x[k], 1e-14);
+  std::vector<double> singular{1.0, 2.0, 2.0, 4.0}, b{1.0, 2.0};
+  EXPECT_FALSE(cd::solve_dense(singular, b, 2));
 }
 
 }  // namespace
