@@ -37,6 +37,7 @@
 #include "cd/gauss_seidel.h"
 #include "cd/problem_file.h"
 #include "cd/solver_keywords.h"
+#include "cd/solver_registry.h"
 
 namespace {
 

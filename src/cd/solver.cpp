@@ -1,42 +1,11 @@
-// The solver seam's registry and factory (cd/solver.h).
+// The solver seam's report and stopping settings (cd/solver.h).
 #include "cd/solver.h"
 
 #include <algorithm>
-#include <map>
-#include <stdexcept>
-#include <utility>
 
-#include "cd/gauss_seidel.h"
 #include "cd/refusal.h"
 
 namespace cd {
-
-namespace {
-
-// The methods by name, Gauss–Seidel among them from the start: the core's own need no
-// registration, and a static library keeps no object file nothing calls into.
-std::map<std::string, SolverMethod>& methods()
-{
-  static std::map<std::string, SolverMethod> registered{
-      {"gauss_seidel",
-       {[](const SolverSettings& settings) { return check(settings.gauss_seidel); },
-        [](const SolverSettings& settings) -> std::unique_ptr<ContactSolver> {
-          return std::make_unique<GaussSeidel>(settings);
-        }}}};
-  return registered;
-}
-
-// "gauss_seidel or siconos_nsgs", the registered names in order.
-std::string listed_names()
-{
-  std::string listed;
-  const std::vector<std::string> names = solver_names();
-  for (std::size_t k = 0; k < names.size(); k++)
-    listed += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
-  return listed;
-}
-
-}  // namespace
 
 void SolveReport::add(const SolveReport& later)
 {
@@ -52,18 +21,6 @@ void SolveReport::add(const SolveReport& later)
   converged = later.converged;
 }
 
-bool register_solver(const std::string& name, SolverMethod method)
-{
-  return methods().emplace(name, std::move(method)).second;
-}
-
-std::vector<std::string> solver_names()
-{
-  std::vector<std::string> names;
-  for (const auto& entry : methods()) names.push_back(entry.first);
-  return names;
-}
-
 // Written so that NaN fails every test. A tolerance of 1 or more is met by any first sweep (the
 // norm compares the sweep's change with the impulses' scale), one of 0 runs the cap's sweeps.
 std::string check_stopping(const SolverSettings& settings)
@@ -72,22 +29,6 @@ std::string check_stopping(const SolverSettings& settings)
     return refusal("tolerance", "in [0,1)", settings.tolerance);
   if (settings.max_iterations < 1) return refusal("max_iterations", ">= 1", settings.max_iterations);
   return {};
-}
-
-std::string check(const SolverSettings& settings)
-{
-  const std::string stopping = check_stopping(settings);
-  if (!stopping.empty()) return stopping;
-  const auto method = methods().find(settings.method);
-  if (method == methods().end()) return "solver must be " + listed_names() + ", got '" + settings.method + "'";
-  return method->second.check(settings);
-}
-
-std::unique_ptr<ContactSolver> make_solver(const SolverSettings& settings)
-{
-  const std::string problem = check(settings);
-  if (!problem.empty()) throw std::invalid_argument(problem);
-  return methods().at(settings.method).build(settings);
 }
 
 }  // namespace cd

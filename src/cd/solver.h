@@ -1,13 +1,12 @@
 // The seam between a step and the method that finds its impulses. A step (cd/step.h) hands a
 // solver its prepared contacts and the bodies' velocities with the contacts' impulses already
 // applied; the solver returns with the impulses and velocities of its answer and a report.
-// The settings name the method; make_solver builds it. Gauss–Seidel (cd/gauss_seidel.h) is the
-// core's; another is one class implementing ContactSolver and one register_solver call, from
-// inside the core or outside it (a bench or a test registers its own: the core never names it).
+// The settings name the method; cd::make_solver (cd/solver_registry.h) builds it. Gauss–Seidel
+// (cd/gauss_seidel.h) is the core's; another is one class implementing ContactSolver and one
+// cd::register_solver call, from inside the core or outside it (a bench or a test registers its
+// own: the core never names it).
 #pragma once
 
-#include <functional>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -41,7 +40,7 @@ struct SolverSettings {
   double tolerance = 1.0e-3;
   int max_iterations = 1000;  // sweeps, or a method's iterations
   ConvergenceNorm norm = ConvergenceNorm::quadratic;
-  std::string method = "gauss_seidel";  // a registered name (make_solver)
+  std::string method = "gauss_seidel";  // a registered name (cd::make_solver)
   GaussSeidelSettings gauss_seidel{};
 };
 
@@ -49,8 +48,6 @@ struct SolverSettings {
 // e.g. "tolerance must be in [0,1), got 2". Tolerance 0 (always the cap's iterations) is allowed
 // here; a step refuses it (cd::check(StepSettings)).
 std::string check_stopping(const SolverSettings& settings);
-// check_stopping, then the method's name and its own check.
-std::string check(const SolverSettings& settings);
 
 // What a domain-decomposed run does between the sweeps of one rank: after every sweep it
 // exchanges ghost velocities and reduces `change` over ranks; between solves it tells whether
@@ -89,23 +86,5 @@ class ContactSolver {
   virtual SolveReport solve(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,
                             SweepExchange* exchange = nullptr, JoiningContacts* joining = nullptr) = 0;
 };
-
-// A method as the factory knows it: its check (empty, or one line naming a keyword) and how it
-// is built from settings that passed that check.
-struct SolverMethod {
-  std::function<std::string(const SolverSettings&)> check;
-  std::function<std::unique_ptr<ContactSolver>(const SolverSettings&)> build;
-};
-
-// Adds a method under `name`; false if the name is taken. Gauss–Seidel is "gauss_seidel" from
-// the start. A method built outside the core registers itself when its program starts:
-//   const bool registered = cd::register_solver("siconos_nsgs", {check_nsgs, build_nsgs});
-bool register_solver(const std::string& name, SolverMethod method);
-// The registered names, in alphabetical order.
-std::vector<std::string> solver_names();
-
-// The method the settings name, built; throws std::invalid_argument with check's line if the
-// settings cannot run.
-std::unique_ptr<ContactSolver> make_solver(const SolverSettings& settings);
 
 }  // namespace cd

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "cd/refusal.h"
+#include "cd/solver_registry.h"
 
 namespace cd {
 

@@ -7,8 +7,9 @@
 //               candidates, watched otherwise, each with its key and the impulse it carried,
 //               which starts a solved one (the warm start)
 //   order       interleaved (cd::interleaved_order) or shuffled; keys travel with the contacts
-//   solve       the solver the settings name (cd/solver.h, cd::make_solver); watched pairs the solution would drive into overlap join and the
-//               solve goes on (the solve loop, step.cpp)
+//   solve       the solver the settings name (cd/solver.h, built by cd::make_solver); watched
+//               pairs the solution would drive into overlap join and the solve goes on (the
+//               solve loop, step.cpp)
 //   store       the host keeps every loaded contact's impulse, by key (StepContacts::for_each_loaded)
 //   corrector   x_{n+1} = x_m + theta dt v_{n+1}                       (host applies corrected_motion)
 #pragma once

@@ -18,6 +18,7 @@
 #include "cd/problem_file.h"
 #include "cd/solve_statistics.h"
 #include "cd/solver_keywords.h"
+#include "cd/solver_registry.h"
 #include "cd/step.h"
 #include "pile.h"
 
