@@ -32,11 +32,6 @@ void StallWatch::start(const std::vector<Contact>& contacts, int iterations)
   path_ = 0.0;
 }
 
-void StallWatch::add_sweep(const SweepChange& change)
-{
-  if (window_ > 0) path_ += std::sqrt(change.sum_change_sq);
-}
-
 bool StallWatch::stalled(const std::vector<Contact>& contacts, int iterations)
 {
   if (window_ == 0 || iterations - start_ < window_) return false;
@@ -69,13 +64,6 @@ StallRescue::StallRescue(const GaussSeidelSettings& settings, StallWorkspace& wo
 {
   watch_.start(contacts, 0);
   slow_watch_.start(contacts, 0);
-}
-
-void StallRescue::add_sweep(const SweepChange& change, SolveReport& report)
-{
-  watch_.add_sweep(change);
-  slow_watch_.add_sweep(change);
-  report.stalled_sweeps += stalls_ > 0;
 }
 
 void StallRescue::solve_kept_block(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,

@@ -4,6 +4,7 @@
 // cd::GaussSeidelSettings's stall_*; doc/stalls.md and doc/stalls_tight.md measure them.
 #pragma once
 
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -40,8 +41,11 @@ class StallWatch {
   // Starts a window at the current impulses.
   void start(const std::vector<Contact>& contacts, int iterations);
 
-  // Counts a sweep's change (summed over ranks).
-  void add_sweep(const SweepChange& change);
+  // Counts a sweep's change (summed over ranks). Inline, as the next: every sweep calls it.
+  void add_sweep(const SweepChange& change)
+  {
+    if (window_ > 0) path_ += std::sqrt(change.sum_change_sq);
+  }
 
   // True if a window ends at this sweep count (stalled() then decides on it).
   bool ends(int iterations) const { return window_ > 0 && iterations - start_ >= window_; }
@@ -80,7 +84,12 @@ class StallRescue {
   const GaussSeidelSettings& sweeping() const { return sweeping_; }
 
   // Counts a sweep (summed over ranks) into the test and the report.
-  void add_sweep(const SweepChange& change, SolveReport& report);
+  void add_sweep(const SweepChange& change, SolveReport& report)
+  {
+    watch_.add_sweep(change);
+    slow_watch_.add_sweep(change);
+    report.stalled_sweeps += stalls_ > 0;
+  }
 
   // After a full sweep that did not end the solve, once a block rescue has begun: the kept block
   // solved exactly again every GaussSeidelSettings::stall_block_every sweeps. Several ranks solve
