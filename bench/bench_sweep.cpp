@@ -175,7 +175,7 @@ void time_restored_sweeps(benchmark::State& state, const Scene& s, Order order, 
   std::vector<cd::Contact> contacts = start;
   std::vector<cd::BodyVelocity> velocity = s.velocity;
   cd::SolverSettings settings = s.bed.spec().solver;
-  settings.frictionless_shortcut = frictionless_shortcut;
+  settings.gauss_seidel.frictionless_shortcut = frictionless_shortcut;
   for (auto _ : state) {
     state.PauseTiming();
     std::copy(start.begin(), start.end(), contacts.begin());
@@ -265,8 +265,8 @@ void time_whole_steps(benchmark::State& state, const Scene& s, bool warm, Order 
                       cd::Acceleration acceleration = cd::Acceleration::none)
 {
   cd::SolverSettings solver = s.bed.spec().solver;
-  solver.frictionless_shortcut = frictionless_shortcut;
-  solver.acceleration = acceleration;
+  solver.gauss_seidel.frictionless_shortcut = frictionless_shortcut;
+  solver.gauss_seidel.acceleration = acceleration;
   cd::StepSettings settings = testbed::step_settings(s.frozen, solver, warm);
   settings.order = step_order(order);
   cd::MoreauJeanStep moreau_jean(settings, shuffle_seed);

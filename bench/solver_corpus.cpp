@@ -6,9 +6,8 @@
 //                 [--reference-cap 200000] [--reference "relaxation=0.7"]
 //                 --setting NAME "key=value ..." [--setting ...] PROBLEM.cdp ...
 //
-// Keys of a setting (cd::SolverSettings): tolerance, max_iterations, relaxation, acceleration
-// (none|conjugate), full_sweep_every, stall_window, stall_coherence, stall_relaxation, stall_block,
-// stall_block_every; and
+// Keys of a setting: the fix's solver keywords (cd/solver_keywords.h: tolerance, max_iterations,
+// norm, relaxation, acceleration, full_sweep_every, stall_window, ...); and
 // cold (yes|no): start from zero impulses instead of the step's warm start.
 //
 // Error measures, each over the mobile bodies or contacts of the problem:
@@ -28,6 +27,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -36,6 +36,8 @@
 #include "cd/block_solve.h"
 #include "cd/gauss_seidel.h"
 #include "cd/problem_file.h"
+#include "cd/solver_keywords.h"
+#include "cd/solver_registry.h"
 
 namespace {
 
@@ -82,21 +84,12 @@ cd::SolverSettings parse_setting(const std::string& text, cd::SolverSettings set
     const auto eq = item.find('=');
     if (eq == std::string::npos) refuse("a setting's item must be key=value, got '" + item + "'");
     const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
-    if (key == "tolerance") settings.tolerance = number(key, value);
-    else if (key == "max_iterations") settings.max_iterations = static_cast<int>(number(key, value));
-    else if (key == "relaxation") settings.relaxation = number(key, value);
-    else if (key == "full_sweep_every") settings.full_sweep_every = static_cast<int>(number(key, value));
-    else if (key == "stall_window") settings.stall_window = static_cast<int>(number(key, value));
-    else if (key == "stall_coherence") settings.stall_coherence = number(key, value);
-    else if (key == "stall_relaxation") settings.stall_relaxation = number(key, value);
-    else if (key == "stall_block") settings.stall_block = static_cast<int>(number(key, value));
-    else if (key == "stall_block_every") settings.stall_block_every = static_cast<int>(number(key, value));
-    else if (key == "shuffle" && named) named->shuffle = static_cast<unsigned>(number(key, value));
+    if (const std::optional<std::string> solver_key = cd::read_solver_keyword(settings, key, value)) {
+      if (!solver_key->empty()) refuse(*solver_key);
+    } else if (key == "shuffle" && named) named->shuffle = static_cast<unsigned>(number(key, value));
     else if (key == "block_rounds" && named) named->block_rounds = static_cast<int>(number(key, value));
     else if (key == "block_hops" && named) named->block_hops = static_cast<int>(number(key, value));
     else if (key == "cold" && named && (value == "yes" || value == "no")) named->cold = value == "yes";
-    else if (key == "acceleration" && (value == "none" || value == "conjugate"))
-      settings.acceleration = value == "none" ? cd::Acceleration::none : cd::Acceleration::conjugate;
     else refuse("unknown setting '" + item + "'");
   }
   const std::string problem = cd::check(settings);
@@ -107,7 +100,7 @@ cd::SolverSettings parse_setting(const std::string& text, cd::SolverSettings set
 Options parse_options(int argc, char** argv)
 {
   Options o;
-  o.reference.acceleration = cd::Acceleration::none;
+  o.reference.gauss_seidel.acceleration = cd::Acceleration::none;
   std::string reference_text = "relaxation=0.7";
   for (int i = 1; i < argc; i++) {
     const std::string arg = argv[i];

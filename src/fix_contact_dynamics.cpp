@@ -26,7 +26,8 @@
 #include "update.h"
 #include "utils.h"
 
-#include "cd/at_solve.h"
+#include "cd/kinematics.h"
+#include "cd/periodic_box.h"
 #include "cd/problem_file.h"
 #include "fix_contact_dynamics_checks.h"
 #include "fix_contact_dynamics_listed_pairs.h"

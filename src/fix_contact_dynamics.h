@@ -16,7 +16,7 @@ FixStyle(contact/dynamics,FixContactDynamics);
 #include <vector>
 
 #include "cd/detection.h"
-#include "cd/gauss_seidel.h"
+#include "cd/solver.h"
 #include "cd/solve_statistics.h"
 #include "cd/step.h"
 #include "cd/walls.h"

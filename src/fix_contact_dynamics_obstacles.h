@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "cd/at_solve.h"
+#include "cd/kinematics.h"
 
 namespace LAMMPS_NS {
 class Atom;

@@ -11,7 +11,6 @@
 
 #include "cd/contact.h"
 #include "cd/contact_geometry.h"
-#include "cd/at_solve.h"
 #include "cd/walls.h"
 #include "pointers.h"
 

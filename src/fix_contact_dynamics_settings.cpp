@@ -3,9 +3,11 @@
 #include "fix_contact_dynamics_settings.h"
 
 #include <cmath>
+#include <optional>
 #include <set>
 #include <string>
 
+#include "cd/solver_keywords.h"
 #include "error.h"
 #include "fix_contact_dynamics_keywords.h"
 
@@ -123,39 +125,14 @@ int SettingsParser::parse_save_problems(int iarg)
   return iarg + 3;
 }
 
-// The keywords of one value. The step's settings are range-checked by the core (check_step).
+// The keywords of one value: the solver's read by the core (cd::read_solver_keyword), the rest
+// here. The step's settings are range-checked by the core (check_step).
 void SettingsParser::parse_value(const std::string& keyword, const char* value)
 {
-  if (keyword == "theta") {
+  if (const std::optional<std::string> solver_keyword = cd::read_solver_keyword(step.solver, keyword, value)) {
+    if (!solver_keyword->empty()) error->all(FLERR, "Fix contact/dynamics: {}", *solver_keyword);
+  } else if (keyword == "theta") {
     step.theta = number_for("theta", value, error);
-  } else if (keyword == "tolerance") {
-    step.solver.tolerance = number_for("tolerance", value, error);
-  } else if (keyword == "max_iterations") {
-    step.solver.max_iterations = integer_for("max_iterations", value, error);
-  } else if (keyword == "relaxation") {
-    step.solver.relaxation = number_for("relaxation", value, error);
-  } else if (keyword == "norm") {
-    const std::string norm = value;
-    if (norm == "quadratic") step.solver.norm = cd::ConvergenceNorm::quadratic;
-    else if (norm == "maximum") step.solver.norm = cd::ConvergenceNorm::maximum;
-    else error->all(FLERR, "Fix contact/dynamics: norm must be quadratic or maximum, got '{}'", norm);
-  } else if (keyword == "acceleration") {
-    const std::string acceleration = value;
-    if (acceleration == "none") step.solver.acceleration = cd::Acceleration::none;
-    else if (acceleration == "conjugate") step.solver.acceleration = cd::Acceleration::conjugate;
-    else error->all(FLERR, "Fix contact/dynamics: acceleration must be none or conjugate, got '{}'", acceleration);
-  } else if (keyword == "stall_window") {
-    step.solver.stall_window = integer_for("stall_window", value, error);
-  } else if (keyword == "stall_coherence") {
-    step.solver.stall_coherence = number_for("stall_coherence", value, error);
-  } else if (keyword == "stall_relaxation") {
-    step.solver.stall_relaxation = number_for("stall_relaxation", value, error);
-  } else if (keyword == "stall_block") {
-    step.solver.stall_block = integer_for("stall_block", value, error);
-  } else if (keyword == "stall_block_every") {
-    step.solver.stall_block_every = integer_for("stall_block_every", value, error);
-  } else if (keyword == "full_sweep_every") {
-    step.solver.full_sweep_every = integer_for("full_sweep_every", value, error);
   } else if (keyword == "join") {
     const std::string joining = value;
     if (joining == "during") step.joining = cd::Joining::during_solve;

@@ -1,7 +1,7 @@
 #include "fix_contact_dynamics_sheared_cell.h"
 
 #include "atom.h"
-#include "cd/at_solve.h"
+#include "cd/kinematics.h"
 #include "domain.h"
 #include "error.h"
 #include "fix.h"

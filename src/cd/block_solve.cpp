@@ -99,7 +99,7 @@ BlockProblem block_problem(const std::vector<Contact>& contacts, const std::vect
     u0[i] = affine.n, u0[m + i] = affine.t;
     mu[i] = ci.mu;
   }
-  return block_lcp(W, u0, mu);
+  return {std::move(W), std::move(u0), std::move(mu)};
 }
 
 namespace {
@@ -155,13 +155,13 @@ bool solved_by_states(const std::vector<Contact>& contacts, const std::vector<in
 // The cluster's complementarity problem solved by Lemke; true if it ended at a solution.
 bool solved_by_lemke(const BlockProblem& problem, std::vector<Local2>& answer, int& pivots)
 {
-  const std::size_t n = problem.q.size(), m = n / 4;
+  const BlockLcp lcp = to_lcp(problem);
+  const std::size_t n = lcp.q.size();
   std::vector<double> z;
-  const LemkeResult lemke = solve_lcp_lemke(problem.M, problem.q, z, static_cast<int>(10 * n + 100));
+  const LemkeResult lemke = solve_lcp_lemke(lcp.M, lcp.q, z, static_cast<int>(10 * n + 100));
   pivots += lemke.pivots;
   if (!lemke.solved) return false;
-  answer.resize(m);
-  for (std::size_t i = 0; i < m; i++) answer[i] = {z[i], std::max(z[m + i], 0.0) - std::max(z[2 * m + i], 0.0)};
+  answer = impulses_from_lcp(z, problem.size());
   return true;
 }
 

@@ -27,8 +27,8 @@ struct BlockSolve {
   int pivots = 0;
 };
 
-// A block's complementarity problem (cd/block_problem.h), the law acting on u + rho (p - p_k)
-// (solve_block), its m contacts in block order.
+// A block's problem (cd/block_problem.h), the law acting on u + rho (p - p_k) (solve_block), its m
+// contacts in block order.
 BlockProblem block_problem(const std::vector<Contact>& contacts, const std::vector<BodyVelocity>& velocity,
                            const std::vector<int>& block);
 

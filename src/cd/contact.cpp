@@ -69,4 +69,9 @@ void warm_start(Contact& c, Local2 carried)
   c.impulse = {carried.n, c.mu == 0.0 ? 0.0 : carried.t};
 }
 
+void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity)
+{
+  for (const Contact& c : contacts) apply_impulse(c, c.impulse, velocity[c.body_a], velocity[c.body_b]);
+}
+
 }  // namespace cd

@@ -20,16 +20,6 @@ struct ContactLaw {
   double restitution = 0.0;  // Newton normal restitution e in [0, 1]
 };
 
-struct StepParameters {
-  double dt = 0.0;     // time step (s)
-  double theta = 0.5;  // Moreau–Jean theta: x_{n+1} = x_n + dt((1-theta) v_n + theta v_{n+1})
-
-  // The time from x_n to the predicted configuration x_m, where the step is solved (s).
-  double lead() const { return (1.0 - theta) * dt; }
-  // The time from x_m to x_{n+1}, over which v_{n+1} moves the bodies (s).
-  double advance() const { return theta * dt; }
-};
-
 // State of every body for one step. Index 0 is the world (walls): zero inverse mass and zero
 // velocity, so wall contacts run through the same code as grain contacts.
 struct BodySet {
@@ -117,6 +107,10 @@ inline WorldImpulse world_impulse(const Contact& c, Local2 p)
   b.vy -= c.inv_mass_b * p.y;
   b.spin -= c.spin_gain_b * dp.t;
 }
+
+// Adds the contacts' impulses (e.g. the warm start) to the body velocities: what a step does
+// before its solver's first sweep.
+void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity);
 
 // The frame of a candidate contact: bodies, normal, levers and gap; no mechanics yet.
 Contact contact_frame(const ContactGeometry& geometry);

@@ -1,23 +1,12 @@
 // Contact kinematics of rigid disks: where two bodies touch, along which normal, with which gap.
 #pragma once
 
+#include "cd/kinematics.h"
+
 namespace cd {
 
 // Index of the static world body (walls): zero inverse mass, zero velocity, never updated.
 inline constexpr int world_body = 0;
-
-// Velocity of a rigid disk in the plane.
-struct BodyVelocity {
-  double vx = 0.0;    // m/s
-  double vy = 0.0;    // m/s
-  double spin = 0.0;  // rad/s, counter-clockwise
-};
-
-// Inverse inertia of a body; zero for immobile obstacles and the world.
-struct BodyInertia {
-  double inv_mass = 0.0;     // 1/kg
-  double inv_inertia = 0.0;  // 1/(kg m^2)
-};
 
 // The model's disks are uniform: m = pi r^2 rho for an areal density rho (kg/m^2), and
 // I = m r^2 / 2. Every host takes masses and inertias from here.
@@ -31,13 +20,6 @@ inline BodyInertia disk_inertia(double mass, double radius)
 {
   return {1.0 / mass, 1.0 / (disk_inertia_factor * mass * radius * radius)};
 }
-
-// A disk at the predicted configuration of the step.
-struct Disk {
-  double x = 0.0;
-  double y = 0.0;
-  double radius = 0.0;
-};
 
 // Where and how two bodies meet, before any mechanics.
 struct ContactGeometry {

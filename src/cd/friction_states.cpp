@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <utility>
 
+#include "cd/dense_solve.h"
 #include "cd/lemke.h"
 
 namespace cd {
@@ -23,68 +24,6 @@ double impulse_scale(const std::vector<Local2>& p)
   for (const Local2& pi : p) scale = std::max({scale, std::fabs(pi.n), std::fabs(pi.t)});
   return scale;
 }
-
-// Solves A X = B (A k x k, B k x r, row-major; A overwritten, X in B) by LU with partial
-// pivoting; false if a pivot falls below 1e-13 of A's largest entry.
-bool solve_dense(std::vector<double>& A, std::vector<double>& B, std::size_t k, std::size_t r = 1)
-{
-  double largest = 0.0;
-  for (const double a : A) largest = std::max(largest, std::fabs(a));
-  const double singular = 1e-13 * largest;
-  for (std::size_t col = 0; col < k; col++) {
-    std::size_t pivot = col;
-    for (std::size_t row = col + 1; row < k; row++)
-      if (std::fabs(A[row * k + col]) > std::fabs(A[pivot * k + col])) pivot = row;
-    if (!(std::fabs(A[pivot * k + col]) > singular)) return false;
-    if (pivot != col) {
-      for (std::size_t c = 0; c < k; c++) std::swap(A[pivot * k + c], A[col * k + c]);
-      for (std::size_t c = 0; c < r; c++) std::swap(B[pivot * r + c], B[col * r + c]);
-    }
-    const double* top = &A[col * k];
-    for (std::size_t row = col + 1; row < k; row++) {
-      double* below = &A[row * k];
-      const double factor = below[col] / top[col];
-      if (factor == 0.0) continue;
-      for (std::size_t c = col + 1; c < k; c++) below[c] -= factor * top[c];
-      for (std::size_t c = 0; c < r; c++) B[row * r + c] -= factor * B[col * r + c];
-    }
-  }
-  for (std::size_t col = k; col-- > 0;)
-    for (std::size_t c = 0; c < r; c++) {
-      double sum = B[col * r + c];
-      for (std::size_t j = col + 1; j < k; j++) sum -= A[col * k + j] * B[j * r + c];
-      B[col * r + c] = sum / A[col * k + col];
-    }
-  return true;
-}
-
-// The block's response u = q + W p read from the complementarity layout: W_nn, W_nt, W_tn, W_tt.
-struct Response {
-  const std::vector<double>& M;
-  const std::vector<double>& q;
-  std::size_t m;
-
-  double nn(std::size_t i, std::size_t j) const { return M[i * 4 * m + j]; }
-  double nt(std::size_t i, std::size_t j) const { return M[i * 4 * m + m + j]; }
-  double tn(std::size_t i, std::size_t j) const { return M[(m + i) * 4 * m + j]; }
-  double tt(std::size_t i, std::size_t j) const { return M[(m + i) * 4 * m + m + j]; }
-  // The largest |u_n| or |u_t| at zero block impulses.
-  double velocity_scale() const
-  {
-    double scale = 0.0;
-    for (std::size_t i = 0; i < 2 * m; i++) scale = std::max(scale, std::fabs(q[i]));
-    return scale;
-  }
-  Local2 velocity(std::size_t i, const std::vector<Local2>& p) const
-  {
-    Local2 u{q[i], q[m + i]};
-    for (std::size_t j = 0; j < m; j++) {
-      u.n += nn(i, j) * p[j].n + nt(i, j) * p[j].t;
-      u.t += tn(i, j) * p[j].n + tt(i, j) * p[j].t;
-    }
-    return u;
-  }
-};
 
 double slide_sign(FrictionState state)
 {
@@ -108,7 +47,7 @@ struct HeldUnknowns {
   }
   // Adds to `row` (count entries) what each unknown does to contact i's normal (or tangential)
   // velocity.
-  void add_response(const Response& w, const std::vector<double>& mu, const std::vector<FrictionState>& states,
+  void add_response(const BlockProblem& w, const std::vector<double>& mu, const std::vector<FrictionState>& states,
                     std::size_t i, bool tangential, double* row) const
   {
     for (std::size_t j = 0; j < normal.size(); j++) {
@@ -135,10 +74,10 @@ struct HeldUnknowns {
 };
 
 // The impulses the states fix (every contact held); false if their system is singular.
-bool impulses_of_states(const Response& w, const std::vector<double>& mu, const std::vector<FrictionState>& states,
+bool impulses_of_states(const BlockProblem& w, const std::vector<double>& mu, const std::vector<FrictionState>& states,
                         std::vector<Local2>& p)
 {
-  const std::size_t m = w.m;
+  const std::size_t m = w.size();
   const HeldUnknowns unknowns(states, std::vector<bool>(m, true));
   const std::size_t k = unknowns.count;
   std::vector<double> A(k * k, 0.0), b(k, 0.0);
@@ -146,7 +85,7 @@ bool impulses_of_states(const Response& w, const std::vector<double>& mu, const 
     for (const bool tangential : {false, true}) {
       const std::ptrdiff_t row = tangential ? unknowns.tangent[i] : unknowns.normal[i];
       if (row < 0) continue;
-      b[static_cast<std::size_t>(row)] = -(tangential ? w.q[m + i] : w.q[i]);
+      b[static_cast<std::size_t>(row)] = -(tangential ? w.u0[m + i] : w.u0[i]);
       unknowns.add_response(w, mu, states, i, tangential, &A[static_cast<std::size_t>(row) * k]);
     }
   if (!solve_dense(A, b, k)) return false;
@@ -202,7 +141,7 @@ StatesSolve solve_by_states(const BlockProblem& problem, std::vector<FrictionSta
   constexpr int patience = 3;  // solves without fewer contacts in a wrong state
   const std::vector<double>& mu = problem.mu;
   const std::size_t m = mu.size();
-  const Response w{problem.M, problem.q, m};
+  const BlockProblem& w = problem;
   const double u_scale = w.velocity_scale();
   StatesSolve result;
   result.changed.assign(m, false);
@@ -249,7 +188,7 @@ StatesSolve solve_cycling_by_lemke(const BlockProblem& problem, const std::vecto
 {
   const std::vector<double>& mu = problem.mu;
   const std::size_t m = mu.size();
-  const Response w{problem.M, problem.q, m};
+  const BlockProblem& w = problem;
   const double u_scale = w.velocity_scale();
   StatesSolve result;
   result.states = states;
@@ -272,7 +211,7 @@ StatesSolve solve_cycling_by_lemke(const BlockProblem& problem, const std::vecto
         if (at < 0) continue;
         const std::size_t row = static_cast<std::size_t>(at);
         unknowns.add_response(w, mu, states, i, tangential, &A[row * k]);
-        X[row * columns] = -(tangential ? w.q[m + i] : w.q[i]);
+        X[row * columns] = -(tangential ? w.u0[m + i] : w.u0[i]);
         for (std::size_t a = 0; a < c; a++) {
           X[row * columns + 1 + a] = -(tangential ? w.tn(i, free[a]) : w.nn(i, free[a]));
           X[row * columns + 1 + c + a] = -(tangential ? w.tt(i, free[a]) : w.nt(i, free[a]));
@@ -290,7 +229,7 @@ StatesSolve solve_cycling_by_lemke(const BlockProblem& problem, const std::vecto
         double sum = 0.0;
         for (std::size_t v = 0; v < k; v++) sum += along[v] * X[v * columns + col];
         if (col == 0) {
-          u0[b] = (tangential ? w.q[m + i] : w.q[i]) + sum;
+          u0[b] = (tangential ? w.u0[m + i] : w.u0[i]) + sum;
           continue;
         }
         const std::size_t a = (col - 1) % c;
@@ -302,12 +241,13 @@ StatesSolve solve_cycling_by_lemke(const BlockProblem& problem, const std::vecto
     }
     std::vector<double> free_mu(c), z;
     for (std::size_t a = 0; a < c; a++) free_mu[a] = mu[free[a]];
-    const BlockProblem reduced = block_lcp(W, u0, free_mu);
+    const BlockLcp reduced = to_lcp({std::move(W), std::move(u0), std::move(free_mu)});
     if (!solve_lcp_lemke(reduced.M, reduced.q, z, static_cast<int>(40 * c + 100)).solved) return result;
+    const std::vector<Local2> free_impulses = impulses_from_lcp(z, c);
     std::vector<Local2> p(m);
     std::vector<double> free_p(columns, 1.0), x(k, 0.0);
     for (std::size_t a = 0; a < c; a++) {
-      p[free[a]] = {z[a], std::max(z[c + a], 0.0) - std::max(z[2 * c + a], 0.0)};
+      p[free[a]] = free_impulses[a];
       free_p[1 + a] = p[free[a]].n;
       free_p[1 + c + a] = p[free[a]].t;
     }

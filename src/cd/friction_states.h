@@ -30,7 +30,7 @@ struct StatesSolve {
   std::vector<bool> changed;          // contacts whose state changed on the way (solve_by_states)
 };
 
-// The block's problem read from its complementarity problem (cd/block_problem.h). Every contact in a wrong state changes at once
+// The block's problem (cd/block_problem.h) solved from the contacts' `states`. Every contact in a wrong state changes at once
 // until three solves in a row bring no fewer such contacts, then one at a time (a different one
 // each solve). Stops unsolved after max_solves systems, at a singular one, or at one whose answer
 // misses its own equations by more than 1e-8 of the velocities' scale.

@@ -1,4 +1,5 @@
-// The Gauss–Seidel sweeps over prepared contacts and the solves made of them (cd/gauss_seidel.h).
+// The Gauss–Seidel sweeps over prepared contacts and the solves made of them (cd/gauss_seidel.h);
+// their stall rescue is cd/stall_rescue.h's.
 #include "cd/gauss_seidel.h"
 
 #include <algorithm>
@@ -8,8 +9,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "cd/block_solve.h"
 #include "cd/refusal.h"
+#include "cd/stall_rescue.h"
 
 namespace cd {
 
@@ -109,15 +110,6 @@ template <ConvergenceNorm norm, bool conjugate>
   return velocity_change * velocity_change;
 }
 
-}  // namespace
-
-void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity)
-{
-  for (const Contact& c : contacts) apply_impulse(c, c.impulse, velocity[c.body_a], velocity[c.body_b]);
-}
-
-namespace {
-
 // The local solve of one contact, its kind chosen per contact: a branch per contact rather
 // than one sweep per kind serves scenes that mix mu = 0 with friction (mu/types, rough walls).
 // Returns |W dp|^2 of the local solve.
@@ -138,9 +130,9 @@ struct SweepKind {
 };
 
 template <bool sliding_images, class Loop>
-SweepChange for_kind(const SolverSettings& settings, Loop loop)
+SweepChange for_kind(ConvergenceNorm norm, const GaussSeidelSettings& settings, Loop loop)
 {
-  const bool quadratic = settings.norm == ConvergenceNorm::quadratic;
+  const bool quadratic = norm == ConvergenceNorm::quadratic;
   if (settings.acceleration == Acceleration::conjugate)
     return quadratic ? loop(SweepKind<ConvergenceNorm::quadratic, true, sliding_images>{})
                      : loop(SweepKind<ConvergenceNorm::maximum, true, sliding_images>{});
@@ -148,21 +140,21 @@ SweepChange for_kind(const SolverSettings& settings, Loop loop)
                    : loop(SweepKind<ConvergenceNorm::maximum, false, sliding_images>{});
 }
 
-// Calls loop(SweepKind<norm, conjugate, sliding_images>{}) for the settings' norm and
+// Calls loop(SweepKind<norm, conjugate, sliding_images>{}) for the norm and the settings'
 // acceleration and the contacts' images, so that the sweep loops are compiled once per kind.
 // The loops copy the settings they read into locals: a store to a velocity could otherwise
 // alias them and force a reload per contact.
 template <class Loop>
-SweepChange for_kind(const SolverSettings& settings, bool sliding_images, Loop loop)
+SweepChange for_kind(ConvergenceNorm norm, const GaussSeidelSettings& settings, bool sliding_images, Loop loop)
 {
-  return sliding_images ? for_kind<true>(settings, loop) : for_kind<false>(settings, loop);
+  return sliding_images ? for_kind<true>(norm, settings, loop) : for_kind<false>(norm, settings, loop);
 }
 
 // A sweep over [first, last); with `change_sq`, each contact's |W dp|^2 lands in it.
-SweepChange sweep_measuring(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings,
-                            bool sliding_images, double beta, double* change_sq)
+SweepChange sweep_measuring(Contact* first, Contact* last, BodyVelocity* velocity, ConvergenceNorm norm,
+                            const GaussSeidelSettings& settings, bool sliding_images, double beta, double* change_sq)
 {
-  return for_kind(settings, sliding_images, [&](auto kind) {
+  return for_kind(norm, settings, sliding_images, [&](auto kind) {
     using Kind = decltype(kind);
     const bool shortcut = settings.frictionless_shortcut;
     const double w = settings.relaxation;
@@ -177,9 +169,9 @@ SweepChange sweep_measuring(Contact* first, Contact* last, BodyVelocity* velocit
 
 // A sweep over the listed contacts, in the list's order.
 SweepChange sweep_listed(Contact* contacts, const std::vector<int>& listed, BodyVelocity* velocity,
-                         const SolverSettings& settings, bool sliding_images, double beta)
+                         ConvergenceNorm norm, const GaussSeidelSettings& settings, bool sliding_images, double beta)
 {
-  return for_kind(settings, sliding_images, [&](auto kind) {
+  return for_kind(norm, settings, sliding_images, [&](auto kind) {
     using Kind = decltype(kind);
     const bool shortcut = settings.frictionless_shortcut;
     const double w = settings.relaxation;
@@ -205,7 +197,8 @@ bool has_sliding_images(const std::vector<Contact>& contacts)
 
 SweepChange sweep(Contact* first, Contact* last, BodyVelocity* velocity, const SolverSettings& settings, double beta)
 {
-  return sweep_measuring(first, last, velocity, settings, has_sliding_images(first, last), beta, nullptr);
+  return sweep_measuring(first, last, velocity, settings.norm, settings.gauss_seidel, has_sliding_images(first, last),
+                         beta, nullptr);
 }
 
 SweepChange sweep(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, const SolverSettings& settings,
@@ -233,7 +226,7 @@ class ConjugateBeta {
     return beta_;
   }
 
-  // Starts the directions afresh for a new cycle of SolverSettings::full_sweep_every, in
+  // Starts the directions afresh for a new cycle of GaussSeidelSettings::full_sweep_every, in
   // which acceleration may switch itself off again; a cycle that ended no closer to the
   // solution than the one before (its full sweep changed as much) switches it off for the rest
   // of the solve: at a tolerance near round-off the pushes only disturb.
@@ -268,234 +261,6 @@ bool count_sweep(SolveReport& report, const SweepChange& change, std::size_t upd
   return report.residual <= settings.tolerance;
 }
 
-// The stall test of SolverSettings::stall_window. Gauss–Seidel at high friction can cycle: a
-// few contacts switch between sticking, sliding and opening from sweep to sweep, the norm sits
-// on a plateau and the impulses go back and forth. A slow drift (the bed's creep mode) also
-// holds the norm on a plateau, but its sweeps keep moving the impulses the same way, and
-// relaxation would only slow it. The test tells them apart by the path the impulses travel:
-// over a window of stall_window sweeps, the net change |W (p_end - p_start)| against the sum
-// of the sweeps' changes |W dp| (both over every contact of every rank). A drift's ratio is near
-// 1, a cycle's near 0: below stall_coherence the solve has stalled.
-class StallWatch {
- public:
-  // Windows of `window` sweeps (0: none), the impulses at their start kept in `window_start`.
-  StallWatch(int window, double coherence, std::vector<Local2>& window_start, SweepExchange* exchange)
-      : window_(window), coherence_(coherence), window_start_(window_start), exchange_(exchange)
-  {
-  }
-
-  // Starts a window at the current impulses.
-  void start(const std::vector<Contact>& contacts, int iterations)
-  {
-    if (window_ == 0) return;
-    window_start_.resize(contacts.size());
-    for (std::size_t k = 0; k < contacts.size(); k++) window_start_[k] = contacts[k].impulse;
-    start_ = iterations;
-    path_ = 0.0;
-  }
-
-  // Counts a sweep's change (summed over ranks).
-  void add_sweep(const SweepChange& change)
-  {
-    if (window_ > 0) path_ += std::sqrt(change.sum_change_sq);
-  }
-
-  // True if a window ends at this sweep count (stalled() then decides on it).
-  bool ends(int iterations) const { return window_ > 0 && iterations - start_ >= window_; }
-  // The sweep count its window started at.
-  int started() const { return start_; }
-
-  // After a full sweep: true if the window just ended has stalled; else a new window starts
-  // when one has ended.
-  bool stalled(const std::vector<Contact>& contacts, int iterations)
-  {
-    if (window_ == 0 || iterations - start_ < window_) return false;
-    double sums[2] = {net_change_sq(contacts), path_};
-    if (exchange_) exchange_->sum_over_ranks(sums, 2);
-    if (std::sqrt(sums[0]) < coherence_ * sums[1]) return true;
-    start(contacts, iterations);
-    return false;
-  }
-
- private:
-  // Contacts that joined during the window started from a zero impulse.
-  double net_change_sq(const std::vector<Contact>& contacts) const
-  {
-    double sum = 0.0;
-    for (std::size_t k = 0; k < contacts.size(); k++) {
-      const Local2 before = k < window_start_.size() ? window_start_[k] : Local2{};
-      const Local2 moved =
-          contacts[k].delassus.times({contacts[k].impulse.n - before.n, contacts[k].impulse.t - before.t});
-      sum += moved.n * moved.n + moved.t * moved.t;
-    }
-    return sum;
-  }
-
-  int window_;
-  double coherence_;
-  std::vector<Local2>& window_start_;
-  SweepExchange* exchange_;
-  int start_ = 0;
-  double path_ = 0.0;
-};
-
-// The impulses taken off the velocities and set to zero: a solve starting again from nothing.
-void remove_impulses(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity)
-{
-  for (Contact& c : contacts) {
-    apply_impulse(c, {-c.impulse.n, -c.impulse.t}, velocity[c.body_a], velocity[c.body_b]);
-    c.impulse = {};
-    c.direction = {};
-  }
-}
-
-// The stall rescue of one solve: its test (StallWatch) and what each stall changes. At the first
-// stall the sweeps go on relaxed by w = stall_relaxation, unaccelerated. At each further stall the
-// solve drops its impulses and starts again from zero, relaxed by w once more (w^2, w^3, ...,
-// down to min_relaxation): in a dense flow at mu 2 the warm start can hold the iterate where no
-// sweep settles, and so can a relaxation too weak for the problem, while a solve from zero,
-// relaxed enough, finds a solution (doc/stalls.md).
-class StallRescue {
- public:
-  StallRescue(const SolverSettings& settings, GaussSeidel::StallWorkspace& work, SweepExchange* exchange,
-              const std::vector<Contact>& contacts)
-      : watch_(settings.stall_window, settings.stall_coherence, work.window_start, exchange),
-        slow_watch_(settings.stall_block > 0 ? slow_windows * settings.stall_window : 0, settings.stall_coherence,
-                    work.slow_window_start, exchange),
-        sweeping_(settings),
-        exchange_(exchange)
-  {
-    watch_.start(contacts, 0);
-    slow_watch_.start(contacts, 0);
-  }
-
-  // The settings the next sweeps run with.
-  const SolverSettings& sweeping() const { return sweeping_; }
-
-  // Counts a sweep (summed over ranks) into the test and the report.
-  void add_sweep(const SweepChange& change, SolveReport& report)
-  {
-    watch_.add_sweep(change);
-    slow_watch_.add_sweep(change);
-    report.stalled_sweeps += stalls_ > 0;
-  }
-
-  // After a full sweep that did not end the solve, once a block rescue has begun: the kept block
-  // solved exactly again every SolverSettings::stall_block_every sweeps. Several ranks solve
-  // theirs at once, as they do the stalls' blocks, and share the velocities they changed.
-  void solve_kept_block(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, SolveReport& report)
-  {
-    const int every = sweeping_.stall_block_every;
-    // The same on every rank: the sweep count and the block solves are.
-    if (report.block_solves == 0 || every == 0 || report.iterations - last_kept_solve_ < every) return;
-    last_kept_solve_ = report.iterations;
-    if (!kept_.empty()) {
-      solve_block(contacts, velocity, kept_);
-      ++report.kept_block_solves;
-    }
-    if (exchange_) exchange_->share_velocities();
-  }
-
-  // After a full sweep that did not end the solve: true if a stall was met and the sweeps change.
-  bool act(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, SolveReport& report)
-  {
-    if (sweeping_.stall_block > 0) return act_by_blocks(contacts, velocity, report);
-    const double relaxation = sweeping_.relaxation * sweeping_.stall_relaxation;
-    if (relaxation < min_relaxation || !watch_.stalled(contacts, report.iterations)) return false;
-    if (stalls_ > 0) {
-      remove_impulses(contacts, velocity);
-      if (exchange_) exchange_->share_velocities();
-      ++report.cold_restarts;
-    }
-    ++stalls_;
-    relax_unaccelerated(relaxation);
-    watch_.start(contacts, report.iterations);
-    return true;
-  }
-
- private:
-  // stall_block > 0: the first stall relaxes the sweeps; every stall solves the block around the
-  // residual's carriers exactly, one shared body further out each time, up to stall_block.
-  // Once stalled, a window that does not halve the norm is a stall too: relaxed sweeps can drift
-  // on a plateau that the coherence test no longer sees as a cycle. So is a cycle slower
-  // than the window (cycles_slowly), stalled before or not.
-  bool act_by_blocks(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity, SolveReport& report)
-  {
-    const bool window_ends = watch_.ends(report.iterations);
-    bool stalled = watch_.stalled(contacts, report.iterations);
-    if (window_ends && stalls_ > 0 && !(report.residual <= 0.5 * window_residual_)) stalled = true;
-    if (window_ends) window_residual_ = report.residual;
-    if (cycles_slowly(contacts, report)) stalled = true;
-    if (!stalled) return false;
-    if (++stalls_ == 1) relax_unaccelerated(sweeping_.relaxation * sweeping_.stall_relaxation);
-    const int hops = std::min(stalls_, sweeping_.stall_block);
-    const std::vector<int> seeds = residual_carriers(contacts, velocity, carried_share, max_carriers);
-    // The budget grows with the sweeps spent since the first stall: a trap that outlasts small
-    // blocks gets larger ones, their cost still within the sweeps' (cd::block_budget).
-    const int budget = block_budget(sweeping_.stall_window + report.stalled_sweeps, contacts.size(), max_carriers);
-    const std::vector<int> block = block_around(contacts, static_cast<int>(velocity.size()), seeds, hops, budget);
-    keep(block, budget);
-    solve_block(contacts, velocity, block);
-    if (exchange_) exchange_->share_velocities();
-    ++report.block_solves;
-    report.largest_block = std::max(report.largest_block, static_cast<int>(block.size()));
-    last_kept_solve_ = report.iterations;
-    watch_.start(contacts, report.iterations);
-    slow_watch_.start(contacts, report.iterations);
-    return true;
-  }
-
-  // After a full sweep: true if a slow window (slow_windows stall windows) has just ended with
-  // no new lowest norm in it and its impulses gone back and forth (the coherence test on it). A
-  // cycle slower than the stall window looks coherent within it (a chute step at 1e-4: the norm
-  // between 1.5e-4 and 8e-4 for 8 000 sweeps, 3 to 15 contacts switching a sweep, no stall
-  // seen); a slow drift keeps its direction, and a solve that still reaches lower norms is left
-  // alone.
-  bool cycles_slowly(const std::vector<Contact>& contacts, const SolveReport& report)
-  {
-    if (!(report.residual >= lowest_residual_)) lowest_residual_ = report.residual, lowest_at_ = report.iterations;
-    if (!slow_watch_.ends(report.iterations)) return false;
-    const bool progressed = lowest_at_ > slow_watch_.started();
-    const bool went_back_and_forth = slow_watch_.stalled(contacts, report.iterations);
-    if (went_back_and_forth && progressed) slow_watch_.start(contacts, report.iterations);
-    return went_back_and_forth && !progressed;
-  }
-
-  // The kept block: the union of the stalls' blocks while it fits the budget, else the newest.
-  void keep(const std::vector<int>& block, int budget)
-  {
-    std::vector<int> joined;
-    std::set_union(kept_.begin(), kept_.end(), block.begin(), block.end(), std::back_inserter(joined));
-    kept_ = static_cast<int>(joined.size()) <= budget ? std::move(joined) : block;
-  }
-
-  void relax_unaccelerated(double relaxation)
-  {
-    sweeping_.relaxation = relaxation;
-    sweeping_.acceleration = Acceleration::none;
-  }
-
-  // The block's seeds: the contacts carrying this share of the residual, at most max_carriers of
-  // them; the block as cd::block_budget allows.
-  static constexpr double carried_share = 0.9;
-  static constexpr int max_carriers = 16;
-  // The weakest relaxation the ladder goes to: below it a sweep barely moves.
-  static constexpr double min_relaxation = 0.1;
-  // The slow window of cycles_slowly, in stall windows.
-  static constexpr int slow_windows = 10;
-  double window_residual_ = 0.0;  // the norm where the current window started (block rescue)
-  // The lowest norm of the full sweeps so far, and the sweep count it was met at.
-  double lowest_residual_ = std::numeric_limits<double>::infinity();
-  int lowest_at_ = 0;
-  std::vector<int> kept_;    // the kept block (contact indices, sorted)
-  int last_kept_solve_ = 0;  // the sweep count at the last solve of a block
-  StallWatch watch_;
-  StallWatch slow_watch_;  // cycles_slowly's; none with stall_block 0, whose restarts do not use it
-  SolverSettings sweeping_;
-  SweepExchange* exchange_;
-  int stalls_ = 0;
-};
-
 // The contacts a cycle's full sweep left changing, by their place in the contact list (in
 // sweep order). The quiet ones keep their impulses until the next full sweep, so their share of
 // the norm's scale is summed once.
@@ -511,9 +276,10 @@ void select_active(GaussSeidel::CycleWorkspace& work, const std::vector<Contact>
 
 // A sweep over the active contacts, its sums completed by the quiet contacts' scale.
 SweepChange sweep_active(const GaussSeidel::CycleWorkspace& work, std::vector<Contact>& contacts,
-                         BodyVelocity* velocity, const SolverSettings& settings, bool sliding_images, double beta)
+                         BodyVelocity* velocity, ConvergenceNorm norm, const GaussSeidelSettings& settings,
+                         bool sliding_images, double beta)
 {
-  SweepChange change = sweep_listed(contacts.data(), work.active, velocity, settings, sliding_images, beta);
+  SweepChange change = sweep_listed(contacts.data(), work.active, velocity, norm, settings, sliding_images, beta);
   change.merge(work.quiet);
   return change;
 }
@@ -531,12 +297,12 @@ SolveReport GaussSeidel::solve_in_full_sweeps(std::vector<Contact>& contacts, st
 {
   SolveReport report;
   ConjugateBeta conjugate;
-  StallRescue rescue(settings_, stall_, exchange, contacts);
+  StallRescue rescue(settings_.gauss_seidel, stall_, exchange, contacts);
   bool sliding_images = has_sliding_images(contacts);
   double beta = 0.0;
   while (report.iterations < settings_.max_iterations) {
     SweepChange change = sweep_measuring(contacts.data(), contacts.data() + contacts.size(), velocity.data(),
-                                         rescue.sweeping(), sliding_images, beta, nullptr);
+                                         settings_.norm, rescue.sweeping(), sliding_images, beta, nullptr);
     if (exchange) exchange->after_sweep(change);
     const bool converged = count_sweep(report, change, contacts.size(), settings_);
     rescue.add_sweep(change, report);
@@ -562,15 +328,15 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
   work.change_sq.resize(contacts.size());
   SolveReport report;
   ConjugateBeta conjugate;
-  StallRescue rescue(settings_, stall_, exchange, contacts);
+  StallRescue rescue(settings_.gauss_seidel, stall_, exchange, contacts);
   bool sliding_images = has_sliding_images(contacts);
   double previous_full_residual = std::numeric_limits<double>::infinity();
   for (int full_sweeps = 1; report.iterations < settings_.max_iterations; full_sweeps++) {
     // The full sweep records no conjugate direction: the first active sweep, unpushed, does.
-    SolverSettings full_sweep = rescue.sweeping();
+    GaussSeidelSettings full_sweep = rescue.sweeping();
     full_sweep.acceleration = Acceleration::none;
     SweepChange change = sweep_measuring(contacts.data(), contacts.data() + contacts.size(), velocity.data(),
-                                         full_sweep, sliding_images, 0.0, work.change_sq.data());
+                                         settings_.norm, full_sweep, sliding_images, 0.0, work.change_sq.data());
     if (exchange) exchange->after_sweep(change);
     const bool converged = count_sweep(report, change, contacts.size(), settings_);
     rescue.add_sweep(change, report);
@@ -591,9 +357,9 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
     conjugate.restart(report.residual < previous_full_residual);
     previous_full_residual = report.residual;
     double beta = 0.0;
-    for (int k = 1; k < settings_.full_sweep_every && report.iterations < settings_.max_iterations; k++) {
+    for (int k = 1; k < settings_.gauss_seidel.full_sweep_every && report.iterations < settings_.max_iterations; k++) {
       SweepChange active_change =
-          sweep_active(work, contacts, velocity.data(), rescue.sweeping(), sliding_images, beta);
+          sweep_active(work, contacts, velocity.data(), settings_.norm, rescue.sweeping(), sliding_images, beta);
       if (exchange) exchange->after_sweep(active_change);
       const bool active_converged = count_sweep(report, active_change, work.active.size(), settings_);
       rescue.add_sweep(active_change, report);
@@ -606,14 +372,10 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
   return report;
 }
 
-// Written so that NaN fails every test. A tolerance of 1 or more is met by any first sweep (the
-// norm compares the sweep's change with the impulses' scale), one of 0 runs the cap's sweeps; relaxation above 1 is not offered
-// (over-relaxation gained nothing in time: doc/benchmarks.md).
-std::string check(const SolverSettings& settings)
+// Written so that NaN fails every test. Relaxation above 1 is not offered (over-relaxation
+// gained nothing in time: doc/benchmarks.md).
+std::string check(const GaussSeidelSettings& settings)
 {
-  if (!(settings.tolerance >= 0.0 && settings.tolerance < 1.0))
-    return refusal("tolerance", "in [0,1)", settings.tolerance);
-  if (settings.max_iterations < 1) return refusal("max_iterations", ">= 1", settings.max_iterations);
   if (!(settings.relaxation > 0.0 && settings.relaxation <= 1.0))
     return refusal("relaxation", "in (0,1]", settings.relaxation);
   if (settings.full_sweep_every < 1) return refusal("full_sweep_every", ">= 1", settings.full_sweep_every);
@@ -629,7 +391,8 @@ std::string check(const SolverSettings& settings)
 
 GaussSeidel::GaussSeidel(const SolverSettings& settings) : settings_(settings)
 {
-  const std::string problem = check(settings_);
+  std::string problem = check_stopping(settings_);
+  if (problem.empty()) problem = check(settings_.gauss_seidel);
   if (!problem.empty()) throw std::invalid_argument(problem);
 }
 
@@ -640,8 +403,8 @@ SolveReport GaussSeidel::solve(std::vector<Contact>& contacts, std::vector<BodyV
   // problem without contacts has converged); with an exchange, every rank takes part in every
   // sweep's exchange, contacts or not.
   if (contacts.empty() && !exchange && !(joining && joining->join(true))) return {};
-  return settings_.full_sweep_every > 1 ? solve_in_cycles(contacts, velocity, exchange, joining)
-                                        : solve_in_full_sweeps(contacts, velocity, exchange, joining);
+  return settings_.gauss_seidel.full_sweep_every > 1 ? solve_in_cycles(contacts, velocity, exchange, joining)
+                                                     : solve_in_full_sweeps(contacts, velocity, exchange, joining);
 }
 
 SolveReport solve_gauss_seidel(std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity,

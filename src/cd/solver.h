@@ -1,13 +1,18 @@
 // The seam between a step and the method that finds its impulses. A step (cd/step.h) hands a
 // solver its prepared contacts and the bodies' velocities with the contacts' impulses already
 // applied; the solver returns with the impulses and velocities of its answer and a report.
-// Gauss–Seidel (cd/gauss_seidel.h) is the one method today; another plugs in here.
+// The settings name the method; cd::make_solver (cd/solver_registry.h) builds it. Gauss–Seidel
+// (cd/gauss_seidel.h) is the core's; another is one class implementing ContactSolver and one
+// cd::register_solver call, from inside the core or outside it (a bench or a test registers its
+// own: the core never names it).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "cd/contact.h"
 #include "cd/convergence.h"
+#include "cd/gauss_seidel_settings.h"
 
 namespace cd {
 
@@ -22,7 +27,27 @@ struct SolveReport {
   int block_solves = 0;       // times the rescue solved the contacts around the residual exactly
   int largest_block = 0;      // the most contacts one of those block solves held
   int kept_block_solves = 0;  // times the rescue solved its kept block again between stalls
+
+  // Adds the solve `later`, which went on from where this one stopped (a step's solves): counts
+  // add up, the largest block is the larger, the norm and convergence are the later's.
+  void add(const SolveReport& later);
 };
+
+// What every method reads, its name, and Gauss–Seidel's own knobs.
+struct SolverSettings {
+  // The fix's default: what every deck of the project uses, converged for the chute's flowing
+  // layer (doc/accuracy.md); 1e-4 took the 1000-sweep cap in ordinary piles.
+  double tolerance = 1.0e-3;
+  int max_iterations = 1000;  // sweeps, or a method's iterations
+  ConvergenceNorm norm = ConvergenceNorm::quadratic;
+  std::string method = "gauss_seidel";  // a registered name (cd::make_solver)
+  GaussSeidelSettings gauss_seidel{};
+};
+
+// Empty if the tolerance and the cap can run, else one line naming the keyword and its range,
+// e.g. "tolerance must be in [0,1), got 2". Tolerance 0 (always the cap's iterations) is allowed
+// here; a step refuses it (cd::check(StepSettings)).
+std::string check_stopping(const SolverSettings& settings);
 
 // What a domain-decomposed run does between the sweeps of one rank: after every sweep it
 // exchanges ghost velocities and reduces `change` over ranks; between solves it tells whether

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "cd/refusal.h"
+#include "cd/solver_registry.h"
 
 namespace cd {
 
@@ -60,17 +61,7 @@ SolveReport solve_step(ContactSolver& solver, StepContacts& contacts, BodySet& b
     bool promoted = !checked && promote_closing_pairs(contacts, bodies, step);
     if (exchange) promoted = exchange->on_any_rank(promoted);
     if (!promoted) break;
-    const SolveReport more = solver.solve(contacts.solved, bodies.velocity, exchange, during);
-    report.iterations += more.iterations;
-    report.solves += 1;
-    report.contact_updates += more.contact_updates;
-    report.stalled_sweeps += more.stalled_sweeps;
-    report.cold_restarts += more.cold_restarts;
-    report.block_solves += more.block_solves;
-    report.largest_block = std::max(report.largest_block, more.largest_block);
-    report.kept_block_solves += more.kept_block_solves;
-    report.residual = more.residual;
-    report.converged = more.converged;
+    report.add(solver.solve(contacts.solved, bodies.velocity, exchange, during));
   }
   reach.end_step(needed);
   return report;
@@ -95,7 +86,7 @@ std::string check(const StepSettings& settings)
   // A step always asks for convergence: tolerance 0 (a fixed sweep count) is the solver's alone.
   if (!(settings.solver.tolerance > 0.0 && settings.solver.tolerance < 1.0))
     return refusal("tolerance", "in (0,1)", settings.solver.tolerance);
-  const std::string solver_problem = check(settings.solver);
+  const std::string solver_problem = check(settings.solver);  // the method's name and knobs
   if (!solver_problem.empty()) return solver_problem;
   if (settings.alert && !(*settings.alert >= 0.0)) return refusal("alert", ">= 0", *settings.alert);
   if (settings.max_solves < 1) return refusal("max_solves", ">= 1", settings.max_solves);
@@ -106,7 +97,7 @@ MoreauJeanStep::MoreauJeanStep(const StepSettings& settings, std::uint64_t shuff
     : settings_(settings), alert_(settings.alert.value_or(0.0)), reach_(alert_), shuffle_rng_(shuffle_seed)
 {
   require_sound(settings_);
-  solver_ = std::make_unique<GaussSeidel>(settings_.solver);
+  solver_ = make_solver(settings_.solver);
 }
 
 void MoreauJeanStep::set_mean_diameter(double mean_diameter)

@@ -1,14 +1,15 @@
 // One Moreau–Jean step of rigid disks, owned by the core: the host (the LAMMPS fix, the testbed)
 // holds positions, forces and the per-body storage of carried impulses; the step does the rest.
 //
-//   predictor   x_m = x_n + (1 - theta) dt v_n                       (host applies predicted_motion)
+//   predictor   x_m = x_n + (1 - theta) dt v_n                       (host applies predicted_motion, cd/kinematics.h)
 //   free        v_free = v_n + dt F / m, spin likewise                 (free_velocity)
 //   pairs       the host offers the pairs near each other (StepHost::collect_pairs): solved if
 //               candidates, watched otherwise, each with its key and the impulse it carried,
 //               which starts a solved one (the warm start)
 //   order       interleaved (cd::interleaved_order) or shuffled; keys travel with the contacts
-//   solve       the solver (cd/solver.h: Gauss–Seidel); watched pairs the solution would drive into overlap join and the
-//               solve goes on (the solve loop, step.cpp)
+//   solve       the solver the settings name (cd/solver.h, built by cd::make_solver); watched
+//               pairs the solution would drive into overlap join and the solve goes on (the
+//               solve loop, step.cpp)
 //   store       the host keeps every loaded contact's impulse, by key (StepContacts::for_each_loaded)
 //   corrector   x_{n+1} = x_m + theta dt v_{n+1}                       (host applies corrected_motion)
 #pragma once
@@ -22,48 +23,12 @@
 
 #include "cd/contact.h"
 #include "cd/detection.h"
-#include "cd/gauss_seidel.h"
+#include "cd/kinematics.h"
 #include "cd/order.h"
 #include "cd/problem_file.h"
 #include "cd/solver.h"
 
 namespace cd {
-
-// Displacement of a body's centre (m).
-struct Displacement {
-  double dx = 0.0;
-  double dy = 0.0;
-};
-
-// Predictor: the step's first displacement, to x_m = x_n + (1 - theta) dt v_n.
-inline Displacement predicted_motion(const BodyVelocity& start, const StepParameters& step)
-{
-  const double shift = step.lead();
-  return {shift * start.vx, shift * start.vy};
-}
-
-// Corrector: from x_m to x_{n+1} = x_m + theta dt v_{n+1}.
-inline Displacement corrected_motion(const BodyVelocity& end, const StepParameters& step)
-{
-  const double advance = step.advance();
-  return {advance * end.vx, advance * end.vy};
-}
-
-// The whole step's displacement, dt ((1 - theta) v_n + theta v_{n+1}).
-inline Displacement step_motion(const BodyVelocity& start, const BodyVelocity& end, const StepParameters& step)
-{
-  const Displacement first = predicted_motion(start, step);
-  const Displacement second = corrected_motion(end, step);
-  return {first.dx + second.dx, first.dy + second.dy};
-}
-
-// v_n + dt (force / m, torque / I): the velocity the step would end with without contacts.
-inline BodyVelocity free_velocity(const BodyVelocity& start, const BodyInertia& inertia, double fx, double fy,
-                                  double torque, double dt)
-{
-  return {start.vx + dt * fx * inertia.inv_mass, start.vy + dt * fy * inertia.inv_mass,
-          start.spin + dt * torque * inertia.inv_inertia};
-}
 
 // What a step asks of its host: the pairs near each other. The host keeps the carried impulses
 // (per body, e.g. cd::impulse_row): it hands each pair's with the pair, and after the step
@@ -90,7 +55,7 @@ inline constexpr double default_alert_diameters = 0.01;
 
 struct StepSettings {
   double theta = 0.5;
-  SolverSettings solver;
+  SolverSettings solver;  // the method the step builds (cd::make_solver) and its knobs
   // m: candidate selection (cd::is_candidate); not given, default_alert_diameters times the
   // grains' mean diameter, which the host tells as it learns it (MoreauJeanStep::set_mean_diameter).
   std::optional<double> alert;
@@ -147,7 +112,7 @@ class MoreauJeanStep {
 
   StepSettings settings_;
   double alert_ = 0.0;                     // m: settings_.alert, or the default's for the grain size
-  std::unique_ptr<ContactSolver> solver_;  // settings_.solver's method
+  std::unique_ptr<ContactSolver> solver_;  // settings_.solver's method (cd::make_solver)
   PairReach reach_;
   StepContacts contacts_;
   std::mt19937_64 shuffle_rng_;

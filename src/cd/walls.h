@@ -5,41 +5,10 @@
 
 #include "cd/contact.h"
 #include "cd/contact_geometry.h"
+#include "cd/kinematics.h"
+#include "cd/periodic_box.h"
 
 namespace cd {
-
-// Periodic images of a 2D box, orthogonal or tilted (LAMMPS's triclinic box: edge vectors
-// (length_x, 0) and (tilt_xy, length_y)), at one instant. A deforming box moves its images:
-// the image shifted by (i, j) edge vectors moves at i (rate_x, 0) + j (rate_xy, rate_y)
-// relative to the original (LAMMPS's h_rate; fix deform ... remap v).
-struct PeriodicBox {
-  bool periodic_x = false;
-  bool periodic_y = false;
-  double length_x = 0.0;  // m
-  double length_y = 0.0;  // m
-  double tilt_xy = 0.0;   // m
-  double rate_x = 0.0;    // d length_x / dt (m/s)
-  double rate_y = 0.0;    // d length_y / dt (m/s)
-  double rate_xy = 0.0;   // d tilt_xy / dt (m/s)
-
-  // Whole edge vectors along x and y.
-  struct Shift {
-    int x = 0;
-    int y = 0;
-  };
-
-  // Reduces (dx, dy) to its nearest image, y first then x (exact for |tilt_xy| <= length_x / 2,
-  // which LAMMPS keeps), and returns the edge vectors subtracted.
-  Shift minimum_image(double& dx, double& dy) const;
-  // The edge vectors that carry a point (dx, dy) from the box's lower corner into the box, as
-  // LAMMPS wraps atoms that crossed a periodic side: whole cells along y, then along x measured
-  // parallel to the tilted side. Zero along a direction that is not periodic.
-  Shift wrapping(double dx, double dy) const;
-  // Velocity of the image `shift` edge vectors away relative to the original (m/s).
-  void image_velocity(const Shift& shift, double& vx, double& vy) const;
-  // The box `elapsed` seconds later at its present rates.
-  PeriodicBox advanced(double elapsed) const;
-};
 
 // Part of a wall that a disk touches; ends of a segment are point contacts of their own.
 enum class WallPart : int { interior = 0, end_a = 1, end_b = 2 };
@@ -82,5 +51,16 @@ struct SurfaceMotion {
   // The largest speed of the wall within `distance` of (x, y) (m/s).
   double speed_bound(double x, double y, double distance) const;
 };
+
+// A wall's rigid motion over the step (the chords of its travel from pose `start` to `end`, cd::WallPose),
+// met at x_m (cd::wall_at_solve): it turns about its pivot (pivot_x, pivot_y), carried by the
+// displacement at x_m.
+inline SurfaceMotion wall_motion(const WallPose& start, const WallPose& end, double pivot_x, double pivot_y,
+                                 const StepParameters& step)
+{
+  const WallPose at_solve = wall_at_solve(start, end, step);
+  return {(end.dx - start.dx) / step.dt, (end.dy - start.dy) / step.dt, (end.angle - start.angle) / step.dt,
+          pivot_x + at_solve.dx, pivot_y + at_solve.dy};
+}
 
 }  // namespace cd

@@ -35,7 +35,7 @@ struct BedSpec {
   std::uint64_t seed = 20240601;
   cd::ContactLaw grain_law{0.5, 0.5};
   cd::ContactLaw wall_law{0.5, 0.5};  // the floor y = 0
-  cd::SolverSettings solver{1.0e-4, 1000, 1.0, cd::ConvergenceNorm::quadratic};
+  cd::SolverSettings solver{1.0e-4, 1000, cd::ConvergenceNorm::quadratic};
 };
 
 // A pair the neighbour list would hand to the fix: body b is a disk seen at its periodic image

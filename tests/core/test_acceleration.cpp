@@ -37,8 +37,8 @@ Solved solve_step(bool warm, double tolerance, cd::Acceleration acceleration, in
   cd::apply_impulses(s.contacts, s.velocity);
   cd::SolverSettings settings = bed().spec().solver;
   settings.tolerance = tolerance;
-  settings.acceleration = acceleration;
-  settings.full_sweep_every = full_sweep_every;
+  settings.gauss_seidel.acceleration = acceleration;
+  settings.gauss_seidel.full_sweep_every = full_sweep_every;
   s.report = cd::solve_gauss_seidel(s.contacts, s.velocity, settings);
   return s;
 }
@@ -133,7 +133,7 @@ TEST(QuietContacts, ACapBeforeTheFullSweepIsNotConvergence)
   const testbed::FrozenStep frozen = bed().freeze();
   cd::SolverSettings settings = bed().spec().solver;
   settings.tolerance = 1e-3;
-  settings.full_sweep_every = 8;
+  settings.gauss_seidel.full_sweep_every = 8;
   settings.max_iterations = free_run.report.iterations - 1;  // the last sweep that checks is cut
   std::vector<cd::Contact> contacts;
   testbed::prepare_contacts(frozen, false, contacts);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cd/block_solve.h"
+#include "cd/dense_solve.h"
 #include "cd/friction_states.h"
 #include "cd/lemke.h"
 #include "cd/problem_file.h"
@@ -184,9 +185,9 @@ TEST(StallRescue, ForcedStallsEndInBlockSolvesNotRestarts)
   cd::SolverSettings settings;
   settings.tolerance = 0.0;
   settings.max_iterations = 23;
-  settings.stall_window = 5;
-  settings.stall_coherence = 1.0 - 1e-15;
-  settings.stall_block = 3;
+  settings.gauss_seidel.stall_window = 5;
+  settings.gauss_seidel.stall_coherence = 1.0 - 1e-15;
+  settings.gauss_seidel.stall_block = 3;
   const cd::SolveReport report = cd::solve_gauss_seidel(pile.contacts, pile.bodies.velocity, settings);
   const int first_stall = report.iterations - report.stalled_sweeps;
   EXPECT_EQ(report.iterations, 23);
@@ -203,7 +204,7 @@ cd::SolverSettings chute_deck(double tolerance)
   cd::SolverSettings deck;
   deck.tolerance = tolerance;
   deck.max_iterations = 10000;
-  deck.acceleration = cd::Acceleration::conjugate;
+  deck.gauss_seidel.acceleration = cd::Acceleration::conjugate;
   return deck;
 }
 
@@ -227,7 +228,7 @@ TEST(StallRescue, ATrappedChuteStepConvergesByBlocksWhereRestartsDoNot)
 {
   const auto solve = [&](int stall_block) {
     cd::SolverSettings settings = chute_deck(1e-3);
-    settings.stall_block = stall_block;
+    settings.gauss_seidel.stall_block = stall_block;
     return solve_saved_step(CD_TEST_DATA "/trapped_mu2_28deg.cdp", settings);
   };
   const cd::SolveReport blocks = solve(3);
@@ -246,13 +247,14 @@ TEST(StallRescue, ATrappedChuteStepConvergesByBlocksWhereRestartsDoNot)
 TEST(StallRescue, ARelaxedPlateauAfterAStallEndsInMoreBlockSolves)
 {
   cd::SolverSettings deck = chute_deck(1e-3);
-  deck.full_sweep_every = 8;
+  deck.gauss_seidel.full_sweep_every = 8;
   const cd::SolveReport report = solve_saved_step(relaxed_plateau_step, deck);
   EXPECT_TRUE(report.converged) << report.iterations << " sweeps";
   EXPECT_LT(report.iterations, 2000);
   EXPECT_GE(report.block_solves, 2);
   // Its blocks stay within the budget, (100 x 4550)^(1/3) = 76 contacts (up to 200 they held 129).
-  EXPECT_EQ(cd::block_budget(deck.stall_window, cd::read_problem(relaxed_plateau_step).contacts.size(), 16), 76);
+  EXPECT_EQ(
+      cd::block_budget(deck.gauss_seidel.stall_window, cd::read_problem(relaxed_plateau_step).contacts.size(), 16), 76);
   EXPECT_LE(report.largest_block, 76);
   EXPECT_GE(report.largest_block, 16);
 }
@@ -290,8 +292,8 @@ TEST(StallRescue, AKeptBlockConvergesAStepThatStallBlocksAloneDoNot)
 {
   const auto solve = [&](int full_sweep_every, int stall_block_every) {
     cd::SolverSettings settings = chute_deck(1e-4);
-    settings.full_sweep_every = full_sweep_every;
-    settings.stall_block_every = stall_block_every;
+    settings.gauss_seidel.full_sweep_every = full_sweep_every;
+    settings.gauss_seidel.stall_block_every = stall_block_every;
     return solve_saved_step(CD_TEST_DATA "/kept_block_mu2_30deg_1e-4.cdp", settings);
   };
   const cd::SolveReport kept = solve(1, 25);
@@ -336,7 +338,8 @@ TEST(StallRescue, ABudgetGrowingWithTheSweepsSpentConvergesAStepSmallBlocksDoNot
   const char* const step = CD_TEST_DATA "/growing_budget_plane_shear_mu2_1e-4.cdp";
   const cd::SolveReport report = solve_saved_step(step, fix_defaults);
   EXPECT_TRUE(report.converged) << report.iterations << " sweeps, norm " << report.residual;
-  const int first_budget = cd::block_budget(fix_defaults.stall_window, cd::read_problem(step).contacts.size(), 16);
+  const int first_budget =
+      cd::block_budget(fix_defaults.gauss_seidel.stall_window, cd::read_problem(step).contacts.size(), 16);
   EXPECT_EQ(first_budget, 52);
   EXPECT_GT(report.largest_block, first_budget);
 }
@@ -349,7 +352,7 @@ TEST(StallRescue, ABudgetGrowingWithTheSweepsSpentConvergesAStepSmallBlocksDoNot
 TEST(StallRescue, AWanderingSolveThatStillProgressesIsNoSlowCycle)
 {
   cd::SolverSettings deck = chute_deck(1e-3);
-  deck.full_sweep_every = 8;
+  deck.gauss_seidel.full_sweep_every = 8;
   const cd::SolveReport report = solve_saved_step(CD_TEST_DATA "/wandering_mu0.5_12d_1e-3.cdp", deck);
   EXPECT_TRUE(report.converged);
   EXPECT_GT(report.iterations, 2000);
@@ -374,7 +377,7 @@ TrappedBlock trapped_block(int hops)
   cd::apply_impulses(contacts, velocity);
   cd::SolverSettings sweeps = chute_deck(1e-4);
   sweeps.max_iterations = 300;
-  sweeps.stall_window = 0;
+  sweeps.gauss_seidel.stall_window = 0;
   cd::solve_gauss_seidel(contacts, velocity, sweeps);
   const std::vector<int> seeds = cd::residual_carriers(contacts, velocity, 0.9, 16);
   const std::vector<int> block = cd::block_around(contacts, static_cast<int>(velocity.size()), seeds, hops, 200);
@@ -384,28 +387,23 @@ TrappedBlock trapped_block(int hops)
     trapped.swept.push_back(cd::state_of(contacts[k].impulse, contacts[k].mu));
     trapped.impulses.push_back(contacts[k].impulse);
   }
-  EXPECT_TRUE(cd::solve_lcp_lemke(trapped.problem.M, trapped.problem.q, trapped.lemke, 100000).solved);
+  const cd::BlockLcp lcp = cd::to_lcp(trapped.problem);
+  EXPECT_TRUE(cd::solve_lcp_lemke(lcp.M, lcp.q, trapped.lemke, 100000).solved);
   return trapped;
 }
 
 // The contacts that break the Coulomb–Signorini law at impulses p against the block's own
-// response u = q + W p (read from its complementarity problem), to 1e-9 of the scales of p and q.
+// response u = u0 + W p, to 1e-9 of the scales of p and u0.
 std::size_t law_breakers(const cd::BlockProblem& problem, const std::vector<cd::Local2>& p)
 {
-  const std::size_t m = problem.mu.size(), n = 4 * m;
-  double p_scale = 0.0, u_scale = 0.0;
-  for (std::size_t i = 0; i < m; i++) {
-    p_scale = std::max({p_scale, std::fabs(p[i].n), std::fabs(p[i].t)});
-    u_scale = std::max({u_scale, std::fabs(problem.q[i]), std::fabs(problem.q[m + i])});
-  }
-  const double p_floor = 1e-9 * p_scale, u_floor = 1e-9 * u_scale;
+  const std::size_t m = problem.size();
+  double p_scale = 0.0;
+  for (std::size_t i = 0; i < m; i++) p_scale = std::max({p_scale, std::fabs(p[i].n), std::fabs(p[i].t)});
+  const double p_floor = 1e-9 * p_scale, u_floor = 1e-9 * problem.velocity_scale();
   std::size_t breakers = 0;
   for (std::size_t i = 0; i < m; i++) {
-    double un = problem.q[i], ut = problem.q[m + i];
-    for (std::size_t j = 0; j < m; j++) {
-      un += problem.M[i * n + j] * p[j].n + problem.M[i * n + m + j] * p[j].t;
-      ut += problem.M[(m + i) * n + j] * p[j].n + problem.M[(m + i) * n + m + j] * p[j].t;
-    }
+    const cd::Local2 u = problem.velocity(i, p);
+    const double un = u.n, ut = u.t;
     const double mu = problem.mu[i];
     const bool closed = p[i].n > p_floor;
     bool holds = p[i].n >= -p_floor && un >= -u_floor && (!closed || std::fabs(un) <= u_floor) &&
@@ -421,10 +419,7 @@ std::size_t law_breakers(const cd::BlockProblem& problem, const std::vector<cd::
 // Lemke's answer as impulses.
 std::vector<cd::Local2> lemkes_impulses(const TrappedBlock& trapped)
 {
-  const std::size_t m = trapped.swept.size();
-  std::vector<cd::Local2> p(m);
-  for (std::size_t i = 0; i < m; i++) p[i] = {trapped.lemke[i], trapped.lemke[m + i] - trapped.lemke[2 * m + i]};
-  return p;
+  return cd::impulses_from_lcp(trapped.lemke, trapped.swept.size());
 }
 
 // From the states the sweeps left, the contacts' states end at a solution of the law (at mu 2 it
@@ -470,6 +465,22 @@ TEST(FrictionStates, LemkeOnTheCyclingContactsAloneGivesTheWholeAnswer)
   ASSERT_TRUE(solve.solved);
   EXPECT_GE(solve.solves, 2);  // the two held ones wrong: a second problem
   EXPECT_EQ(law_breakers(trapped.problem, solve.answer), 0u);
+}
+
+// The states' dense solve: a system that needs a row swap (a zero first pivot), two right-hand
+// sides at once, solved to round-off; a singular one refused.
+TEST(DenseSolve, SolvesWithPivotingAndRefusesASingularSystem)
+{
+  std::vector<double> A{0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0};
+  const std::vector<double> x{1.0, -2.0, 0.5, 3.0, 4.0, -1.0};  // 3 x 2, row-major
+  std::vector<double> B(6, 0.0);
+  for (std::size_t row = 0; row < 3; row++)
+    for (std::size_t c = 0; c < 2; c++)
+      for (std::size_t j = 0; j < 3; j++) B[row * 2 + c] += A[row * 3 + j] * x[j * 2 + c];
+  ASSERT_TRUE(cd::solve_dense(A, B, 3, 2));
+  for (std::size_t k = 0; k < x.size(); k++) EXPECT_NEAR(B[k], x[k], 1e-14);
+  std::vector<double> singular{1.0, 2.0, 2.0, 4.0}, b{1.0, 2.0};
+  EXPECT_FALSE(cd::solve_dense(singular, b, 2));
 }
 
 }  // namespace

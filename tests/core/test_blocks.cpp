@@ -53,7 +53,7 @@ TEST(BlockSweep, TwoBlocksPushingOneBodyOvershootAndAlternate)
     EXPECT_NEAR(two_blocks.vy(), expected, 1e-12 * -two_blocks.fall) << "sweep " << sweep;
     EXPECT_EQ(two_blocks.pile.bodies.velocity[1].vx, 0.0);
   }
-  const cd::SolverSettings settings{1e-6, 50, 1.0, cd::ConvergenceNorm::quadratic};
+  const cd::SolverSettings settings{1e-6, 50, cd::ConvergenceNorm::quadratic};
   EXPECT_FALSE(testbed::solve_in_blocks(two_blocks.pile.contacts, block_ends, two_blocks.pile.bodies.velocity, settings)
                    .converged);
 }
@@ -115,7 +115,7 @@ TEST(BlockSweep, ConvergesToTheGaussSeidelSolution)
       block_ends.push_back(k + 1);
   ASSERT_EQ(block_ends.size(), static_cast<std::size_t>(slabs));
 
-  const cd::SolverSettings settings{1e-12, 100000, 1.0, cd::ConvergenceNorm::quadratic};
+  const cd::SolverSettings settings{1e-12, 100000, cd::ConvergenceNorm::quadratic};
   const cd::SolveReport in_blocks =
       testbed::solve_in_blocks(blocks.contacts, block_ends, blocks.bodies.velocity, settings);
   const cd::SolveReport in_order = cd::solve_gauss_seidel(plain.contacts, plain.bodies.velocity, settings);

@@ -40,7 +40,7 @@ cd::SolveReport solve(Impact& impact)
 {
   std::vector<cd::Contact> contacts{impact.contact};
   const cd::SolveReport report =
-      cd::solve_gauss_seidel(contacts, impact.bodies.velocity, {1e-12, 100, 1.0, cd::ConvergenceNorm::quadratic});
+      cd::solve_gauss_seidel(contacts, impact.bodies.velocity, {1e-12, 100, cd::ConvergenceNorm::quadratic});
   impact.contact = contacts[0];
   return report;
 }
@@ -164,7 +164,7 @@ TEST(Candidates, GentleClosureStopsAtContactWithoutRestitution)
   PairNearContact pair = pair_near_contact(gap, 0.0, 0.5);
   cd::prepare_mechanics(pair.contact, pair.gap, {0.0, 1.0}, pair.bodies, step);
   std::vector<cd::Contact> contacts{pair.contact};
-  cd::solve_gauss_seidel(contacts, pair.bodies.velocity, {1e-12, 100, 1.0, cd::ConvergenceNorm::quadratic});
+  cd::solve_gauss_seidel(contacts, pair.bodies.velocity, {1e-12, 100, cd::ConvergenceNorm::quadratic});
   const double u_n = cd::relative_velocity(contacts[0], pair.bodies.velocity[1], pair.bodies.velocity[2]).n;
   EXPECT_NEAR(cd::end_of_step_gap(gap, u_n, step), 0.0, 1e-15);
 }

@@ -43,7 +43,7 @@ TEST(ConvergenceNorm, ScaleFreeAcrossUnits)
                  : cd::disk_disk_geometry(k, cd::Disk{0, (2 * k - 1) * r, r}, k - 1, cd::Disk{0, (2 * k - 3) * r, r});
       contacts.push_back(cd::prepared_contact(g_k, {0.5, 0.0}, bodies, {dt, 0.5}));
     }
-    return cd::solve_gauss_seidel(contacts, bodies.velocity, {1e-6, 10000, 1.0, cd::ConvergenceNorm::quadratic});
+    return cd::solve_gauss_seidel(contacts, bodies.velocity, {1e-6, 10000, cd::ConvergenceNorm::quadratic});
   };
   const cd::SolveReport si = run(5e-4, 2e-4, 7e-3);
   const cd::SolveReport scaled = run(1.0, 1.0, 1.0);

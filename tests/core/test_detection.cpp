@@ -76,8 +76,8 @@ StepResult solve(const Scene& scene, double alert, cd::Joining joining = cd::Joi
   StepResult result;
   result.bodies = scene.bodies;
   cd::StepSettings settings;
-  settings.solver = {1e-12, 100000, 1.0, cd::ConvergenceNorm::quadratic};
-  settings.solver.full_sweep_every = full_sweep_every;
+  settings.solver = {1e-12, 100000, cd::ConvergenceNorm::quadratic};
+  settings.solver.gauss_seidel.full_sweep_every = full_sweep_every;
   settings.alert = alert;
   settings.joining = joining;
   cd::MoreauJeanStep moreau_jean(settings);

@@ -38,8 +38,9 @@ TEST(FrictionlessLocalSolver, MatchesCoulombSolverAtZeroFriction)
 
 cd::SolveReport solve(Pile& pile, bool frictionless_shortcut, double relaxation)
 {
-  cd::SolverSettings settings{1e-10, 10000, relaxation, cd::ConvergenceNorm::quadratic};
-  settings.frictionless_shortcut = frictionless_shortcut;
+  cd::SolverSettings settings{1e-10, 10000, cd::ConvergenceNorm::quadratic};
+  settings.gauss_seidel.relaxation = relaxation;
+  settings.gauss_seidel.frictionless_shortcut = frictionless_shortcut;
   cd::apply_impulses(pile.contacts, pile.bodies.velocity);
   return cd::solve_gauss_seidel(pile.contacts, pile.bodies.velocity, settings);
 }

@@ -1,4 +1,6 @@
-// The solver seam's parts: the stopping norm under relaxation (analytic), the stall rescue's
+// The solver seam's parts: methods registered by name and built by cd::make_solver (one from
+// outside the core, as a bench registers its own), the solver keywords read from text, a step's
+// reports summed, the stopping norm under relaxation (analytic), the stall rescue's
 // mechanics (a forced stall equals a plain solve continued relaxed, to the bit), the rescue
 // untouched where no stall occurs, problem files read back exactly or refused in one line, and
 // the run statistics' counts and quantiles.
@@ -7,12 +9,17 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "cd/gauss_seidel.h"
 #include "cd/problem_file.h"
 #include "cd/solve_statistics.h"
+#include "cd/solver_keywords.h"
+#include "cd/solver_registry.h"
+#include "cd/step.h"
 #include "pile.h"
 
 namespace {
@@ -47,7 +54,7 @@ TEST(RelaxedNorm, StopsWhereThePlainSweepWouldChangeNoMoreThanTheTolerance)
 {
   Landing landing = make_landing();
   cd::SolverSettings settings;
-  settings.relaxation = 0.5;
+  settings.gauss_seidel.relaxation = 0.5;
   settings.tolerance = 1e-3;
   const cd::SolveReport report = cd::solve_gauss_seidel(landing.contacts, landing.velocity, settings);
   EXPECT_TRUE(report.converged);
@@ -69,8 +76,8 @@ TEST(SlidingImages, TheTangentialBiasReachesEveryKindOfSweep)
       landing.contacts[0].velocity_bias.t = 0.2;
       cd::SolverSettings settings;
       settings.tolerance = 1e-12;
-      settings.acceleration = acceleration;
-      settings.full_sweep_every = full_sweep_every;
+      settings.gauss_seidel.acceleration = acceleration;
+      settings.gauss_seidel.full_sweep_every = full_sweep_every;
       ASSERT_TRUE(cd::solve_gauss_seidel(landing.contacts, landing.velocity, settings).converged);
       const cd::Contact& c = landing.contacts[0];
       EXPECT_NEAR(cd::law_velocity(c, landing.velocity[1], landing.velocity[0]).t, 0.0, 1e-9);
@@ -118,10 +125,10 @@ TEST(StallRescue, ForcedStallsGoOnRelaxedThenFromZeroMoreRelaxed)
   cd::apply_impulses(by_hand.contacts, by_hand.bodies.velocity);
 
   cd::SolverSettings settings = capped_settings(cap);
-  settings.stall_window = window;
-  settings.stall_coherence = 1.0 - 1e-15;
-  settings.stall_relaxation = 0.6;
-  settings.stall_block = 0;  // the ladder of restarts from zero
+  settings.gauss_seidel.stall_window = window;
+  settings.gauss_seidel.stall_coherence = 1.0 - 1e-15;
+  settings.gauss_seidel.stall_relaxation = 0.6;
+  settings.gauss_seidel.stall_block = 0;  // the ladder of restarts from zero
   const cd::SolveReport report = cd::solve_gauss_seidel(rescued.contacts, rescued.bodies.velocity, settings);
   const int plain_sweeps = report.iterations - report.stalled_sweeps;
   EXPECT_EQ(report.iterations, cap);
@@ -137,7 +144,7 @@ TEST(StallRescue, ForcedStallsGoOnRelaxedThenFromZeroMoreRelaxed)
     if (stage > 1) start_from_zero(by_hand);
     relaxation *= 0.6;
     cd::SolverSettings relaxed = capped_settings(stage < 4 ? window : cap - swept);
-    relaxed.relaxation = relaxation;
+    relaxed.gauss_seidel.relaxation = relaxation;
     last = cd::solve_gauss_seidel(by_hand.contacts, by_hand.bodies.velocity, relaxed);
     swept += last.iterations;
   }
@@ -158,8 +165,8 @@ TEST(StallRescue, ASolveWhoseSweepsKeepTheirDirectionIsUntouched)
   cd::apply_impulses(without.contacts, without.bodies.velocity);
   cd::SolverSettings settings = pile_settings();
   const cd::SolveReport plain = cd::solve_gauss_seidel(without.contacts, without.bodies.velocity, settings);
-  settings.stall_window = 1;
-  settings.stall_coherence = 0.9;
+  settings.gauss_seidel.stall_window = 1;
+  settings.gauss_seidel.stall_coherence = 0.9;
   const cd::SolveReport watched = cd::solve_gauss_seidel(with.contacts, with.bodies.velocity, settings);
   EXPECT_EQ(watched.iterations, plain.iterations);
   EXPECT_EQ(watched.stalled_sweeps, 0);
@@ -267,6 +274,98 @@ TEST(SolveStatistics, CountsAndNearestRankQuantiles)
             "solves)");
   statistics.clear();
   EXPECT_EQ(statistics.summary().steps, 0);
+}
+
+// A method living outside the core, as bench/ or tests/ would write one: it stops every contact
+// at once (a frictionless landing's exact answer) and counts its calls.
+class StoppingSolver : public cd::ContactSolver {
+ public:
+  static int calls;
+  cd::SolveReport solve(std::vector<cd::Contact>& contacts, std::vector<cd::BodyVelocity>& velocity, cd::SweepExchange*,
+                        cd::JoiningContacts*) override
+  {
+    ++calls;
+    return cd::solve_gauss_seidel(contacts, velocity, cd::SolverSettings{});
+  }
+};
+int StoppingSolver::calls = 0;
+
+std::string refuse_odd_caps(const cd::SolverSettings& settings)
+{
+  return settings.max_iterations % 2 == 1 ? "max_iterations must be even, got odd" : "";
+}
+
+// Registered when the test program starts, as a bench's solver registers itself.
+const bool stopping_registered = cd::register_solver(
+    "stopping", {refuse_odd_caps, [](const cd::SolverSettings&) { return std::make_unique<StoppingSolver>(); }});
+
+TEST(SolverRegistry, AMethodRegisteredOutsideTheCoreIsBuiltByNameAndChecked)
+{
+  ASSERT_TRUE(stopping_registered);
+  EXPECT_FALSE(cd::register_solver("stopping", {})) << "a name is registered once";
+  cd::SolverSettings settings;
+  settings.method = "stopping";
+  settings.max_iterations = 1001;
+  EXPECT_EQ(cd::check(settings), "max_iterations must be even, got odd");
+  EXPECT_THROW(cd::make_solver(settings), std::invalid_argument);
+  settings.max_iterations = 1000;
+  Landing landing = make_landing();
+  const int before = StoppingSolver::calls;
+  EXPECT_TRUE(cd::make_solver(settings)->solve(landing.contacts, landing.velocity).converged);
+  EXPECT_EQ(StoppingSolver::calls, before + 1);
+  EXPECT_NEAR(landing.velocity[1].vy, 0.0, 1e-12);
+}
+
+TEST(SolverRegistry, TheStepBuildsTheMethodItsSettingsName)
+{
+  cd::StepSettings settings;
+  settings.solver.method = "stopping";
+  EXPECT_NO_THROW(cd::MoreauJeanStep{settings});
+  settings.solver.method = "lemke";
+  EXPECT_EQ(cd::check(settings), "solver must be gauss_seidel or stopping, got 'lemke'");
+  EXPECT_THROW(cd::MoreauJeanStep{settings}, std::invalid_argument);
+}
+
+TEST(SolverKeywords, AreReadOnceForEveryHost)
+{
+  cd::SolverSettings settings;
+  EXPECT_EQ(cd::read_solver_keyword(settings, "theta", "0.5"), std::nullopt) << "not the solver's";
+  EXPECT_EQ(cd::read_solver_keyword(settings, "stall_block", "5"), "");
+  EXPECT_EQ(settings.gauss_seidel.stall_block, 5);
+  EXPECT_EQ(cd::read_solver_keyword(settings, "tolerance", "1e-4"), "");
+  EXPECT_EQ(settings.tolerance, 1e-4);
+  EXPECT_EQ(cd::read_solver_keyword(settings, "norm", "maximum"), "");
+  EXPECT_EQ(settings.norm, cd::ConvergenceNorm::maximum);
+  EXPECT_EQ(cd::read_solver_keyword(settings, "solver", "stopping"), "");
+  EXPECT_EQ(settings.method, "stopping");
+  EXPECT_EQ(cd::read_solver_keyword(settings, "tolerance", "e"), "tolerance expects a number, got 'e'");
+  EXPECT_EQ(cd::read_solver_keyword(settings, "relaxation", "0x1p-1"), "relaxation expects a number, got '0x1p-1'");
+  EXPECT_EQ(cd::read_solver_keyword(settings, "tolerance", "1e999"),
+            "tolerance '1e999' is outside the range of a double");
+  EXPECT_EQ(cd::read_solver_keyword(settings, "max_iterations", "2.5"), "max_iterations expects an integer, got '2.5'");
+  EXPECT_EQ(cd::read_solver_keyword(settings, "stall_window", "99999999999"),
+            "stall_window must fit an int, got '99999999999'");
+  EXPECT_EQ(cd::read_solver_keyword(settings, "acceleration", "anderson"),
+            "acceleration must be none or conjugate, got 'anderson'");
+  EXPECT_EQ(cd::read_solver_keyword(settings, "relaxation", ".5"), "");
+  EXPECT_EQ(settings.gauss_seidel.relaxation, 0.5);
+}
+
+TEST(SolveReport, AStepsSolvesAddUpAndEndWithTheLast)
+{
+  cd::SolveReport first, later;
+  first.iterations = 30, first.contact_updates = 300.0, first.largest_block = 7, first.block_solves = 1;
+  later.iterations = 5, later.contact_updates = 50.0, later.largest_block = 4, later.residual = 1e-4;
+  later.converged = false, later.stalled_sweeps = 2;
+  first.add(later);
+  EXPECT_EQ(first.iterations, 35);
+  EXPECT_EQ(first.solves, 2);
+  EXPECT_EQ(first.contact_updates, 350.0);
+  EXPECT_EQ(first.largest_block, 7);
+  EXPECT_EQ(first.block_solves, 1);
+  EXPECT_EQ(first.stalled_sweeps, 2);
+  EXPECT_EQ(first.residual, 1e-4);
+  EXPECT_FALSE(first.converged);
 }
 
 }  // namespace

@@ -75,7 +75,7 @@ class Pile : public cd::StepHost {
 cd::StepSettings settings(cd::ContactOrder order, bool warm_start)
 {
   cd::StepSettings s;
-  s.solver = {1e-10, 100000, 1.0, cd::ConvergenceNorm::quadratic};
+  s.solver = {1e-10, 100000, cd::ConvergenceNorm::quadratic};
   s.alert = 0.05 * radius;
   s.order = order;
   s.warm_start = warm_start;
@@ -166,15 +166,18 @@ TEST(StepSettings, CheckNamesTheSettingOutOfRange)
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.tolerance = 0.0; }), "tolerance must be in (0,1), got 0");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.tolerance = 1.0; }), "tolerance must be in (0,1), got 1");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.tolerance = 1e300; }), "tolerance must be in (0,1), got 1e+300");
-  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.relaxation = 1.5; }), "relaxation must be in (0,1], got 1.5");
-  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.relaxation = 0.0; }), "relaxation must be in (0,1], got 0");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.gauss_seidel.relaxation = 1.5; }),
+            "relaxation must be in (0,1], got 1.5");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.gauss_seidel.relaxation = 0.0; }),
+            "relaxation must be in (0,1], got 0");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.max_iterations = 0; }), "max_iterations must be >= 1, got 0");
-  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.full_sweep_every = 0; }),
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.gauss_seidel.full_sweep_every = 0; }),
             "full_sweep_every must be >= 1, got 0");
-  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.stall_window = -1; }), "stall_window must be >= 0, got -1");
-  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.stall_relaxation = 0.0; }),
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.gauss_seidel.stall_window = -1; }),
+            "stall_window must be >= 0, got -1");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.gauss_seidel.stall_relaxation = 0.0; }),
             "stall_relaxation must be in (0,1], got 0");
-  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.stall_coherence = 1.0; }),
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.gauss_seidel.stall_coherence = 1.0; }),
             "stall_coherence must be in (0,1), got 1");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.alert = -1.0; }), "alert must be >= 0, got -1");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.max_solves = 0; }), "max_solves must be >= 1, got 0");

@@ -79,6 +79,7 @@ const BadCase bad_cases[] = {
      "save_problems needs 2 values: sweeps prefix"},
     {"save_problems_negative", with_fix("0.5 0.5 save_problems -5 hard"), "save_problems sweeps must be >= 0, got -5"},
     {"unknown_norm", with_fix("0.5 0.5 norm l2"), "norm must be quadratic or maximum, got 'l2'"},
+    {"unknown_solver", with_fix("0.5 0.5 solver nsgs"), "solver must be gauss_seidel, got 'nsgs'"},
     {"unknown_order", with_fix("0.5 0.5 order random"), "order must be fixed or shuffle, got 'random'"},
     {"unknown_join", with_fix("0.5 0.5 join before"), "join must be during or after, got 'before'"},
     {"unknown_acceleration", with_fix("0.5 0.5 acceleration anderson"),

@@ -541,8 +541,8 @@ CoreRun run_core(Scene scene, double tolerance, int max_sweeps, SweepVariant var
   cd::SolverSettings settings;
   settings.tolerance = tolerance;
   settings.max_iterations = max_sweeps;
-  settings.acceleration = variant.acceleration;
-  settings.full_sweep_every = variant.full_sweep_every;
+  settings.gauss_seidel.acceleration = variant.acceleration;
+  settings.gauss_seidel.full_sweep_every = variant.full_sweep_every;
   CoreRun run;
   run.report = cd::solve_gauss_seidel(scene.contacts, velocity, settings);
   for (const cd::Contact& c : scene.contacts) {
