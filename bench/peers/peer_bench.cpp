@@ -145,9 +145,9 @@ cd::SolverSettings deck_settings()
   cd::SolverSettings s;  // the fix's defaults, then inputs/in.chute's solver variables
   s.tolerance = 1e-3;
   s.max_iterations = 10000;
-  s.acceleration = cd::Acceleration::conjugate;
-  s.full_sweep_every = 8;
-  s.stall_window = 100;
+  s.gauss_seidel.acceleration = cd::Acceleration::conjugate;
+  s.gauss_seidel.full_sweep_every = 8;
+  s.gauss_seidel.stall_window = 100;
   return s;
 }
 
