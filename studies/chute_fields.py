@@ -14,9 +14,9 @@ fixed step (`--window-dt`) with `-var fields_every 1` (doc/fields.md).
         --case 2:25=RUN] [--out runs/chute_fields]
     studies/chute_fields.py --analyse [--out runs/chute_fields] [--results results/chute_fields]
 
-Writes RESULTS/nodes.csv (every node of every case), RESULTS/summary.csv (per case: the layer's
-nodes, the momentum balance sigma_yx / sigma_yy against tan theta, and the angle and packing
-against plane shear's: mean, least and largest) and RESULTS/local_rheology.png (gnuplot).
+Writes RESULTS/nodes.csv (every node of every case), RESULTS/summary.csv and summary.md (per case:
+the layer's nodes, the momentum balance, the angle and packing against plane shear's: at the
+layer's mean, the nodes' least and largest) and RESULTS/local_rheology.png (gnuplot).
 """
 
 import argparse
@@ -180,6 +180,24 @@ def write_csv(path, rows):
             writer.writerow({k: f"{v:.6g}" if isinstance(v, float) else v for k, v in row.items()})
 
 
+def write_markdown(path, rows):
+    """The comparison as the table of doc/fields.md."""
+    lines = ["| mu | θ (°) | layer z (d) | mean I | µ = −σ_yx/σ_yy | φ | σ_yy, −σ_yx against the weight above "
+             "(10 d and more below the surface) | angle − plane shear's at the mean I (nodes) | "
+             "φ − plane shear's (nodes) |", "|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(
+            f"| {r['contact_mu']:g} | {r['theta_deg']:g} | {r['z_low_d']:.0f}–{r['z_high_d']:.0f} | "
+            f"{r['I_mean']:.3f} | "
+            f"{r['mu_mean']:.4f} (tan θ {math.tan(math.radians(r['theta_deg'])):.4f}) | {r['phi_mean']:.4f} | "
+            f"{100 * r['bulk_syy_weight_min']:+.1f} to {100 * r['bulk_syy_weight_max']:+.1f} %, "
+            f"{100 * r['bulk_syx_weight_min']:+.1f} to {100 * r['bulk_syx_weight_max']:+.1f} % | "
+            f"{r['dtheta_at_mean_deg']:+.2f}° ({r['dtheta_min_deg']:+.2f} to {r['dtheta_max_deg']:+.2f}) | "
+            f"{r['dphi_at_mean']:+.4f} ({r['dphi_min']:+.4f} to {r['dphi_max']:+.4f}) |")
+    with open(path, "w") as dst:
+        dst.write("\n".join(lines) + "\n")
+
+
 def draw(results, cases):
     """RESULTS/local_rheology.png: mu(I) and phi(I), chute nodes over plane shear's tables."""
     nodes = os.path.join(results, "nodes.csv")
@@ -223,6 +241,7 @@ def analyse(cases, out, results, cdpost):
         rows.append(summary(mu, theta, layer, table))
     write_csv(os.path.join(results, "nodes.csv"), all_nodes)
     write_csv(os.path.join(results, "summary.csv"), rows)
+    write_markdown(os.path.join(results, "summary.md"), rows)
     draw(results, cases)
     for r in rows:
         print(f"mu {r['contact_mu']:g}, {r['theta_deg']:g} deg: {r['nodes']} nodes, "
