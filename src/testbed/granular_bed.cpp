@@ -312,8 +312,8 @@ FrozenStep GranularBed::freeze() const
     frozen.bodies.inertia[1 + k] = inertia_[k];
     frozen.bodies.start_velocity[1 + k] = velocity_[k];
     const double weight = spec_.gravity / inertia_[k].inv_mass;
-    frozen.bodies.velocity[1 + k] =
-        cd::free_velocity(velocity_[k], inertia_[k], weight * std::sin(slope), -weight * std::cos(slope), 0.0, spec_.dt);
+    frozen.bodies.velocity[1 + k] = cd::free_velocity(velocity_[k], inertia_[k], weight * std::sin(slope),
+                                                      -weight * std::cos(slope), 0.0, spec_.dt);
     const cd::Displacement lead = cd::predicted_motion(velocity_[k], frozen.step);
     frozen.predicted[k].x += lead.dx;
     frozen.predicted[k].y += lead.dy;

@@ -1,8 +1,21 @@
-// exploratory
+// The seam proven by a peer (doc/peers.md, "The seam proven"): Siconos's solvers, registered by
+// name from outside the core (bench/peers/siconos_contact_solver.cpp), step a small chute through
+// cd::MoreauJeanStep (the testbed's bed, tilted) to the trajectory of ours.
+//
+// The bound. A solve stopped at a tolerance leaves an error; no two methods leave the same one,
+// and a granular flow amplifies any difference (a contact opening a step earlier), so no fixed
+// distance in m/s is the tolerance's. Each method's own error is measured instead: its distance
+// from itself solving every step ten times tighter (for a linear convergence, (10/9) of its
+// error). Two methods converging to one solution are apart by at most the sum of their errors;
+// the test allows twice the sum of the measured distances, step by step. A peer solving another
+// problem (impulses in the wrong units, a wrong W, the warm start lost) is apart by the step's
+// whole contact velocity change, orders of magnitude more.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,68 +24,139 @@
 
 namespace {
 
-testbed::BedSpec chute_spec(double mu, double slope, double tolerance)
+constexpr double slack = 2.0;  // over the sum of the two methods' measured errors
+
+// 200 disks, 20 d wide and about 10 d deep over a rough base (its lowest layer immobile), tilted
+// by `slope` and flowing for 0.02 s (200 steps of ours at the deck's tolerance).
+testbed::BedSpec chute_spec(double mu, double slope)
 {
   testbed::BedSpec spec;
-  spec.disk_count = 300;
+  spec.disk_count = 200;
   spec.cell_length = 20.0;
   spec.immobile_layer = 1.0;
   spec.slope = slope;
-  spec.dt = 1.0e-4;
+  spec.dt = 1.0e-4;  // the chute deck's
   spec.grain_law = {mu, 0.0};
   spec.wall_law = {mu, 0.0};
-  spec.settle_steps = 300;
-  spec.solver.tolerance = tolerance;
+  spec.settle_steps = 200;
+  spec.solver.tolerance = 1.0e-3;
   spec.solver.max_iterations = 100000;
   return spec;
 }
 
-struct Distance {
-  double position = 0.0;  // max over disks, in d
-  double velocity = 0.0;  // rms over disks (m/s)
-};
-
-Distance distance(const testbed::GranularBed& a, const testbed::GranularBed& b)
+cd::SolverSettings solver(const std::string& method, double tolerance)
 {
-  Distance d;
+  cd::SolverSettings settings;
+  settings.method = method;
+  settings.tolerance = tolerance;
+  settings.max_iterations = 100000;
+  return settings;
+}
+
+// RMS over the disks of the velocity difference, spin as r * spin (m/s).
+double velocity_distance(const testbed::GranularBed& a, const testbed::GranularBed& b)
+{
   double sum = 0.0;
-  const double length = a.length_x(), diameter = a.spec().mean_diameter;
   for (std::size_t k = 0; k < a.disks().size(); k++) {
-    double dx = a.disks()[k].x - b.disks()[k].x;
-    dx -= length * std::round(dx / length);
-    d.position = std::max(d.position, std::hypot(dx, a.disks()[k].y - b.disks()[k].y) / diameter);
     const cd::BodyVelocity &va = a.velocities()[k], &vb = b.velocities()[k];
     const double r = a.disks()[k].radius;
     sum += std::pow(va.vx - vb.vx, 2) + std::pow(va.vy - vb.vy, 2) + std::pow(r * (va.spin - vb.spin), 2);
   }
-  d.velocity = std::sqrt(sum / a.disks().size());
-  return d;
+  return std::sqrt(sum / static_cast<double>(a.disks().size()));
 }
 
-TEST(Explore, Growth)
+// The largest distance between a disk's two positions, in d (across the periodic side).
+double position_distance(const testbed::GranularBed& a, const testbed::GranularBed& b)
 {
-  for (double tolerance : {1e-4, 1e-6}) {
-    const testbed::BedSpec spec = chute_spec(0.5, 24.0, tolerance);
-    testbed::GranularBed ours(spec), tighter(spec), siconos(spec);
-    cd::SolverSettings s = spec.solver;
-    ours.use_solver(s);
-    s.tolerance = tolerance / 10;
-    tighter.use_solver(s);
-    s.tolerance = tolerance;
-    s.method = "siconos_fc2d_nsgs";
-    siconos.use_solver(s);
-    std::printf("tol %g max speed %g\n", tolerance, ours.max_speed());
-    const double g_dt = spec.gravity * spec.dt;
-    for (int n = 1; n <= 100; n++) {
-      const cd::SolveReport a = ours.step(), b = tighter.step(), c = siconos.step();
-      if (n == 1 || n == 2 || n == 5 || n == 10 || n == 20 || n == 50 || n == 100) {
-        const Distance self = distance(ours, tighter), peer = distance(ours, siconos), pt = distance(tighter, siconos);
-        std::printf("n %3d self %.3g d %.3g gdt | peer %.3g d %.3g gdt | tight-peer %.3g d %.3g gdt | it %d %d %d res %.2g\n",
-                    n, self.position, self.velocity / g_dt, peer.position, peer.velocity / g_dt, pt.position,
-                    pt.velocity / g_dt, a.iterations, b.iterations, c.iterations, c.residual);
-      }
-    }
+  double largest = 0.0;
+  const double length = a.length_x();
+  for (std::size_t k = 0; k < a.disks().size(); k++) {
+    double dx = a.disks()[k].x - b.disks()[k].x;
+    dx -= length * std::round(dx / length);
+    largest = std::max(largest, std::hypot(dx, a.disks()[k].y - b.disks()[k].y));
   }
+  return largest / a.spec().mean_diameter;
+}
+
+// One method stepping the chute at a tolerance and ten times tighter, from the same state.
+struct Pair {
+  Pair(const testbed::BedSpec& spec, const std::string& method, double tolerance)
+      : at(std::make_unique<testbed::GranularBed>(spec)), tighter(std::make_unique<testbed::GranularBed>(spec))
+  {
+    at->use_solver(solver(method, tolerance));
+    tighter->use_solver(solver(method, tolerance / 10.0));
+  }
+  cd::SolveReport step()
+  {
+    tighter->step();
+    return at->step();
+  }
+  double own_error() const { return velocity_distance(*at, *tighter); }
+  std::unique_ptr<testbed::GranularBed> at, tighter;
+};
+
+struct Agreement {
+  int steps = 0;
+  double worst_ratio = 0.0;  // max over steps of distance / (sum of own errors)
+  double velocity = 0.0;     // at the last step (m/s)
+  double position = 0.0;     // at the last step (d)
+  double own_errors = 0.0;   // their sum at the last step (m/s)
+};
+
+// Steps ours and the peer `steps` times, each at `tolerance` and ten times tighter; checks every
+// step and returns the agreement.
+Agreement step_both(const testbed::BedSpec& spec, const std::string& peer, double tolerance, int steps)
+{
+  Pair ours(spec, "gauss_seidel", tolerance), theirs(spec, peer, tolerance);
+  Agreement agreement;
+  const double contact_change = spec.gravity * spec.dt;  // the scale of a step's velocity change
+  for (int n = 1; n <= steps; n++) {
+    ours.step();
+    const cd::SolveReport report = theirs.step();
+    EXPECT_TRUE(report.converged) << peer << " step " << n << ": error " << report.residual;
+    EXPECT_LE(report.residual, tolerance) << peer << " step " << n;
+    const double apart = velocity_distance(*ours.at, *theirs.at);
+    const double own = ours.own_error() + theirs.own_error();
+    EXPECT_LE(apart, slack * own) << peer << " step " << n << ": apart " << apart / contact_change
+                                  << " g dt, own errors " << own / contact_change << " g dt";
+    agreement.steps = n;
+    agreement.worst_ratio = std::max(agreement.worst_ratio, apart / own);
+    agreement.velocity = apart;
+    agreement.position = position_distance(*ours.at, *theirs.at);
+    agreement.own_errors = own;
+  }
+  std::printf("%s mu %g, %d steps at tolerance %g: apart %.3g g dt (%.3g d), own errors %.3g g dt, worst ratio %.3f\n",
+              peer.c_str(), spec.grain_law.mu, steps, tolerance, agreement.velocity / contact_change,
+              agreement.position, agreement.own_errors / contact_change, agreement.worst_ratio);
+  return agreement;
+}
+
+TEST(PeerSeam, SiconosSolversAreRegisteredByNameOutsideTheCore)
+{
+  const std::vector<std::string> names = cd::solver_names();
+  for (const char* name : {"gauss_seidel", "siconos_fc2d_nsgs", "siconos_fc3d_nsn_fb"})
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+  cd::SolverSettings settings = solver("siconos_fc2d_nsgs", 1e-4);
+  settings.norm = cd::ConvergenceNorm::maximum;
+  EXPECT_EQ(cd::check(settings),
+            "siconos_fc2d_nsgs stops on Siconos's own error: norm must be quadratic (the default)");
+}
+
+// One step at 1e-6: the peers' answers within their own errors of ours, the 2D NSGS and the 3D
+// one on the embedded problem alike, at mu 0.5 (24 degrees) and 0.05 (20 degrees).
+TEST(PeerSeam, OneStepOfTheChuteAgreesWithinTheMethodsOwnErrors)
+{
+  for (const double mu : {0.5, 0.05})
+    for (const char* peer : {"siconos_fc2d_nsgs", "siconos_fc3d_nsgs"}) {
+      const Agreement one = step_both(chute_spec(mu, mu > 0.1 ? 24.0 : 20.0), peer, 1e-6, 1);
+      EXPECT_GT(one.velocity, 0.0) << "the same numbers: not another method";
+    }
+}
+
+// 20 steps at 1e-4 (mu 0.5, 24 degrees), every step within the spread of the two methods' errors.
+TEST(PeerSeam, TheChuteFollowsTheSameTrajectoryWithinTheMethodsOwnErrors)
+{
+  step_both(chute_spec(0.5, 24.0), "siconos_fc2d_nsgs", 1e-4, 20);
 }
 
 }  // namespace
