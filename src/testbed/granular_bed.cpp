@@ -305,13 +305,15 @@ FrozenStep GranularBed::freeze() const
   FrozenStep frozen;
   frozen.step = {spec_.dt, spec_.theta};
   const int count = static_cast<int>(disks_.size());
+  const double slope = spec_.slope * std::acos(-1.0) / 180.0;
   frozen.bodies.reset(1 + count);
   frozen.predicted = disks_;
   for (int k = 0; k < count; k++) {
     frozen.bodies.inertia[1 + k] = inertia_[k];
     frozen.bodies.start_velocity[1 + k] = velocity_[k];
-    const double weight = -spec_.gravity / inertia_[k].inv_mass;
-    frozen.bodies.velocity[1 + k] = cd::free_velocity(velocity_[k], inertia_[k], 0.0, weight, 0.0, spec_.dt);
+    const double weight = spec_.gravity / inertia_[k].inv_mass;
+    frozen.bodies.velocity[1 + k] = cd::free_velocity(velocity_[k], inertia_[k], weight * std::sin(slope),
+                                                      -weight * std::cos(slope), 0.0, spec_.dt);
     const cd::Displacement lead = cd::predicted_motion(velocity_[k], frozen.step);
     frozen.predicted[k].x += lead.dx;
     frozen.predicted[k].y += lead.dy;
@@ -353,6 +355,12 @@ cd::SolveReport GranularBed::step()
     disk.x -= length_x_ * std::floor(disk.x / length_x_);
   }
   return report.solve;
+}
+
+void GranularBed::use_solver(const cd::SolverSettings& solver)
+{
+  spec_.solver = solver;
+  moreau_jean_ = cd::MoreauJeanStep(step_settings(spec_.theta, spec_.alert * spec_.mean_diameter, solver, true));
 }
 
 double GranularBed::kinetic_energy() const

@@ -25,6 +25,7 @@ struct BedSpec {
   double cell_length = 45.0;      // periodic length in x, in d (the scene's default cell)
   double density = 2500.0;        // kg/m^2: disk mass pi r^2 rho
   double gravity = 9.81;          // m/s^2, along -y
+  double slope = 0.0;             // degrees: gravity tilted towards +x, a chute (0: a bed at rest)
   double dt = 1.0e-5;             // s
   double theta = 0.5;
   double skin = 0.2;                           // neighbour pairs: gap below skin d (a LAMMPS size list)
@@ -87,6 +88,8 @@ class GranularBed {
 
   // Advances the bed by one step with the core; returns the solver's report.
   cd::SolveReport step();
+  // The method of the steps from now on (cd::make_solver), the carried impulses kept.
+  void use_solver(const cd::SolverSettings& solver);
 
   // The next step, frozen (the bed does not move). Disks of the immobile layer are obstacles as
   // the fix makes atoms outside its group: zero inverse mass and inertia, at rest, and no pair
@@ -95,6 +98,7 @@ class GranularBed {
 
   const BedSpec& spec() const { return spec_; }
   const std::vector<cd::Disk>& disks() const { return disks_; }
+  const std::vector<cd::BodyVelocity>& velocities() const { return velocity_; }  // per disk
   const std::vector<cd::SolveReport>& settle_reports() const { return settle_reports_; }
   double length_x() const { return length_x_; }
   double kinetic_energy() const;  // J, translation + spin (areal density rho)
