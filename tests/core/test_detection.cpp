@@ -227,38 +227,44 @@ cd::Contact loaded_pair()
   return pair;
 }
 
-// A wall contact and an unloaded pair add nothing.
-TEST(BranchImpulseSums, AreTheBranchVectorTimesTheImpulseOfLoadedPairsOnly)
+// A wall contact (lever_b 0, inverse mass 0) counts with its branch from the contact point,
+// (lever_a + gap) n = 1.5 n; an unloaded pair adds nothing.
+cd::Contact wall_contact()
+{
+  cd::Contact wall = loaded_pair();
+  wall.body_b = cd::world_body;
+  wall.lever_b = 0.0;
+  wall.inv_mass_b = 0.0;
+  return wall;
+}
+
+TEST(BranchImpulseSums, AreTheBranchVectorTimesTheImpulseOfLoadedContactsWallsIncluded)
 {
   const cd::Contact pair = loaded_pair();
-  cd::Contact wall = pair;
-  wall.body_b = cd::world_body;
   cd::Contact unloaded = pair;
   unloaded.impulse = {0.0, 0.0};
   cd::StepContacts contacts;
-  contacts.solved = {pair, wall, unloaded};
+  contacts.solved = {pair, wall_contact(), unloaded};
   contacts.gaps = {0.5, 0.5, 0.5};
   const cd::BranchImpulseSums sums = cd::branch_impulse_sums(contacts);
-  const double lx = 3.5 * 0.6, ly = 3.5 * 0.8;
-  EXPECT_NEAR(sums.xx, lx * 1.0, 1e-14);
-  EXPECT_NEAR(sums.yy, ly * 3.0, 1e-14);
-  EXPECT_NEAR(sums.xy, lx * 3.0, 1e-14);
-  EXPECT_NEAR(sums.yx, ly * 1.0, 1e-14);
+  const double branches = 3.5 + 1.5;  // the pair's and the wall's, both along n = (0.6, 0.8)
+  EXPECT_NEAR(sums.xx, branches * 0.6 * 1.0, 1e-14);
+  EXPECT_NEAR(sums.yy, branches * 0.8 * 3.0, 1e-14);
+  EXPECT_NEAR(sums.xy, branches * 0.6 * 3.0, 1e-14);
+  EXPECT_NEAR(sums.yx, branches * 0.8 * 1.0, 1e-14);
 }
 
 // The loaded pair between two grains, once more against an obstacle (body 3, inverse mass 0), and
-// a wall contact: the grains' shares are half of the first each, all of the second to grain 1,
-// nothing of the wall's; they add up to the sums.
-TEST(BranchImpulseSums, AreSplitHalfBetweenGrainsAndWhollyToTheGrainAgainstAnObstacle)
+// a wall contact: the grains' shares are half of the first each, all of the second and of the
+// wall's to grain 1; they add up to the sums.
+TEST(BranchImpulseSums, AreSplitHalfBetweenGrainsAndWhollyToTheGrainAgainstAnObstacleOrAWall)
 {
   const cd::Contact pair = loaded_pair();
   cd::Contact obstacle = pair;
   obstacle.body_b = 3;
   obstacle.inv_mass_b = 0.0;
-  cd::Contact wall = pair;
-  wall.body_b = cd::world_body;
   cd::StepContacts contacts;
-  contacts.solved = {pair, obstacle, wall};
+  contacts.solved = {pair, obstacle, wall_contact()};
   contacts.gaps = {0.5, 0.5, 0.5};
   std::vector<cd::BranchImpulseSums> share(4);
   cd::for_each_branch_impulse_share(contacts, [&](int body, const cd::BranchImpulseSums& s) {
@@ -268,7 +274,7 @@ TEST(BranchImpulseSums, AreSplitHalfBetweenGrainsAndWhollyToTheGrainAgainstAnObs
     share[body].yx += s.yx;
   });
   const double ly = 3.5 * 0.8;
-  EXPECT_NEAR(share[1].yy, 1.5 * ly * 3.0, 1e-14);
+  EXPECT_NEAR(share[1].yy, 1.5 * ly * 3.0 + 1.5 * 0.8 * 3.0, 1e-14);
   EXPECT_NEAR(share[2].yy, 0.5 * ly * 3.0, 1e-14);
   EXPECT_EQ(share[3].yy, 0.0);
   EXPECT_EQ(share[0].yy, 0.0);
