@@ -199,7 +199,8 @@ def write_markdown(path, rows):
 
 
 def draw(results, cases):
-    """RESULTS/local_rheology.png: mu(I) and phi(I), chute nodes over plane shear's tables."""
+    """RESULTS/local_rheology.png: mu(I) and phi(I), chute nodes over plane shear's tables
+    (nodes.csv's columns: 1 contact_mu, 5 phi, 6 I, 7 mu)."""
     nodes = os.path.join(results, "nodes.csv")
     tables = " ".join(plane_shear.table_path(mu) for mu, _, _ in cases)
     script = f"""
@@ -212,12 +213,12 @@ set xlabel 'I'
 set key left top
 set ylabel 'mu = -sigma_yx / sigma_yy'
 plot for [m in "{' '.join(f'{mu:g}' for mu, _, _ in cases)}"] '{nodes}' every ::1 \\
-       using (sprintf('%g', $1) eq m ? $5 : 1/0):6 pt 7 ps 0.5 title 'chute, mu '.m, \\
+       using (sprintf('%g', $1) eq m ? $6 : 1/0):7 pt 7 ps 0.5 title 'chute, mu '.m, \\
      for [f in "{tables}"] f using 2:4 with linespoints lt -1 dt 2 pt 6 notitle
 set ylabel 'phi'
 set key left bottom
 plot for [m in "{' '.join(f'{mu:g}' for mu, _, _ in cases)}"] '{nodes}' every ::1 \\
-       using (sprintf('%g', $1) eq m ? $5 : 1/0):4 pt 7 ps 0.5 title 'chute, mu '.m, \\
+       using (sprintf('%g', $1) eq m ? $6 : 1/0):5 pt 7 ps 0.5 title 'chute, mu '.m, \\
      for [f in "{tables}"] f using 2:1 with linespoints lt -1 dt 2 pt 6 notitle
 unset multiplot
 """
