@@ -25,6 +25,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 
+from cdtools import plane_shear
 from cdtools.run import TOP
 from cdtools.stats import mean_sd_se
 from cdtools.text import markdown_table, number, with_error
@@ -33,8 +34,7 @@ SERIES = os.path.join(TOP, "results", "series")
 READINGS = (("count", os.path.join(SERIES, "flow_rules", "runs.csv")),
             ("layer", os.path.join(SERIES, "layer_flow_rules", "runs.csv")))
 # The plane-shear phi(I) at each of the chute's frictions, solved to 1e-4 (doc/plane_shear_results.md).
-PLANE_SHEAR = {mu: os.path.join(TOP, "results", "plane_shear", f"plane_shear_mu{mu:g}_1e-4.csv")
-               for mu in (0.05, 0.5, 2.0)}
+PLANE_SHEAR = {mu: plane_shear.table_path(mu) for mu in (0.05, 0.5, 2.0)}
 LITERATURE = os.path.join(TOP, "results", "plane_shear", "packing_literature.csv")
 SOURCE = os.path.join(TOP, "results", "source.csv")
 

@@ -12,6 +12,7 @@ fixture). Standard library only.
 import argparse
 import csv
 import math
+import gzip
 import os
 import shutil
 import signal
@@ -196,17 +197,44 @@ def case_flow_run(args):
     print("flow run written; chute.params right from a deposition and in stage all")
 
 
+def dump_frames(path):
+    """[(timestep, column names, rows)] of a gzip dump custom or dump local."""
+    frames, lines = [], gzip.open(path, "rt").read().splitlines()
+    for k, line in enumerate(lines):
+        if line == "ITEM: TIMESTEP":
+            count = int(lines[k + 3])
+            columns = lines[k + 8].split()[2:]
+            frames.append((int(lines[k + 1]), columns, lines[k + 9:k + 9 + count]))
+    return frames
+
+
+def check_fields_dumps(folder, steps):
+    """fields.dump.gz and fields.contacts.gz (-var fields_every) hold a frame at each step, the
+    grains with masses, the contacts with the fix's seven columns, each naming dumped grains."""
+    atoms = dump_frames(os.path.join(folder, "fields.dump.gz"))
+    contacts = dump_frames(os.path.join(folder, "fields.contacts.gz"))
+    check([f[0] for f in atoms] == steps and [f[0] for f in contacts] == steps,
+          f"fields dumps at steps {[f[0] for f in atoms]} and {[f[0] for f in contacts]}, expected {steps}")
+    check(atoms[0][1] == ["id", "type", "x", "y", "vx", "vy", "radius", "mass"], f"atom columns {atoms[0][1]}")
+    check(contacts[-1][1] == [f"f_cd[{k}]" for k in range(1, 8)] and contacts[-1][2],
+          f"contact columns {contacts[-1][1]}, {len(contacts[-1][2])} rows")
+    ids = {float(row.split()[0]) for row in atoms[-1][2]}
+    named = {float(v) for row in contacts[-1][2] for v in row.split()[:2] if float(v) != 0}
+    check(named <= ids, f"contacts name {len(named - ids)} atoms absent from the dump")
+
+
 def case_dt_change(args):
     """A chute restart continued at another fixed time step (adapt_dt no) keeps its chute time
     (the step count is rescaled), and the solver -vars reach the fix: 10 ms from the 1.2 s flow
-    at dt = 1e-5 s with the maximum norm, no warm start and a shuffled order."""
+    at dt = 1e-5 s with the maximum norm, no warm start and a shuffled order. With fields_every
+    100 it dumps grains (with masses) and the fix's contacts (seven columns) at the same 11 steps."""
     folder = os.path.join(args.work, "dt_change")
     shutil.rmtree(folder, ignore_errors=True)
     start = os.path.join(args.work, "flow", "chute.restart")
     end = FLOW_DURATION + 0.01
     _, output = run_lmp(args.lmp, folder, dict(CELL, stage="flow", start=start, theta=FLOW_THETA,
                                                duration=end, dt="1e-5", adapt_dt="no", norm="maximum", warm_start="no",
-                                               order="shuffle", max_iterations=200))
+                                               order="shuffle", max_iterations=200, fields_every=100))
     rows = read_time_file(os.path.join(folder, "flow.time"))
     times = [r["v_time"] for r in rows]
     # fix ave/time also writes the run's first step: 11 samples from the start's 1.2 s.
@@ -221,6 +249,7 @@ def case_dt_change(args):
           f"the chute's fix line lacks the solver -vars {solver_vars}: {fix_lines[-1:]}")
     extremes = summary(output, "SOLVER")
     check(1 <= extremes["max_sweeps_per_step"] <= 200, f"largest sweeps per step {extremes['max_sweeps_per_step']}")
+    check_fields_dumps(folder, [round(s) for s in steps])
     print(f"dt change: 1.2 s restart continued at dt 1e-5 s to {times[-1]} s (steps {steps[0]:.0f}..{steps[-1]:.0f}); "
           f"largest sweeps {extremes['max_sweeps_per_step']:.0f}")
 
