@@ -329,6 +329,52 @@ def family_local(data, reading, mu, quantity, part="range"):
     return {"range": (low, high), "mean": (mean, se), "mean_only": (mean,)}[part]
 
 
+def _two_packings(data):
+    def make():
+        studies = data.path("studies")
+        if studies not in sys.path:
+            sys.path.insert(0, studies)
+        import two_packings
+        rows, _ = two_packings.load(data.path("results", "series", "packing"))
+        return rows, two_packings.groups(rows)
+    return data._memo("two_packings", make)
+
+
+def family_two_packings(data, reading, solver="", mu="", quantity="dphi_bulk", part="mean"):
+    """The two readings' packings (studies/two_packings.py). READING count or layer, SOLVER published
+    or today, QUANTITY dphi_local, dphi_bulk (phi at mid-layer or in the bulk minus plane shear's
+    phi(I)) or local_minus_bulk, PART 'mean' (mean, standard error) or 'mean_only'; READING 'counts':
+    phi_local from the grain counts minus from the area over the runs with both (mean, standard error);
+    'paired', SOLVER count or layer: today's count runs' dphi_bulk minus the published runs' of that
+    reading at the same friction and angle (mean, standard error; MU 'runs': how many); 'tolerance': plane shear's
+    phi at 1e-3 minus at 1e-4 at fixed I (mean, standard error); 'mix': the mid-layer's mean grain
+    area over the cell's, smallest and largest over the runs with snapshots; SOLVER 'error': the
+    largest gap between the counts' phi over the area's as the size mix predicts it and as measured."""
+    rows, groups = _two_packings(data)
+    import two_packings
+    if reading == "counts":
+        mean, _, se, _ = two_packings.counts_against_area(rows)
+        return mean, se
+    if reading == "paired":
+        mean, se, runs = two_packings.paired_mean(rows, solver)
+        return (runs,) if mu == "runs" else (mean, se)
+    if reading == "tolerance":
+        mu, loose = two_packings.PLANE_SHEAR_LOOSE
+        table = two_packings.local_rheology.PLANE_SHEAR[mu]
+        fit = two_packings.local_rheology.plane_shear_fits({mu: table})[mu]["phi"]
+        mean, _, se = stats.mean_sd_se(shift for *_, shift in two_packings.tolerance_shift(loose, table, fit))
+        return mean, se
+    if reading == "mix":
+        _, mix = two_packings.load(data.path("results", "series", "packing"))
+        if solver == "error":
+            return (max(abs(two_packings.predicted_ratio(r) - two_packings.measured_ratio(rows, name))
+                        for name, r in mix.items()),)
+        ratios = [float(r["mid_over_cell"]) for r in mix.values()]
+        return min(ratios), max(ratios)
+    mean, se = groups[(reading, solver, float(mu))][quantity]
+    return {"mean": (mean, se), "mean_only": (mean,)}[part]
+
+
 def family_replica(data, quantity, reading="both"):
     """Scatter of one run from the replica pairs (runs of a replicas series, named *_seed*):
     sqrt(sum d^2 / 2n), as the runs page's table; reading 'count' or 'layer': that reading's pairs
@@ -502,7 +548,8 @@ FAMILIES = {"fit": family_fit, "run": family_run, "range": family_range, "median
             "f_L_without": family_f_L_without, "size_law": family_size_law,
             "cmp": family_cmp, "change": family_change, "ends": family_ends,
             "fit_scaled": family_fit_scaled, "cmp_range": family_cmp_range,
-            "fit_diff": family_fit_diff, "local": family_local}
+            "fit_diff": family_fit_diff, "local": family_local,
+            "two_packings": family_two_packings}
 
 
 def values_of(key, data):

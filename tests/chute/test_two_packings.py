@@ -1,0 +1,114 @@
+#!/usr/bin/env python3
+"""Checks of studies/two_packings.py on synthetic data, run by ctest (no simulation), and of its
+committed tables against the run folders they read.
+
+    tests/chute/test_two_packings.py
+
+The size mix of a synthetic dump whose mid-layer grains are larger than the rest: the mid-layer's
+mean area over the cell's and the cell's over the size law's, by hand, the early snapshots (which
+differ) left out; a truncated snapshot refused in one error naming the file; the pairing of today's
+runs with the published runs of the same friction and angle (and not a replica's); the committed
+today/runs.csv holds every count run of the folders it reads, so a run committed without
+`studies/two_packings.py --cdpost ...` fails here. Standard library only.
+"""
+
+import gzip
+import importlib.util
+import json
+import math
+import os
+import sys
+import tempfile
+
+TOP = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir)
+TOOL = os.path.join(TOP, "studies", "two_packings.py")
+
+
+def check(condition, message):
+    if not condition:
+        sys.exit(f"FAILED: {message}")
+
+
+def load_tool():
+    sys.path.insert(0, os.path.join(TOP, "studies"))
+    spec = importlib.util.spec_from_file_location("two_packings", TOOL)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def write_run(folder, frames, truncate=False):
+    """A run folder: params.json, post/results.csv (h 40 d) and dump.chute.gz of frames, each a list
+    of (y, radius)."""
+    os.makedirs(os.path.join(folder, "post"))
+    with open(os.path.join(folder, "params.json"), "w") as out:
+        json.dump({"vars": {"d": "1", "dispersity": "0.4", "wall_height": "30", "reading": "count"}}, out)
+    with open(os.path.join(folder, "post", "results.csv"), "w") as out:
+        out.write("name,value,error,unit,description\nh,40,,d,thickness\n")
+    with gzip.open(os.path.join(folder, "dump.chute.gz"), "wt") as out:
+        for step, grains in enumerate(frames):
+            out.write(f"ITEM: TIMESTEP\n{step * 1000}\nITEM: NUMBER OF ATOMS\n{len(grains)}\n"
+                      "ITEM: BOX BOUNDS pp fm pp\n0 10\n0 100\n-1 1\nITEM: ATOMS id type x y vx vy radius ix\n")
+            shown = grains[:-1] if truncate and step == len(frames) - 1 else grains
+            for k, (y, radius) in enumerate(shown):
+                out.write(f"{k + 1} 1 0.5 {y} 0 0 {radius} 0\n")
+
+
+def size_mix_by_hand(tool):
+    # Floor at 30 (wall_height x d), h = 40: mid-layer 30 + 16 <= y < 30 + 24.
+    steady = [(50.0, 0.6), (51.0, 0.6), (60.0, 0.4), (35.0, 0.4)]   # mid-layer grains larger
+    early = [(50.0, 0.4), (51.0, 0.4), (60.0, 0.6), (35.0, 0.6)]    # the first 30 %: the other way
+    frames = [early] * 3 + [steady] * 7
+    with tempfile.TemporaryDirectory() as scratch:
+        run = os.path.join(scratch, "count_run")
+        write_run(run, frames)
+        mix = tool.size_mix(run)
+        cell = math.pi * (2 * 0.36 + 2 * 0.16) / 4  # the first snapshot's mean area
+        law = math.pi / 4 * (1 + 0.4 ** 2 / 12)
+        check(mix["frames"] == 7, f"frames {mix['frames']}, expected the last 7 of 10")
+        check(abs(mix["mid_over_cell"] - math.pi * 0.36 / cell) < 1e-12, f"mid over cell {mix['mid_over_cell']}")
+        check(abs(mix["cell_over_law"] - cell / law) < 1e-12, f"cell over law {mix['cell_over_law']}")
+        broken = os.path.join(scratch, "broken_run")
+        write_run(broken, frames, truncate=True)
+        try:
+            tool.size_mix(broken)
+            check(False, "a truncated snapshot was read")
+        except ValueError as error:
+            check("dump.chute.gz" in str(error) and "truncated" in str(error), f"error says {error}")
+
+
+def pairing(tool):
+    def row(reading, solver, run, mu, theta, dphi_bulk, counts=None, phi_local=0.75):
+        return {"reading": reading, "solver": solver, "run": run, "mu": mu, "theta": theta, "dphi_bulk": dphi_bulk,
+                "phi_local_from_counts": counts, "phi_local": phi_local}
+    rows = [row("count", "published", "mu2_theta24_L45", 2.0, 24.0, 0.007),
+            row("count", "published", "mu2_theta24_L45_seed20261123", 2.0, 24.0, 0.020),  # a replica: not paired
+            row("layer", "published", "mu2_theta24_L45_layer", 2.0, 24.0, 0.004),
+            row("layer", "published", "mu2_theta25_L45_layer", 2.0, 25.0, 0.005),
+            row("count", "today", "mu2_theta24_L45", 2.0, 24.0, 0.003, counts=0.754, phi_local=0.750),
+            row("count", "today", "health_mu2_theta26_L45", 2.0, 26.0, 0.006, counts=0.748, phi_local=0.750)]
+    against_count = tool.paired(rows, "count")
+    check(len(against_count) == 1 and abs(against_count[0][3] + 0.004) < 1e-12, f"against count {against_count}")
+    against_layer = tool.paired(rows, "layer")
+    check(len(against_layer) == 1 and abs(against_layer[0][3] + 0.001) < 1e-12, f"against layer {against_layer}")
+    mean, _, _, n = tool.counts_against_area(rows)
+    check(n == 2 and abs(mean - 0.001) < 1e-12, f"counts against area {mean} over {n}")
+
+
+def committed(tool):
+    held = tool.local_rheology.rerun_rows(os.path.join(tool.OUT, tool.TODAY_TABLE))
+    runs = tool.today_runs()
+    check(sorted(held) == sorted(runs), f"today/runs.csv holds {sorted(held)}, the folders {sorted(runs)}")
+    return len(runs)
+
+
+def main():
+    tool = load_tool()
+    size_mix_by_hand(tool)
+    pairing(tool)
+    count = committed(tool)
+    print(f"two_packings: every check passed ({count} of today's count runs in the committed table)")
+
+
+if __name__ == "__main__":
+    main()
