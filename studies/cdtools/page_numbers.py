@@ -33,7 +33,8 @@ import sys
 
 from . import stats
 
-PAGES = ("results/README.md", "results/runs/README.md", "results/series/README.md", "doc/source.md")
+PAGES = ("results/README.md", "results/runs/README.md", "results/series/README.md", "doc/source.md",
+         "results/rerun/count_mu2/README.md")
 MARKER = re.compile(r"(?<!`)<!--\s*check:\s*(\S+?)\s*-->(?!`)")  # in `code`: shown, not a marker
 NUMBER = re.compile(r"(?<![\w.])([−+-]?)(\d+(?:\.\d+)?)(?:e([−+-]?\d+))?(?![\w])")
 SIGN_BEFORE = re.compile(r"(^|[\s(\[^×/=,;:–])$")

@@ -1,0 +1,77 @@
+#!/usr/bin/env python3
+"""Checks of studies/rerun_tables.py, run by ctest: a synthetic re-run against its published run
+(health cells, each quantity's difference in combined errors by hand, A without one), a README
+without the block refused naming it, and the committed tables of results/rerun/*/README.md made
+again from their folders (a run added or changed without `studies/rerun_tables.py` fails here).
+
+    tests/chute/test_rerun_tables.py
+
+Standard library only.
+"""
+
+import importlib.util
+import json
+import os
+import sys
+import tempfile
+
+TOP = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir)
+TOOL = os.path.join(TOP, "studies", "rerun_tables.py")
+
+
+def check(condition, message):
+    if not condition:
+        sys.exit(f"FAILED: {message}")
+
+
+def load_tool():
+    sys.path.insert(0, os.path.join(TOP, "studies"))
+    spec = importlib.util.spec_from_file_location("rerun_tables", TOOL)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def write_run(folder, values, cost=None):
+    os.makedirs(folder)
+    with open(os.path.join(folder, "results.csv"), "w") as out:
+        out.write("name,value,error,unit,description\n")
+        for name, (value, error) in values.items():
+            out.write(f"{name},{value},{'' if error is None else error},,\n")
+    if cost:
+        with open(os.path.join(folder, "cost.json"), "w") as out:
+            json.dump(cost, out)
+
+
+def synthetic(tool):
+    solver = {"unconverged": 2, "unconverged_fraction": 2e-5, "steps": 100000, "legs_unrecorded": 0,
+              "largest_final_norm": 0.0031, "sweeps_median": 120, "sweeps_p99": 480, "rescued": 1234}
+    new = {"U": (20.3, 0.3), "phi": (0.7500, 0.0004), "h": (60.0, 0.04), "f": (25.0, 2.0), "A": (0.06, None)}
+    old = {"U": (20.0, 0.4), "phi": (0.7503, 0.0003), "h": (60.0, 0.03), "f": (22.0, 2.0), "A": (0.07, None)}
+    with tempfile.TemporaryDirectory() as scratch:
+        tool.PUBLISHED = os.path.join(scratch, "published")
+        write_run(os.path.join(scratch, "rerun", "mu2_theta28_L45"), new, {"physical_seconds": 10.0, "solver": solver})
+        write_run(os.path.join(tool.PUBLISHED, "mu2_theta28_L45"), old)
+        row = tool.table(os.path.join(scratch, "rerun")).splitlines()[2]
+        cells = [c.strip() for c in row.strip("|").split("|")]
+        expected = ["mu2_theta28_L45", "10 s", "2 of 100 000 (2.0e-05)", "0.0031", "120 / 480", "1 234",
+                    "20.30 (20.00; +0.6 σ)", "0.7500 (0.7503; −0.6 σ)", "60.00 (60.00; +0.0 σ)",
+                    "25.0 (22.0; +1.1 σ)", "0.060 (0.070)"]
+        check(cells == expected, f"row {cells}, expected {expected}")
+    try:
+        tool.rewritten("no block here", "", "README.md")
+        check(False, "a README without the block was rewritten")
+    except ValueError as error:
+        check("README.md" in str(error), f"error says {error}")
+
+
+def main():
+    tool = load_tool()
+    synthetic(tool)
+    tool = load_tool()  # the real folders again
+    check(tool.main(["--check"]) == 0, "the committed re-run tables differ from their folders")
+    print("rerun_tables: every check passed")
+
+
+if __name__ == "__main__":
+    main()
