@@ -74,7 +74,8 @@ def table(folder):
                    if os.path.exists(os.path.join(folder, n, "cost.json"))
                    and os.path.exists(os.path.join(folder, n, "results.csv")))
     published = [n for n in names if os.path.isdir(os.path.join(PUBLISHED, n))]
-    headings = ["run", "flow with health recorded", "unconverged steps", "largest final norm", "sweeps median / p99", "rescued steps"]
+    headings = ["run", "flow with health recorded", "unconverged steps", "largest final norm", "sweeps median / p99",
+                "rescued steps"]
     if published:
         headings += [f"{name} (published; difference)" for name, _ in MOVED]
     rows = []
