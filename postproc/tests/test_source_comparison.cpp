@@ -11,7 +11,9 @@
 #include <set>
 
 #include "analysis/series_analysis.h"
+#include "fit/linear_fit.h"
 #include "output/results.h"
+#include "signal/statistics.h"
 #include "source/source_comparison.h"
 #include "temp_files.h"
 
@@ -145,6 +147,68 @@ TEST(SourceComparison, AFrequencyRisingWithUFailsBothFrequencySigns)
 {
   const auto rows = compare_with_source(synthetic_series("f_flipped", {0, true, false}));
   EXPECT_EQ(keys_with(rows, Verdict::Outside), (std::set<std::string>{"sign_f_vs_scale", "sign_f_vs_shear_rate"}));
+}
+
+// The L series at mu 0.5, 22 deg with the published runs' f and half widths (results/series/L_series):
+// f against L is read by the one weighted estimator of the signs on mu, ln f on ln L weighted by
+// half width over f, -0.102 +- 0.046, and falls; the unweighted power law, -0.073 +- 0.049, would
+// not decide. A_mean against L (falling as L^-1/2) keeps its power law's exponent.
+TEST(SourceComparison, FAgainstLIsReadByTheWeightedEstimatorOfTheSignsOnMu)
+{
+  const auto dir = testing::scratch_dir() / "length_series";
+  const auto source = read_source(kSource);
+  std::filesystem::create_directories(dir);
+  const double lengths[] = {12, 22, 32, 45, 52, 72, 102, 152};
+  const double f[] = {23.92397839, 26.94112768, 27.87004892, 27.37350942,
+                      25.04114669, 24.38229315, 25.14383382, 19.39446639};
+  const double half_width[] = {2.580470702, 1.589492009, 6.234763015, 2.008076628,
+                               2.727930537, 2.306522569, 1.677205411, 1.252697086};
+  std::ofstream manifest(dir / "series.csv");
+  manifest << "run,mu,theta,L\n";
+  std::vector<double> log_l, log_f, sigma;
+  for (int i = 0; i < 8; ++i) {
+    const std::string run = "L" + std::to_string(static_cast<int>(lengths[i]));
+    write_run(dir / run, source, 0.5, 22, i, {});
+    std::ifstream in(dir / run / "results.csv");
+    std::string line, text;
+    while (std::getline(in, line)) {  // the published f and its half width, A_mean falling as L^-1/2
+      if (line.rfind("f,", 0) == 0) line = "f," + std::to_string(f[i]) + "," + std::to_string(half_width[i]) + ",Hz,";
+      else if (line.rfind("A_mean,", 0) == 0)
+        line = "A_mean," + std::to_string(0.018 / std::sqrt(lengths[i]) * (1 + 0.01 * std::sin(i))) + ",,sqrt(g d),";
+      text += line + "\n";
+    }
+    in.close();
+    std::ofstream(dir / run / "results.csv") << text;
+    manifest << run << ",0.5,22," << lengths[i] << '\n';
+    log_l.push_back(std::log(lengths[i])), log_f.push_back(std::log(f[i])), sigma.push_back(half_width[i] / f[i]);
+  }
+  manifest.close();
+  SeriesSettings settings;
+  settings.manifest = (dir / "series.csv").string();
+  settings.source_file = kSource;
+  const auto series = analyse_series(settings);
+  const auto weighted = fit_weighted_slope(log_l, log_f, sigma);
+  EXPECT_NEAR(weighted.slope.value, -0.102, 0.0005);
+  EXPECT_NEAR(*weighted.slope.error, 0.046, 0.0005);
+  const auto* unweighted = series.fits.find("f_vs_L_exponent");
+  ASSERT_NE(unweighted, nullptr);
+  EXPECT_NEAR(unweighted->value, -0.073, 0.0005);
+  EXPECT_LT(std::abs(unweighted->value), 2 * *unweighted->error);  // would read "no dependence"
+  bool f_row = false, a_mean_row = false;
+  for (const auto& r : compare_with_source(series)) {
+    if (r.key == "sign_f_vs_L") {
+      f_row = true;
+      EXPECT_EQ(r.verdict, Verdict::Outside) << r.ours;
+      EXPECT_EQ(r.ours.rfind("falls (slope of ln f against ln L, weighted: " +
+                                 format_estimate(weighted.slope.value, weighted.slope.error) + ", chi2/dof ",
+                             0),
+                0u)
+          << r.ours;
+    }
+    if (r.key == "sign_A_mean_vs_L") a_mean_row = r.ours.find("exponent") != std::string::npos;
+  }
+  EXPECT_TRUE(f_row);
+  EXPECT_TRUE(a_mean_row);
 }
 
 TEST(SourceComparison, TheSourcesRulesGiveInertialNumbersThreeTimesApart)

@@ -221,6 +221,28 @@ def check_run_vars(work):
               and not any(belongs(job) for belongs in plan.ANALYSES.values()) for job in evidence),
           "the evidence runs take the deck's defaults and join no analysis")
     check_creep_series(work)
+    check_sign_series(work)
+
+
+def check_sign_series(work):
+    """The signs' rains (issue 63, item 5): two seeds no other series uses, in the layer reading at
+    three angles per friction inside its published range, one packing per seed, joining the layer
+    reading's flow rules alone."""
+    args = argparse.Namespace(out=work, var={}, series=["layer_signs"], only=None, duration=10.0)
+    jobs = plan.build_jobs(args)
+    runs = {job.name: job for job in jobs if job.kind == "run"}
+    other_seeds = {str(p.get("seed", "")) for name, points in plan.SERIES.items() if name != "layer_signs"
+                   for p in points} | {plan.deck_defaults()["seed"]}
+    check(len(runs) == 18 and not {str(s) for s in plan.SIGN_SEEDS} & other_seeds
+          and "mu2_theta29_L45_seed20261127_layer" in runs, f"runs {sorted(runs)}")
+    for mu, angles in plan.SIGN_ANGLES.items():
+        published = [p["theta"] for p in plan.SERIES[f"layer_mu{mu}"]]
+        check(len(angles) == 3 and min(published) < min(angles) and max(angles) < max(published),
+              f"mu {mu}: angles {angles} inside {published}")
+    check(sorted(job.name for job in jobs if job.kind == "deposition")
+          == ["mu0.5_L45_seed20261126_layer", "mu0.5_L45_seed20261127_layer"], "one packing per seed")
+    check(all([a for a, belongs in plan.ANALYSES.items() if belongs(job)] == ["layer_flow_rules"]
+              and job.vars["reading"] == "layer" for job in runs.values()), "the layer reading's flow rules alone")
 
 
 def check_creep_series(work):

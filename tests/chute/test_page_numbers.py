@@ -9,7 +9,10 @@ reads the numbers before it) is recomputed from the committed runs and series fi
 estimators the tables use, and each printed number must be its value rounded as printed. A run
 re-analysed or re-run changes those files: the sentence that quotes it then fails here, named by
 its page, line and key. Besides, on a synthetic page: a stale number, a wrong sign, too few
-numbers and an unknown family each fail; the estimators on hand-computed cases. Standard library
+numbers and an unknown family each fail; the estimators on hand-computed cases. The signs of the
+committed comparison tables on mu and on L (f on mu and A on mu in both readings, f on L) are each
+the one weighted slope the prose quotes: the table's 'weighted: slope ± error, chi2/dof' is the
+estimator's own (page_numbers.f_mu, A_mu, f_L, cdpost's fit_weighted_slope). Standard library
 only.
 """
 
@@ -21,6 +24,7 @@ TOP = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pa
 sys.path.insert(0, os.path.join(TOP, "studies"))
 
 from cdtools import page_numbers  # noqa: E402
+from cdtools.text import with_error  # noqa: E402
 
 
 def check(condition, message):
@@ -72,6 +76,25 @@ def estimator_cases():
     check(abs(slope - 2) < 1e-12 and abs(intercept) < 1e-12, "least squares")
 
 
+def one_estimator():
+    """f on mu, A on mu and f on L of the committed tables: the one weighted slope."""
+    data = page_numbers.Data(TOP)
+    cases = [("readings", "sign_f_vs_mu", column, lambda s=series: page_numbers.f_mu(data, s))
+             for column, series in (("count", "flow_rules"), ("layer", "layer_flow_rules"))]
+    cases += [("readings", "sign_A_vs_mu", column, lambda s=series: page_numbers.A_mu(data, s))
+              for column, series in (("count", "flow_rules"), ("layer", "layer_flow_rules"))]
+    cases.append(("L_series", "sign_f_vs_L", "ours", lambda: page_numbers.f_L(data)))
+    for folder, key, column, estimator in cases:
+        rows = page_numbers.read_rows(os.path.join(TOP, "results", "series", folder, "source_comparison.csv"))
+        text = next(row[column] for row in rows if row["key"] == key)
+        slope, error, chi2 = estimator()
+        expected = f"weighted: {with_error(slope, error).replace(chr(0x2212), '-')}, chi2/dof {chi2:.2g}"
+        sign = "rises" if slope - 2 * error > 0 else "falls" if slope + 2 * error < 0 else "no dependence"
+        check(expected in text and text.startswith(sign), f"{folder} {key} {column}: '{text}' is not '{sign} ... "
+              f"{expected}'")
+    print(f"{len(cases)} signs on mu and L read by the one weighted slope")
+
+
 def committed_pages():
     problems = page_numbers.check_pages(TOP)
     for page, line, key, problem in problems:
@@ -88,6 +111,7 @@ def committed_pages():
 def main():
     synthetic_cases()
     estimator_cases()
+    one_estimator()
     committed_pages()
     print("PASSED")
     return 0

@@ -261,28 +261,29 @@ struct Comparer {
       sign_row(key, quantity, sign_text(sign_of(*t)) + " (" + correlation_text(*t) + ")", sign_of(*t));
   }
 
-  // y against ln mu weighted by each run's error of y: the sign of the slope beyond two of its
-  // errors (fit/linear_fit.h), with the weighted fit and the unweighted correlation in words.
+  // The one estimator of the signs on mu and on L: y against ln x (ln mu, ln L) weighted by each
+  // run's error of y, the sign of the slope beyond two of its errors (fit/linear_fit.h), with the
+  // weighted fit and the unweighted correlation in words.
   struct WeightedPoints {
-    std::vector<double> log_mu, y, sigma;
+    std::vector<double> log_x, y, sigma;
   };
-  void weighted_friction_sign(const std::string& key, const std::string& quantity, const std::string& what,
-                              const WeightedPoints& p)
+  void weighted_sign(const std::string& key, const std::string& quantity, const std::string& what,
+                     const std::string& against, const WeightedPoints& p)
   {
-    if (p.log_mu.size() < 3) return;
+    if (p.log_x.size() < 3) return;
     WeightedSlope fit;
     try {
-      fit = fit_weighted_slope(p.log_mu, p.y, p.sigma);
-    } catch (const AnalysisError&) {  // one friction only: no slope
+      fit = fit_weighted_slope(p.log_x, p.y, p.sigma);
+    } catch (const AnalysisError&) {  // one friction (one length) only: no slope
       return;
     }
     const int sign = sign_of(fit.slope);
     char reduced_chi2[32];
     std::snprintf(reduced_chi2, sizeof reduced_chi2, "%.2g", fit.reduced_chi2);
     sign_row(key, quantity,
-             sign_text(sign) + " (slope of " + what +
-                 " against ln mu, weighted: " + format_estimate(fit.slope.value, fit.slope.error) + ", chi2/dof " +
-                 reduced_chi2 + "; unweighted " + correlation_text(test_correlation(p.log_mu, p.y)) + ")",
+             sign_text(sign) + " (slope of " + what + " against " + against +
+                 ", weighted: " + format_estimate(fit.slope.value, fit.slope.error) + ", chi2/dof " + reduced_chi2 +
+                 "; unweighted " + correlation_text(test_correlation(p.log_x, p.y)) + ")",
              sign);
   }
 
@@ -295,12 +296,12 @@ struct Comparer {
     WeightedPoints points;
     for (const auto& run : series.runs)
       if (auto f = run.estimate("f"), x = run.estimate("f_scale"); f && x && f->error) {
-        points.log_mu.push_back(std::log(run.entry.mu));
+        points.log_x.push_back(std::log(run.entry.mu));
         points.y.push_back(std::log(f->value) - (p[0] + p[1] * std::log(x->value)));
         points.sigma.push_back(*f->error / f->value);
       }
-    weighted_friction_sign("sign_f_vs_mu", "f at the same (sqrt(g d)/U g/d)^(1/2) against mu",
-                           "ln f about the law over every run", points);
+    weighted_sign("sign_f_vs_mu", "f at the same (sqrt(g d)/U g/d)^(1/2) against mu",
+                  "ln f about the law over every run", "ln mu", points);
   }
 
   // ln A against ln mu, each run weighted by the error of its peak's amplitude: a Welch spectrum
@@ -312,11 +313,11 @@ struct Comparer {
     for (const auto& run : series.runs)
       if (auto a = run.estimate("A"), segments = run.estimate("spectrum_segments");
           a && segments && a->value > 0 && segments->value > 0) {
-        points.log_mu.push_back(std::log(run.entry.mu));
+        points.log_x.push_back(std::log(run.entry.mu));
         points.y.push_back(std::log(a->value));
         points.sigma.push_back(0.5 / std::sqrt(segments->value));
       }
-    weighted_friction_sign("sign_A_vs_mu", "A against mu (ln mu)", "ln A", points);
+    weighted_sign("sign_A_vs_mu", "A against mu (ln mu)", "ln A", "ln mu", points);
   }
 
   // Each run's decay of the amplitude at f with depth (a = a_s exp(z/lambda) in the layer).
@@ -399,16 +400,23 @@ struct Comparer {
     }
   }
 
+  // f against L weighted as f on mu is (each run by its peak's half width over f), over the runs
+  // with an L; A_mean, which carries no error, by the exponent of its power law.
   void cell_length()
   {
-    for (const auto& [key, fit_name, quantity] :
-         {std::tuple<std::string, std::string, std::string>{"sign_f_vs_L", "f_vs_L_exponent", "f against L"},
-          {"sign_A_mean_vs_L", "A_mean_vs_L_exponent", "A_mean against L"}})
-      if (const auto* e = fit(fit_name))
-        sign_row(key, quantity,
-                 sign_text(sign_of(Estimate{e->value, e->error})) + " (exponent " +
-                     format_estimate(e->value, e->error) + ")",
-                 sign_of(Estimate{e->value, e->error}));
+    WeightedPoints points;
+    for (const auto& run : series.runs)
+      if (auto f = run.estimate("f"); run.entry.length_d && f && f->error && f->value > 0) {
+        points.log_x.push_back(std::log(*run.entry.length_d));
+        points.y.push_back(std::log(f->value));
+        points.sigma.push_back(*f->error / f->value);
+      }
+    weighted_sign("sign_f_vs_L", "f against L", "ln f", "ln L", points);
+    if (const auto* e = fit("A_mean_vs_L_exponent"))
+      sign_row(
+          "sign_A_mean_vs_L", "A_mean against L",
+          sign_text(sign_of(Estimate{e->value, e->error})) + " (exponent " + format_estimate(e->value, e->error) + ")",
+          sign_of(Estimate{e->value, e->error}));
   }
 };
 
@@ -585,8 +593,9 @@ void source_section(MarkdownReport& report, const std::vector<LabelledSeries>& s
       "compared as curves: each run's angle against the angle the source's rule gives at the run's I (and U against "
       "the rule's U at the run's own theta and h), each run's phi against the source's phi(U) law at its U. Ranges "
       "hold for every run. A sign is the exponent's beyond two standard errors, or a correlation's with p < 0.05; "
-      "the signs with mu are the slopes of ln f (about the law) and ln A against ln mu, each run weighted by its "
-      "peak's error, beyond two of their errors. The flow rules are drawn against each reading of a run's I (" +
+      "the signs with mu and with L are one weighted estimator: the slopes of ln f (about the law) and ln A "
+      "against ln mu, and of ln f against ln L, each run weighted by its peak's error, beyond two of their errors. The "
+      "flow rules are drawn against each reading of a run's I (" +
       definitions_text() +
       "). Quantities compared with a tolerance and signs are counted apart, and a row the runs were made to match "
       "(h, when every run's deck chose its grain count for it) is not compared. Agreeing: " +

@@ -63,6 +63,16 @@ SERIES.update({
     "creep_deep": [dict(mu=0.5, theta=22, L=n, wall_height=60, grains=grains_for_walls(n, 60)) for n in (102, 152)],
 })
 CREEP_SERIES = ("creep_walls", "creep_seeds", "creep_mu2", "creep_deep")
+
+# The signs settled (issue 63, item 5; doc/campaign.md, *The signs' rains*): two more rains, seeds not
+# used by any other series, in the layer reading at three angles per friction 2 deg apart inside
+# each friction's published range (its ends left out: the slowest run nears the stop, mu 2's 30 deg
+# lies beyond plane shear's I), so that f on mu, A on mu and their scatter between rains rest on
+# three rains at each. They join the layer reading's flow-rules analysis.
+SIGN_SEEDS = (20261126, 20261127)
+SIGN_ANGLES = {0.05: (17, 19, 21), 0.5: (23, 25, 27), 2: (25, 27, 29)}
+SERIES["layer_signs"] = [dict(mu=mu, theta=theta, L=45, seed=seed, reading="layer")
+                         for mu, angles in SIGN_ANGLES.items() for theta in angles for seed in SIGN_SEEDS]
 DEFAULTS_ONLY = {"health_evidence"}
 # The series whose runs measure the flow of the 45 d cell at the published settings: the readings'
 # means and the replica pairs are made of these alone.
@@ -73,7 +83,7 @@ ANALYSES = {
     "flow_rules": lambda job: job.series in ("mu0.05", "mu0.5", "mu2"),
     "L_series": lambda job: (job.series in ("L", "mu0.5") and float(job.vars["mu"]) == 0.5
                              and float(job.vars["theta"]) == 22 and reading(job.vars) == "count"),
-    "layer_flow_rules": lambda job: job.series in ("layer_mu0.05", "layer_mu0.5", "layer_mu2"),
+    "layer_flow_rules": lambda job: job.series in ("layer_mu0.05", "layer_mu0.5", "layer_mu2", "layer_signs"),
     # The creep length against L and the walls: the creep series, the L series, and the 45 d runs
     # they extend (mu 0.5 at 22 deg, mu 2 at 28 deg; count reading, first rain).
     "creep_length": lambda job: (job.series in CREEP_SERIES + ("L",)

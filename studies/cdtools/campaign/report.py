@@ -342,8 +342,9 @@ def section_runs(records):
             "timers over the chute time the runs covered. Unconverged: the steps whose solve met the "
             f"iteration cap (the fix's end-of-run line), ⚠ above {100 * UNCONVERGED_LIMIT:g} % of the run's "
             "steps; runs made before the fix printed that line show 'not recorded', or 'inferred' with the "
-            f"evidence run of their friction and reading ([{HEALTH_MARKS}]({HEALTH_MARKS})). Sweeps: per step, "
-            "median / 99th percentile.\n\n"
+            "evidence run of their friction and reading"
+            + (f" ([{HEALTH_MARKS}]({HEALTH_MARKS}))" if any(getattr(r, "inferred", None) for r in records) else "")
+            + ". Sweeps: per step, median / 99th percentile.\n\n"
             + markdown_table(["run", "mu", "θ (°)", "L (d)", "seed", "chute time (s)", "window (s)",
                               "CPU s / phys s", "unconverged steps", "sweeps", "state"], rows))
 
@@ -538,9 +539,11 @@ def section_comparisons(destination, page_folder):
         relative = os.path.relpath(target, page_folder)
         commands = (f"its commands in [{relative}/commands.txt]({relative}/commands.txt), "
                     if os.path.exists(os.path.join(target, "commands.txt")) else "")
+        full = (f" and the full report in [{relative}/report.md]({relative}/report.md)"
+                if os.path.exists(os.path.join(target, "report.md")) else "")
         text += (f"## Rigid against soft: {name}\n\nThe same packing run by each model (reference/run_comparison.sh, "
-                 f"{commands}every column in [{relative}/table.csv]({relative}/table.csv) and the full report in "
-                 f"[{relative}/report.md]({relative}/report.md)).\n\n" + markdown_table(headings, rows))
+                 f"{commands}every column in [{relative}/table.csv]({relative}/table.csv){full}).\n\n"
+                 + markdown_table(headings, rows))
         spectra = sorted(os.path.relpath(f, target) for f in glob.glob(os.path.join(target, "figures", "spectra*.png")))
         text += "\n" + "".join(f"![{os.path.basename(f)}]({relative}/{f}) " for f in spectra[:2]) + "\n\n"
     return text
@@ -697,7 +700,11 @@ def section_key_figures(destination):
             "cell length series.\n\n" + links + "\n") if links else ""
 
 
-def section_where():
+def section_where(destination):
+    verdict = os.path.join("series", "creep_length", "verdict.md")
+    creep = (f"- [{verdict}]({verdict}): the creep length, the grains' or the cell's, and the coherence along the cell "
+             "(`studies/creep_verdict.py`, doc/creep.md).\n" if os.path.exists(os.path.join(destination, verdict))
+             else "")
     return ("## Where the tables are\n\n"
             "- [runs/README.md](runs/README.md): every run (parameters, window, cost, state), its U, φ, h, I, f, A, "
             "profile fits, and the scatter between replicas; each run's own files in `runs/<name>/`.\n"
@@ -706,6 +713,7 @@ def section_where():
             "- `series/<analysis>/report.md`: every fit, residual, held fit and figure of one series "
             "([flow_rules](series/flow_rules/report.md), [layer_flow_rules](series/layer_flow_rules/report.md), "
             "[L_series](series/L_series/report.md), [readings](series/readings/report.md)).\n"
+            + creep +
             "- [soft/README.md](soft/README.md): rigid against soft-sphere runs of the same packing.\n"
             "- [bed/analysis/bed.md](bed/analysis/bed.md): the erodible bed against the solver's tolerance and its "
             "floor at rest (doc/bed.md).\n"
@@ -767,7 +775,7 @@ def write_report(records, copied_series, readings, destination, command, changes
         section_source(destination, records),
         section_key_figures(destination),
         section_snapshots(records, destination),
-        section_where(),
+        section_where(destination),
         section_changes(changes, destination, command),
     ])
     return readme
