@@ -15,7 +15,8 @@
 # 5. bench/peers/peer_bench: every solver at 1e-3 on three problems (OUT/screen.csv, kept if
 #    there), then those that solved one on the first PEER_PER_CLASS problems of every class
 #    (OUT/solves.csv), time limit PEER_TIME_LIMIT CPU s (0.5);
-# 6. bench/peer_profiles.py: OUT/profiles.png and OUT/profiles.md.
+# 6. bench/peer_profiles.py: OUT/profiles.png and OUT/profiles.md (ours, the fix's default),
+#    OUT/profiles_newton.* (ours_newton, the Newton polish on, in ours' place).
 # Environment: LMP (build/lmp_cd), PEER_TOOLS (build/bench/peers), PEER_SOLVERS (the screened
 # solvers, peer_bench's --solvers; default: every one, peer_bench --list).
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
@@ -88,6 +89,7 @@ screen=("$(first "$out/corpus/chute_mu0.5"/*.hdf5)" "$(first "$out/corpus/stall_
 [ -f "$out/screen.csv" ] || "$tools/peer_bench" --out "$out/screen.csv" --time-limit "$limit" --targets 1e-3 \
   --solvers "${PEER_SOLVERS:-$("$tools/peer_bench" --list)}" "${screen[@]}" 2> "$out/screen.log"
 solvers=$(awk -F, 'NR > 1 && $7 == "solved" && !seen[$4]++ { printf "%s%s", sep, $4; sep = "," }' "$out/screen.csv")
+case ",$solvers," in *,ours_newton,*) ;; *) solvers="$solvers,ours_newton" ;; esac  # a screening made before it
 problems=()
 for folder in "$out/corpus"/*/; do
   mapfile -t some < <(ls "$folder"*.hdf5 | head -"${PEER_PER_CLASS:-100}")
@@ -95,4 +97,7 @@ for folder in "$out/corpus"/*/; do
 done
 "$tools/peer_bench" --out "$out/solves.csv" --time-limit "$limit" --solvers "$solvers" "${problems[@]}" \
   2> "$out/peer_bench.log"
-python3 "$here/peer_profiles.py" --out "$out/profiles" --screen "$out/screen.csv" --time-limit "$limit" "$out/solves.csv"
+python3 "$here/peer_profiles.py" --out "$out/profiles" --screen "$out/screen.csv" --time-limit "$limit" \
+  --leave-out ours_newton "$out/solves.csv"
+python3 "$here/peer_profiles.py" --out "$out/profiles_newton" --time-limit "$limit" --ours ours_newton \
+  --leave-out ours "$out/solves.csv"

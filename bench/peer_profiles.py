@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Performance profiles (Dolan and Moré 2002) of the solvers of bench/peers/peer_bench.
 
-    bench/peer_profiles.py --out PREFIX [--screen SCREEN.csv] [--time-limit S] SOLVES.csv
+    bench/peer_profiles.py --out PREFIX [--screen SCREEN.csv] [--time-limit S] [--ours NAME]
+                           [--leave-out NAME,...] SOLVES.csv...
 
 An instance is one problem, one start (cold or warm) and one target error; a solver's cost on it
 is its CPU time if it reached the target within the time limit, else infinite. rho_s(tau) is
@@ -9,7 +10,9 @@ the fraction of instances a solver solves within tau times the best solver's tim
 PREFIX.md (tables: per group and target, per class; the screening) and PREFIX.png (the
 profiles: a panel per group and target). Groups: ordinary (chute_*, pile_*), hard (stall_*,
 saved_hard). --time-limit: a solve over S CPU seconds counts as not solved (the screening's
-limit may be longer). Standard library and gnuplot.
+limit may be longer). --ours: the solver the per-class table and the hard check are about (ours;
+ours_newton for the Newton polish); --leave-out: solvers dropped from the rows (e.g. one of the two).
+Several SOLVES.csv are read as one run. Standard library and gnuplot.
 """
 
 import argparse
@@ -21,6 +24,7 @@ import subprocess
 import tempfile
 
 TAUS = [10 ** (k / 20) for k in range(0, 61)]  # 1 to 1000
+OURS = "ours"  # --ours
 
 
 def group_of(cls):
@@ -89,10 +93,10 @@ def class_table(rows, solvers):
             best = min(per.values())
             if math.isfinite(best):
                 wins.update(s for s, t in per.items() if t == best)
-        ours = [per.get("ours", math.inf) for per in inst.values()]
+        ours = [per.get(OURS, math.inf) for per in inst.values()]
         leader = max(wins, key=wins.get) if wins else "none"
         theirs = [per.get(leader, math.inf) for per in inst.values()]
-        lines.append(f"| {cls} | {target:g} | {len(inst)} | {sum(map(math.isfinite, ours))} | {wins.get('ours', 0)} | "
+        lines.append(f"| {cls} | {target:g} | {len(inst)} | {sum(map(math.isfinite, ours))} | {wins.get(OURS, 0)} | "
                      f"{leader} ({wins.get(leader, 0)}) | {median(ours)} | {median(theirs)} |")
     return lines
 
@@ -111,8 +115,8 @@ def hard_check(rows):
             by[(r["class"], r["problem"], r["start"], float(r["target"]))][r["solver"]] = seconds
     lost = []
     for key, per in sorted(by.items()):
-        ours = per.get("ours", math.inf)
-        faster = sorted((t, s) for s, t in per.items() if s != "ours" and t < ours)
+        ours = per.get(OURS, math.inf)
+        faster = sorted((t, s) for s, t in per.items() if s != OURS and t < ours)
         if faster:
             lost.append(f"{key[0]}/{key[1]} {key[2]} {key[3]:g}: ours "
                         f"{ours:.3g} s, " + ", ".join(f"{s} {t:.3g} s" for t, s in faster[:3]))
@@ -145,7 +149,7 @@ def draw(table, solvers, png):
                 path = os.path.join(work, f"{k[0]}_{k[1]:g}_{i}.dat")
                 with open(path, "w") as f:
                     f.writelines(f"{tau} {share(r.get(s, []), tau)}\n" for tau in TAUS)
-                width = 3 if s == "ours" else 1
+                width = 3 if s == OURS else 1
                 plots.append(f"'{path}' with steps lw {width} title '{s}'")
             script += [f"set title '{k[0]}, error {k[1]:g} ({len(table[k])} instances)'", "plot " + ", ".join(plots)]
         script.append("unset multiplot")
@@ -157,9 +161,14 @@ def main():
     parser.add_argument("--out", required=True)
     parser.add_argument("--screen")
     parser.add_argument("--time-limit", type=float, default=math.inf)
-    parser.add_argument("solves")
+    parser.add_argument("--ours", default="ours")
+    parser.add_argument("--leave-out", default="")
+    parser.add_argument("solves", nargs="+")
     args = parser.parse_args()
-    rows = read(args.solves)
+    global OURS
+    OURS = args.ours
+    left_out = set(filter(None, args.leave_out.split(",")))
+    rows = [r for path in args.solves for r in read(path) if r["solver"] not in left_out]
     for r in rows:
         if r["status"] == "solved" and float(r["seconds"]) > args.time_limit:
             r["status"] = "time_limit"
@@ -169,7 +178,7 @@ def main():
     total, lost = hard_check(rows)
     lines = ["Solved / fastest, % of instances (performance profile at tau = infinity and tau = 1):", "",
              *profile, "", counts, "", *class_table(rows, solvers), "",
-             f"Hard instances (problem x start x target) where a Siconos solver reached the target faster than ours: "
+             f"Hard instances (problem x start x target) where another solver reached the target faster than {OURS}: "
              f"{len(lost)} of {total}.", ""]
     lines += [f"- {line}" for line in lost]
     if args.screen:

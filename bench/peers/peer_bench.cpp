@@ -13,7 +13,8 @@
 // CPU seconds of the child (peers::cpu_seconds); the limit is wall-clock.
 //
 // Ours: Gauss–Seidel at the deck's settings (inputs/in.chute: tolerance 1e-3, conjugate
-// acceleration, full sweep every 8, stall rescue on), stopped at the first full sweep whose
+// acceleration, full sweep every 8, stall rescue on); ours_newton: the same with the Newton
+// polish (newton_polish yes, cd/newton_polish.h). Each is stopped at the first full sweep whose
 // iterate meets the target; if it ends on its own norm first, it goes on from its iterate with
 // its tolerance ten times lower. The error checks are timed apart and left out of its time.
 // Siconos: the solver at tolerance = target; if its answer misses the target by our measure, it
@@ -67,6 +68,7 @@ Options parse_options(int argc, char** argv)
 {
   Options o;
   o.solvers.push_back("ours");
+  o.solvers.push_back("ours_newton");
   for (const std::string& name : peers::siconos_solver_names()) o.solvers.push_back(name);
   for (int i = 1; i < argc; i++) {
     const std::string arg = argv[i];
@@ -82,7 +84,7 @@ Options parse_options(int argc, char** argv)
     } else if (arg == "--starts") o.starts = split(value());
     else if (arg == "--solvers") o.solvers = split(value());
     else if (arg == "--list") {
-      std::cout << "ours";
+      std::cout << "ours,ours_newton";
       for (const std::string& name : peers::siconos_solver_names()) std::cout << ',' << name;
       std::cout << '\n';
       std::exit(0);
@@ -152,7 +154,7 @@ cd::SolverSettings deck_settings()
 }
 
 Outcome solve_ours(const cd::ContactProblem& problem, const peers::LocalProblem& local, bool warm, double target,
-                   double time_limit)
+                   double time_limit, bool newton_polish)
 {
   Outcome outcome;
   std::vector<cd::Contact> contacts = problem.contacts;
@@ -164,6 +166,7 @@ Outcome solve_ours(const cd::ContactProblem& problem, const peers::LocalProblem&
   watch.start(cpu_begin);
   cd::apply_impulses(contacts, velocity);
   cd::SolverSettings settings = deck_settings();
+  settings.gauss_seidel.newton_polish = newton_polish;
   try {
     for (;; settings.tolerance /= 10.0) {
       cd::GaussSeidel solver(settings);
@@ -280,9 +283,10 @@ int run(const Options& o)
           std::string status = "skipped";
           Outcome outcome;
           if (!gave_up) {
-            if (solver == "ours")
-              outcome = in_child([&] { return solve_ours(problem, local, warm, target, o.time_limit); }, o.time_limit,
-                                 ours_wall_limit(o.time_limit), status);
+            if (solver == "ours" || solver == "ours_newton")
+              outcome = in_child(
+                  [&] { return solve_ours(problem, local, warm, target, o.time_limit, solver == "ours_newton"); },
+                  o.time_limit, ours_wall_limit(o.time_limit), status);
             else
               outcome = in_child([&] { return solve_siconos(local, solver, warm, target); }, o.time_limit,
                                  3.0 * o.time_limit + 1.0, status);

@@ -22,16 +22,6 @@ struct BlockDelassus {
   double& at(std::vector<double>& part, std::size_t i, std::size_t j) { return part[i * m + j]; }
 };
 
-// What a unit local impulse `dp` on contact `c` does to `body` (zero if it is neither of c's).
-BodyVelocity response(const Contact& c, Local2 dp, int body)
-{
-  BodyVelocity a{}, b{};
-  apply_impulse(c, dp, a, b);
-  if (body == c.body_a) return a;
-  if (body == c.body_b) return b;
-  return {};
-}
-
 BlockDelassus block_delassus(const std::vector<Contact>& contacts, const std::vector<int>& block)
 {
   BlockDelassus w;
@@ -45,7 +35,7 @@ BlockDelassus block_delassus(const std::vector<Contact>& contacts, const std::ve
     const Contact& cj = contacts[block[j]];
     for (const int body : {cj.body_a, cj.body_b}) {
       if (body == 0) continue;
-      const BodyVelocity by_n = response(cj, {1.0, 0.0}, body), by_t = response(cj, {0.0, 1.0}, body);
+      const BodyVelocity by_n = impulse_response(cj, {1.0, 0.0}, body), by_t = impulse_response(cj, {0.0, 1.0}, body);
       for (const std::size_t i : touching[body]) {
         const Contact& ci = contacts[block[i]];
         const bool on_a = ci.body_a == body;

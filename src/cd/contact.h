@@ -108,6 +108,17 @@ inline WorldImpulse world_impulse(const Contact& c, Local2 p)
   b.spin -= c.spin_gain_b * dp.t;
 }
 
+// What the local impulse dp on contact c alone gives `body` (zero if it is neither of c's): with
+// relative_velocity, a column of the contacts' Delassus operator.
+inline BodyVelocity impulse_response(const Contact& c, Local2 dp, int body)
+{
+  BodyVelocity a{}, b{};
+  apply_impulse(c, dp, a, b);
+  if (body == c.body_a) return a;
+  if (body == c.body_b) return b;
+  return {};
+}
+
 // Adds the contacts' impulses (e.g. the warm start) to the body velocities: what a step does
 // before its solver's first sweep.
 void apply_impulses(const std::vector<Contact>& contacts, std::vector<BodyVelocity>& velocity);

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "cd/newton_polish.h"
 #include "cd/refusal.h"
 #include "cd/stall_rescue.h"
 
@@ -298,6 +299,7 @@ SolveReport GaussSeidel::solve_in_full_sweeps(std::vector<Contact>& contacts, st
   SolveReport report;
   ConjugateBeta conjugate;
   StallRescue rescue(settings_.gauss_seidel, stall_, exchange, contacts);
+  NewtonPolish polish(settings_, exchange);
   bool sliding_images = has_sliding_images(contacts);
   double beta = 0.0;
   while (report.iterations < settings_.max_iterations) {
@@ -311,7 +313,7 @@ SolveReport GaussSeidel::solve_in_full_sweeps(std::vector<Contact>& contacts, st
     if (joined) sliding_images = has_sliding_images(contacts);
     if (converged && !joined) return report;
     rescue.solve_kept_block(contacts, velocity, report);
-    if (rescue.act(contacts, velocity, report)) beta = 0.0;
+    if (polish.act(contacts, velocity, report) || rescue.act(contacts, velocity, report)) beta = 0.0;
     else if (rescue.sweeping().acceleration == Acceleration::conjugate)
       beta = conjugate.next(change.sum_change_sq, report.iterations, settings_.max_iterations);
   }
@@ -329,6 +331,7 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
   SolveReport report;
   ConjugateBeta conjugate;
   StallRescue rescue(settings_.gauss_seidel, stall_, exchange, contacts);
+  NewtonPolish polish(settings_, exchange);
   bool sliding_images = has_sliding_images(contacts);
   double previous_full_residual = std::numeric_limits<double>::infinity();
   for (int full_sweeps = 1; report.iterations < settings_.max_iterations; full_sweeps++) {
@@ -349,6 +352,12 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
       return report;
     }
     rescue.solve_kept_block(contacts, velocity, report);
+    // A polish kept: the next full sweep measures it.
+    if (polish.act(contacts, velocity, report)) {
+      conjugate.restart(true);
+      previous_full_residual = report.residual;
+      continue;
+    }
     // After a restart from zero or a block solve, contacts the full sweep left quiet may change:
     // all are active.
     if (rescue.act(contacts, velocity, report) && (report.cold_restarts > 0 || report.block_solves > 0))

@@ -49,6 +49,9 @@ struct GaussSeidelSettings {
   // at mu 2 and tolerance 1e-4 a block solved only at stalls is undone by the sweeps that follow
   // (doc/stalls_tight.md). 0: blocks at stalls only.
   int stall_block_every = 25;
+  // The Newton polish (cd/newton_polish.h): once a full sweep's norm is within ten times the
+  // tolerance, semismooth Newton steps on every contact, kept where they lower the residual.
+  bool newton_polish = false;
 };
 
 // Empty if the knobs can run, else one line naming the knob as the fix's keyword and its

@@ -17,6 +17,8 @@ void SolveReport::add(const SolveReport& later)
   block_solves += later.block_solves;
   largest_block = std::max(largest_block, later.largest_block);
   kept_block_solves += later.kept_block_solves;
+  newton_polishes += later.newton_polishes;
+  newton_steps += later.newton_steps;
   residual = later.residual;
   converged = later.converged;
 }

@@ -27,6 +27,8 @@ struct SolveReport {
   int block_solves = 0;       // times the rescue solved the contacts around the residual exactly
   int largest_block = 0;      // the most contacts one of those block solves held
   int kept_block_solves = 0;  // times the rescue solved its kept block again between stalls
+  int newton_polishes = 0;    // Newton polishes kept (cd/newton_polish.h)
+  int newton_steps = 0;       // their Newton steps, kept or not
 
   // Adds the solve `later`, which went on from where this one stopped (a step's solves): counts
   // add up, the largest block is the larger, the norm and convergence are the later's.

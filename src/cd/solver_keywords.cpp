@@ -110,6 +110,7 @@ std::optional<std::string> read_solver_keyword(SolverSettings& settings, const s
   if (keyword == "stall_relaxation") return read_number(keyword, value, gs.stall_relaxation);
   if (keyword == "stall_block") return read_integer(keyword, value, gs.stall_block);
   if (keyword == "stall_block_every") return read_integer(keyword, value, gs.stall_block_every);
+  if (keyword == "newton_polish") return read_choice(keyword, value, "no", false, "yes", true, gs.newton_polish);
   return std::nullopt;
 }
 

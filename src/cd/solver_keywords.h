@@ -2,7 +2,7 @@
 // (src/fix_contact_dynamics_settings.cpp) and the corpus bench's settings (bench/solver_corpus.cpp).
 //   solver NAME (cd::make_solver, cd/solver_registry.h), tolerance, max_iterations, norm (quadratic|maximum),
 //   and Gauss–Seidel's: relaxation, acceleration (none|conjugate), full_sweep_every,
-//   stall_window, stall_coherence, stall_relaxation, stall_block, stall_block_every.
+//   stall_window, stall_coherence, stall_relaxation, stall_block, stall_block_every, newton_polish.
 #pragma once
 
 #include <optional>

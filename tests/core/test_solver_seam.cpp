@@ -347,6 +347,10 @@ TEST(SolverKeywords, AreReadOnceForEveryHost)
             "stall_window must fit an int, got '99999999999'");
   EXPECT_EQ(cd::read_solver_keyword(settings, "acceleration", "anderson"),
             "acceleration must be none or conjugate, got 'anderson'");
+  EXPECT_FALSE(settings.gauss_seidel.newton_polish);
+  EXPECT_EQ(cd::read_solver_keyword(settings, "newton_polish", "yes"), "");
+  EXPECT_TRUE(settings.gauss_seidel.newton_polish);
+  EXPECT_EQ(cd::read_solver_keyword(settings, "newton_polish", "1"), "newton_polish must be no or yes, got '1'");
   EXPECT_EQ(cd::read_solver_keyword(settings, "relaxation", ".5"), "");
   EXPECT_EQ(settings.gauss_seidel.relaxation, 0.5);
 }

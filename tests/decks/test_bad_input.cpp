@@ -82,6 +82,7 @@ const BadCase bad_cases[] = {
     {"unknown_solver", with_fix("0.5 0.5 solver nsgs"), "solver must be gauss_seidel, got 'nsgs'"},
     {"unknown_order", with_fix("0.5 0.5 order random"), "order must be fixed or shuffle, got 'random'"},
     {"unknown_join", with_fix("0.5 0.5 join before"), "join must be during or after, got 'before'"},
+    {"unknown_newton_polish", with_fix("0.5 0.5 newton_polish on"), "newton_polish must be no or yes, got 'on'"},
     {"unknown_acceleration", with_fix("0.5 0.5 acceleration anderson"),
      "acceleration must be none or conjugate, got 'anderson'"},
     {"zero_full_sweep_every", with_fix("0.5 0.5 full_sweep_every 0"), "full_sweep_every must be >= 1, got 0"},
