@@ -11,6 +11,8 @@ README) where the committed block differs from what the folders make.
 
     studies/rerun_tables.py                  # rewrite the block of every results/rerun/*/README.md
     studies/rerun_tables.py --check          # compare only (ctest chute.rerun_tables)
+    studies/rerun_tables.py --add SET RUNS/runs/NAME ...   # a finished campaign run's small files into
+                                             # results/rerun/SET/NAME first (cost.json, params.json, post/ tables)
 
 Standard library only.
 """
@@ -19,6 +21,7 @@ import argparse
 import json
 import math
 import os
+import shutil
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
@@ -31,6 +34,24 @@ RERUN = os.path.join(TOP, "results", "rerun")
 PUBLISHED = os.path.join(TOP, "results", "runs")
 BEGIN, END = "<!-- rerun_tables: begin -->", "<!-- rerun_tables: end -->"
 MOVED = (("U", 2), ("phi", 4), ("h", 2), ("f", 1), ("A", 3))
+# What a finished campaign run leaves here: its cost and parameters, and cdpost run's tables.
+RUN_FILES = ("cost.json", "params.json")
+POST_FILES = ("layers.csv", "profile.csv", "results.csv", "results.json", "spectrum.csv")
+
+
+def add_run(run_folder, destination):
+    """Copy a finished campaign run's small files (RUN_FILES, post/POST_FILES) into destination/NAME;
+    refuses a run without them (unfinished or not analysed)."""
+    sources = ([os.path.join(run_folder, f) for f in RUN_FILES]
+               + [os.path.join(run_folder, "post", f) for f in POST_FILES])
+    missing = [s for s in sources if not os.path.exists(s)]
+    if missing:
+        raise FileNotFoundError(f"{run_folder}: not a finished, analysed run (no {', '.join(missing)})")
+    target = os.path.join(destination, os.path.basename(os.path.normpath(run_folder)))
+    os.makedirs(target, exist_ok=True)
+    for source in sources:
+        shutil.copy2(source, target)
+    return target
 
 
 def estimates(folder):
@@ -102,7 +123,18 @@ def rewritten(text, block, readme):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--check", action="store_true", help="compare the committed tables, write nothing")
+    parser.add_argument("--add", nargs="+", metavar=("SET", "RUN"),
+                        help="copy finished campaign runs into results/rerun/SET first")
     args = parser.parse_args(argv)
+    if args.add:
+        if len(args.add) < 2 or not os.path.isdir(os.path.join(RERUN, args.add[0])):
+            parser.error(f"--add SET RUN...: SET must name a folder of {os.path.relpath(RERUN, TOP)} "
+                         "with its README.md")
+        try:
+            for run in args.add[1:]:
+                add_run(run, os.path.join(RERUN, args.add[0]))
+        except FileNotFoundError as error:
+            parser.error(str(error))
     stale = []
     for name in sorted(os.listdir(RERUN)):
         readme = os.path.join(RERUN, name, "README.md")

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Checks of studies/rerun_tables.py, run by ctest: a synthetic re-run against its published run
-(health cells, each quantity's difference in combined errors by hand, A without one), a README
+(health cells, each quantity's difference in combined errors by hand, A without one), a run added
+with its small files and refused without them, a README
 without the block refused naming it, and the committed tables of results/rerun/*/README.md made
 again from their folders (a run added or changed without `studies/rerun_tables.py` fails here).
 
@@ -58,6 +59,20 @@ def synthetic(tool):
                     "20.30 (20.00; +0.6 σ)", "0.7500 (0.7503; −0.6 σ)", "60.00 (60.00; +0.0 σ)",
                     "25.0 (22.0; +1.1 σ)", "0.060 (0.070)"]
         check(cells == expected, f"row {cells}, expected {expected}")
+        run = os.path.join(scratch, "campaign", "mu2_theta29_L45")
+        write_run(os.path.join(run, "post"), new)
+        try:
+            tool.add_run(run, os.path.join(scratch, "rerun"))
+            check(False, "a run without cost.json was added")
+        except FileNotFoundError as error:
+            check("cost.json" in str(error), f"error says {error}")
+        for name in ("cost.json", "params.json"):
+            with open(os.path.join(run, name), "w") as out:
+                json.dump({"physical_seconds": 10.0, "solver": solver}, out)
+        for name in ("layers.csv", "profile.csv", "results.json", "spectrum.csv"):
+            open(os.path.join(run, "post", name), "w").close()
+        added = tool.add_run(run, os.path.join(scratch, "rerun"))
+        check(sorted(os.listdir(added)) == sorted(tool.RUN_FILES + tool.POST_FILES), f"added {os.listdir(added)}")
     try:
         tool.rewritten("no block here", "", "README.md")
         check(False, "a README without the block was rewritten")
