@@ -15,7 +15,8 @@ at the peak across the cell against L.
 Where the runs are: a campaign folder given by --runs (RUNS/runs/<name>/post, a finished run
 analysed by cdpost run), else the published runs of PUBLISHED (the L series and the 45 d mu 0.5
 run from results/runs; the 45 d mu 2 run only from the count reading's converged re-run,
-results/rerun/count_mu2, the published one being capped at 1000 sweeps). A run found nowhere is
+results/rerun/count_mu2, the published one being capped at 1000 sweeps; the creep series' runs
+committed to results/rerun/creep_length). A run found nowhere is
 listed as missing; no number stands in for it. lambda_1 is cdpost series' over the runs found
 (a manifest and its outputs in --work).
 
@@ -45,7 +46,8 @@ from cdtools.text import markdown_table, number, with_error
 FRICTIONS = ((0.5, 22.0), (2.0, 28.0))
 ESTIMATORS = (("lambda_1", "creep_lambda_first_decade"), ("lambda_f", "creep_lambda"))
 # Published runs read where no campaign folder holds the run: (folder under the repository, series).
-PUBLISHED = (("results/runs", ("L", "mu0.5")), ("results/rerun/count_mu2", ("mu2",)))
+PUBLISHED = (("results/runs", ("L", "mu0.5")), ("results/rerun/count_mu2", ("mu2",)),
+             ("results/rerun/creep_length", CREEP_SERIES))
 COHERENCE_ROWS = ("coherence_length", "coherence_plateau", "coherence_far", "oscillation_pattern", "A", "A_mean")
 PATTERNS = {1: "uniform", 2: "standing", 3: "travelling", 4: "local"}
 SOURCE_WALLS = 30.0
