@@ -12,26 +12,9 @@ or name does not; the summary's ranges, means and counts by hand; the committed 
 re-run committed without `studies/local_rheology.py --cdpost ...` fails here. Standard library only.
 """
 
-import importlib.util
 import math
-import os
-import sys
 
-TOP = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir)
-TOOL = os.path.join(TOP, "studies", "local_rheology.py")
-
-
-def check(condition, message):
-    if not condition:
-        sys.exit(f"FAILED: {message}")
-
-
-def load_tool():
-    sys.path.insert(0, os.path.join(TOP, "studies"))
-    spec = importlib.util.spec_from_file_location("local_rheology", TOOL)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+from study_test import check, load_study
 
 
 def fits_recovered(tool):
@@ -90,7 +73,7 @@ def committed_reruns(tool):
 
 
 def main():
-    tool = load_tool()
+    tool = load_study("local_rheology")
     mu_fit, phi_fit = fits_recovered(tool)
     comparison(tool, mu_fit, phi_fit)
     count = committed_reruns(tool)

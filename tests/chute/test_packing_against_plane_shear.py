@@ -10,26 +10,11 @@ or without I_local, are left out; the per-friction summary gives the mean and st
 Standard library only.
 """
 
-import importlib.util
 import math
 import os
-import sys
 import tempfile
 
-TOOL = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "studies",
-                    "packing_against_plane_shear.py")
-
-
-def check(condition, message):
-    if not condition:
-        sys.exit(f"FAILED: {message}")
-
-
-def load_tool():
-    spec = importlib.util.spec_from_file_location("packing_against_plane_shear", TOOL)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+from study_test import check, load_study
 
 
 RUNS_CSV = """run,mu,theta_deg,L_d,phi_local,phi_local_error,I_local,I_local_error
@@ -41,7 +26,7 @@ RUNS_CSV = """run,mu,theta_deg,L_d,phi_local,phi_local_error,I_local,I_local_err
 
 
 def main():
-    tool = load_tool()
+    tool = load_study("packing_against_plane_shear")
     plane_shear = [(0.0, 0.0, 0.80), (0.2, 0.001, 0.76), (0.4, 0.002, 0.70)]
     # 0.80 + (0.76 - 0.80) x 0.05 / 0.2 = 0.79; 0.76 + (0.70 - 0.76) x 0.1 / 0.2 = 0.73.
     check(abs(tool.phi_at(0.05, plane_shear) - 0.79) < 1e-12, f"phi at 0.05: {tool.phi_at(0.05, plane_shear)}")

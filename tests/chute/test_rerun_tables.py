@@ -10,27 +10,11 @@ again from their folders (a run added or changed without `studies/rerun_tables.p
 Standard library only.
 """
 
-import importlib.util
 import json
 import os
-import sys
 import tempfile
 
-TOP = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir)
-TOOL = os.path.join(TOP, "studies", "rerun_tables.py")
-
-
-def check(condition, message):
-    if not condition:
-        sys.exit(f"FAILED: {message}")
-
-
-def load_tool():
-    sys.path.insert(0, os.path.join(TOP, "studies"))
-    spec = importlib.util.spec_from_file_location("rerun_tables", TOOL)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+from study_test import check, load_study
 
 
 def write_run(folder, values, cost=None):
@@ -81,9 +65,9 @@ def synthetic(tool):
 
 
 def main():
-    tool = load_tool()
+    tool = load_study("rerun_tables")
     synthetic(tool)
-    tool = load_tool()  # the real folders again
+    tool = load_study("rerun_tables")  # the real folders again
     check(tool.main(["--check"]) == 0, "the committed re-run tables differ from their folders")
     print("rerun_tables: every check passed")
 

@@ -13,28 +13,12 @@ today/runs.csv holds every count run of the folders it reads, so a run committed
 """
 
 import gzip
-import importlib.util
 import json
 import math
 import os
-import sys
 import tempfile
 
-TOP = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir)
-TOOL = os.path.join(TOP, "studies", "two_packings.py")
-
-
-def check(condition, message):
-    if not condition:
-        sys.exit(f"FAILED: {message}")
-
-
-def load_tool():
-    sys.path.insert(0, os.path.join(TOP, "studies"))
-    spec = importlib.util.spec_from_file_location("two_packings", TOOL)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+from study_test import check, load_study
 
 
 def write_run(folder, frames, truncate=False):
@@ -103,7 +87,7 @@ def committed(tool):
 
 
 def main():
-    tool = load_tool()
+    tool = load_study("two_packings")
     size_mix_by_hand(tool)
     pairing(tool)
     count = committed(tool)
