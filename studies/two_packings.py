@@ -33,6 +33,7 @@ import json
 import math
 import os
 import sys
+import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 
@@ -77,7 +78,7 @@ def analyse_today(cdpost, table):
     """table/manifest.csv and runs.csv of today's count runs (local_rheology's analysis)."""
     runs = today_runs()
     os.makedirs(table, exist_ok=True)
-    with __import__("tempfile").TemporaryDirectory() as scratch:
+    with tempfile.TemporaryDirectory() as scratch:
         for name, folder in runs.items():  # one folder of links: the manifest reads one place
             os.symlink(folder, os.path.join(scratch, name))
         local_rheology.analyse_reruns(cdpost, table, scratch)
@@ -185,6 +186,13 @@ def tolerance_shift(loose_table, tight_table, tight_fit):
     return shifts
 
 
+def plane_shear_tolerance_shifts():
+    """tolerance_shift of the committed plane-shear tables (PLANE_SHEAR_LOOSE against 1e-4)."""
+    mu, loose = PLANE_SHEAR_LOOSE
+    tight = local_rheology.PLANE_SHEAR[mu]
+    return tolerance_shift(loose, tight, local_rheology.plane_shear_fits({mu: tight})[mu]["phi"])
+
+
 # The size mix, from snapshots.
 
 def snapshots(path):
@@ -290,9 +298,8 @@ def report(table_rows, mix):
     lines += [""] + [f"Mean against the {against} reading's: {_mean_se(paired_mean(table_rows, against)[:2])} over "
                      f"{paired_mean(table_rows, against)[2]} runs." for against in ("count", "layer")
                      if paired_mean(table_rows, against)[2]] + [""]
-    mu, loose = PLANE_SHEAR_LOOSE
-    shifts = tolerance_shift(loose, local_rheology.PLANE_SHEAR[mu], local_rheology.plane_shear_fits(
-        {mu: local_rheology.PLANE_SHEAR[mu]})[mu]["phi"])
+    mu = PLANE_SHEAR_LOOSE[0]
+    shifts = plane_shear_tolerance_shifts()
     lines += [f"Plane shear at mu {mu:g}, tolerance 1e-3 against 1e-4 at the same phi: phi(I) at 1e-3 minus at 1e-4, "
               "b (I at 1e-3 − I at 1e-4) with the 1e-4 line's b:", ""]
     lines += markdown_table(["phi", "I at 1e-3", "I at 1e-4", "shift of phi at fixed I"],

@@ -360,10 +360,7 @@ def family_two_packings(data, reading, solver="", mu="", quantity="dphi_bulk", p
         mean, se, runs = two_packings.paired_mean(rows, solver)
         return (runs,) if mu == "runs" else (mean, se)
     if reading == "tolerance":
-        mu, loose = two_packings.PLANE_SHEAR_LOOSE
-        table = two_packings.local_rheology.PLANE_SHEAR[mu]
-        fit = two_packings.local_rheology.plane_shear_fits({mu: table})[mu]["phi"]
-        mean, _, se = stats.mean_sd_se(shift for *_, shift in two_packings.tolerance_shift(loose, table, fit))
+        mean, _, se = stats.mean_sd_se(shift for *_, shift in two_packings.plane_shear_tolerance_shifts())
         return mean, se
     if reading == "mix":
         _, mix = two_packings.load(data.path("results", "series", "packing"))

@@ -6,9 +6,10 @@ committed tables against the run folders they read.
 
 The size mix of a synthetic dump whose mid-layer grains are larger than the rest: the mid-layer's
 mean area over the cell's and the cell's over the size law's, by hand, the early snapshots (which
-differ) left out; a truncated snapshot refused in one error naming the file; the pairing of today's
-runs with the published runs of the same friction and angle (and not a replica's); the committed
-today/runs.csv holds every count run of the folders it reads, so a run committed without
+differ) left out; the tolerance shift of two plane-shear tables by hand; a truncated snapshot
+refused in one error naming the file; the pairing of today's runs with the published runs of
+the same friction and angle (and not a replica's); the committed today/runs.csv holds every
+count run of the folders it reads, so a run committed without
 `studies/two_packings.py --cdpost ...` fails here. Standard library only.
 """
 
@@ -79,6 +80,20 @@ def pairing(tool):
     check(n == 2 and abs(mean - 0.001) < 1e-12, f"counts against area {mean} over {n}")
 
 
+def tolerance_by_hand(tool):
+    # plane shear at fixed phi: the loose table's I is 0.01 above the tight one's at 0.77, equal at
+    # 0.74; 0.80 is in the loose table alone. Along a tight line of slope b = 0.3 that is +0.003, 0.
+    with tempfile.TemporaryDirectory() as scratch:
+        loose, tight = os.path.join(scratch, "loose.csv"), os.path.join(scratch, "tight.csv")
+        with open(loose, "w") as out:
+            out.write("# loose\nphi,I\n0.7400,0.25\n0.7700,0.14\n0.8000,0.02\n")
+        with open(tight, "w") as out:
+            out.write("# tight\nphi,I\n0.7400,0.25\n0.7700,0.13\n")
+        shifts = tool.tolerance_shift(loose, tight, {"phi_c": 0.8, "b": 0.3})
+    check([s[0] for s in shifts] == [0.74, 0.77], f"packings {shifts}")
+    check(abs(shifts[0][3]) < 1e-12 and abs(shifts[1][3] - 0.003) < 1e-12, f"shifts {shifts}")
+
+
 def committed(tool):
     held = tool.local_rheology.rerun_rows(os.path.join(tool.OUT, tool.TODAY_TABLE))
     runs = tool.today_runs()
@@ -90,6 +105,7 @@ def main():
     tool = load_study("two_packings")
     size_mix_by_hand(tool)
     pairing(tool)
+    tolerance_by_hand(tool)
     count = committed(tool)
     print(f"two_packings: every check passed ({count} of today's count runs in the committed table)")
 
