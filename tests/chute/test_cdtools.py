@@ -28,10 +28,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.
 from cdtools import lammps_files, logs, run, stats, text
 from cdtools.campaign import plan, post, report
 
-
-def check(condition, message):
-    if not condition:
-        sys.exit(f"FAILED: {message}")
+from study_test import check
 
 
 def write(folder, name, content):

@@ -26,6 +26,7 @@ TOP = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pa
 sys.path.insert(0, os.path.join(TOP, "studies"))
 
 import creep_verdict  # studies/creep_verdict.py
+from study_test import check
 
 FAKE_CDPOST = """#!{python}
 import csv, os, sys
@@ -41,11 +42,6 @@ with open(os.path.join(out, "runs.csv"), "w") as dst:
                 value = line.split(",")[1]
         dst.write(r["run"] + "," + value + "," + ("0.01" if value else "") + "\\n")
 """
-
-
-def check(condition, message):
-    if not condition:
-        sys.exit(f"FAILED: {message}")
 
 
 def power_law_recovered(tool):

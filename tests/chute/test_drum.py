@@ -18,6 +18,7 @@ STUDIES = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, o
 sys.path.insert(0, STUDIES)
 
 import drum  # noqa: E402
+from study_test import check  # noqa: E402
 
 
 def tilted_packing(angle_deg, height):
@@ -36,11 +37,6 @@ def tilted_packing(angle_deg, height):
             if math.hypot(x, y) < drum.RADIUS - 0.5:
                 grains.append((x, y, 0.0, 0.0, 0.5))
     return grains
-
-
-def check(condition, message):
-    if not condition:
-        sys.exit("FAIL: " + message)
 
 
 def main():

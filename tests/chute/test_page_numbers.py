@@ -25,11 +25,7 @@ sys.path.insert(0, os.path.join(TOP, "studies"))
 
 from cdtools import page_numbers  # noqa: E402
 from cdtools.text import with_error  # noqa: E402
-
-
-def check(condition, message):
-    if not condition:
-        sys.exit(f"FAILED: {message}")
+from study_test import check  # noqa: E402
 
 
 class Synthetic:

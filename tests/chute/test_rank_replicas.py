@@ -26,16 +26,12 @@ STUDIES = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, o
 sys.path.insert(0, STUDIES)
 
 import rank_replicas as replicas  # noqa: E402
+from study_test import check  # noqa: E402
 from cdtools.stats import mean_sd_se
 
 # The tool's command line.
 TOOL = [sys.executable, os.path.join(STUDIES, "rank_replicas.py")]
 ENV = dict(os.environ, PYTHONPATH=STUDIES)
-
-
-def check(condition, message):
-    if not condition:
-        sys.exit(f"FAILED: {message}")
 
 
 def check_seeds():

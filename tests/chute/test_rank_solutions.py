@@ -20,15 +20,11 @@ STUDIES = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, o
 sys.path.insert(0, STUDIES)
 
 import rank_solutions as solutions  # noqa: E402
+from study_test import check  # noqa: E402
 
 # The tool's command line.
 TOOL = [sys.executable, os.path.join(STUDIES, "rank_solutions.py")]
 ENV = dict(os.environ, PYTHONPATH=STUDIES)
-
-
-def check(condition, message):
-    if not condition:
-        sys.exit(f"FAILED: {message}")
 
 
 # {id: (radius, vx, vy, spin)}: two grains, radii 1 and 2 (masses 1 : 4).

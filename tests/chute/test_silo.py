@@ -17,14 +17,10 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "studies"))
 import silo  # noqa: E402
+from study_test import check  # noqa: E402
 
 C, K, PHI = 0.62, 1.4, 0.81
 WIDTHS = [4, 5, 6, 8, 11, 15, 20]
-
-
-def check(condition, message):
-    if not condition:
-        sys.exit(f"FAILED: {message}")
 
 
 def law(D):

@@ -16,6 +16,8 @@ import subprocess
 import sys
 import tempfile
 
+from study_test import check
+
 TOOL = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir, "studies",
                     "size_law_offset.py")
 K, PHI_C = 0.002, {"0.5": 0.80, "0.05": 0.83}
@@ -24,11 +26,6 @@ RUNS = (("0.5", "22", "", 11.0, 0.003, 10.5, -0.001),
         ("0.5", "24", "", 16.0, 0.001, 15.5, 0.002),
         ("0.5", "24", "_seed7", 16.2, 0.004, 15.9, 0.000),
         ("0.05", "16", "", 9.0, 0.000, 8.5, 0.0015))
-
-
-def check(condition, message):
-    if not condition:
-        sys.exit(f"FAILED: {message}")
 
 
 def write_results(folder, rows):
