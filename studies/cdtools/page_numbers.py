@@ -18,6 +18,9 @@ digit is the fifth decimal.
 
     check_pages(root)       [(page, line, key, problem)] over PAGES; empty when every number agrees
     check_text(text, data)  the same for one text
+    update_pages(root)      rewrite each disagreeing number from its value (same decimals, sign
+                            style), [(page, line, key, old, new)]: the sentences around them are
+                            then read again by hand (a verdict may have turned)
     FAMILIES                the families, each with the docstring of what it computes
 
 Standard library only; tests/chute/test_page_numbers.py runs it on the committed pages.
@@ -557,46 +560,114 @@ def values_of(key, data):
     return FAMILIES[family](data, *arguments)
 
 
-def printed_numbers(text):
-    """[(value, decimals)] of the numbers in text, signs read as the module's docstring says."""
+def printed_spans(text):
+    """[(start, end, value, decimals)] of the numbers in text, signs read as the module's docstring
+    says (a sign not read as one is left outside the span)."""
     numbers = []
     for match in NUMBER.finditer(text):
         sign, digits, exponent = match.group(1), match.group(2), int((match.group(3) or "0").replace("−", "-"))
+        start = match.start()
         if sign and not SIGN_BEFORE.search(text[:match.start()]):
-            sign = ""
+            sign, start = "", match.start(2)
         value = float(digits) * 10.0 ** exponent * (-1 if sign in ("−", "-") else 1)
-        numbers.append((value, (len(digits.split(".")[1]) if "." in digits else 0) - exponent))
+        decimals = (len(digits.split(".")[1]) if "." in digits else 0) - exponent
+        numbers.append((start, match.end(), value, decimals))
     return numbers
+
+
+def printed_numbers(text):
+    """[(value, decimals)] of the numbers in text."""
+    return [(value, decimals) for _, _, value, decimals in printed_spans(text)]
 
 
 def agrees(printed, decimals, value):
     return abs(printed - value) <= 0.5 * 10 ** -decimals * (1 + 1e-9) + 1e-12
 
 
-def check_text(text, data, page="text"):
-    """[(page, line, key, problem)] of the markers of text."""
-    problems = []
+def _marked(text, data):
+    """Per marker: (line, key, problem or None, [(start, end, printed, decimals, value)] of the
+    numbers it checks, their spans in text)."""
+    found = []
     paragraph_start = 0
     for match in MARKER.finditer(text):
         blank = text.rfind("\n\n", 0, match.start())
         start = max(blank + 2 if blank >= 0 else 0, paragraph_start)
-        before = MARKER.sub(" ", text[start:match.start()])
+        before, origin = _without_markers(text, start, match.start())
         line = text.count("\n", 0, match.start()) + 1
         key = match.group(1)
         try:
             values = values_of(key, data)
         except Exception as error:  # an unknown family, a missing file or quantity
-            problems.append((page, line, key, f"cannot compute: {error!r}"))
+            found.append((line, key, f"cannot compute: {error!r}", []))
             continue
-        numbers = printed_numbers(before)[-len(values):]
-        if len(numbers) < len(values):
-            problems.append((page, line, key, f"{len(values)} numbers expected before the marker"))
+        spans = printed_spans(before)[-len(values):]
+        if len(spans) < len(values):
+            found.append((line, key, f"{len(values)} numbers expected before the marker", []))
             continue
-        wrong = [(p, v) for (p, dec), v in zip(numbers, values) if not agrees(p, dec, v)]
-        if wrong:
-            shown = ", ".join(f"{p:g} printed, {v:.6g} computed" for p, v in wrong)
-            problems.append((page, line, key, shown))
-    return problems
+        numbers = [(origin(a), origin(a) + (b - a), p, dec, v) for (a, b, p, dec), v in zip(spans, values)]
+        wrong = [(p, v) for _, _, p, dec, v in numbers if not agrees(p, dec, v)]
+        problem = ", ".join(f"{p:g} printed, {v:.6g} computed" for p, v in wrong) if wrong else None
+        found.append((line, key, problem, numbers))
+    return found
+
+
+def _without_markers(text, start, end):
+    """text[start:end] with each marker read as one space, and the map from a position in it back
+    to one in text (a number never spans a marker)."""
+    pieces, offsets = [], []  # offsets: (position in the result, position in text) of each piece
+    position, length = start, 0
+    for match in MARKER.finditer(text, start, end):
+        offsets.append((length, position))
+        pieces += [text[position:match.start()], " "]
+        length += match.start() - position + 1
+        position = match.end()
+    offsets.append((length, position))
+    pieces.append(text[position:end])
+
+    def origin(index):
+        here, there = max(o for o in offsets if o[0] <= index)
+        return there + index - here
+    return "".join(pieces), origin
+
+
+def check_text(text, data, page="text"):
+    """[(page, line, key, problem)] of the markers of text."""
+    return [(page, line, key, problem) for line, key, problem, _ in _marked(text, data) if problem]
+
+
+def written(value, printed_text, decimals):
+    """value as printed_text writes its number: the same decimals (or a mantissa's, in Python's
+    exponent form), a sign where it has one or the value is negative ('−' unless it wrote '-')."""
+    sign, digits, exponent = NUMBER.fullmatch(printed_text).groups()
+    if exponent is None:
+        body = f"{abs(value):.{max(decimals, 0)}f}"
+    else:
+        body = f"{abs(value):.{len(digits.split('.')[1]) if '.' in digits else 0}e}"
+        if "−" in exponent:
+            body = body.replace("-", "−")
+    if value < 0 and float(body.replace("−", "-")) != 0:
+        return ("-" if sign == "-" else "−") + body
+    return ("+" if sign else "") + body
+
+
+def update_text(text, data):
+    """(text with every disagreeing number before a marker rewritten from its value, [(line, key,
+    old, new)]); a number two markers disagree on is left and reported as a conflict."""
+    replacements = {}
+    for line, key, problem, numbers in _marked(text, data):
+        for start, end, printed, decimals, value in numbers:
+            if agrees(printed, decimals, value):
+                continue
+            new = written(value, text[start:end], decimals)
+            previous = replacements.setdefault((start, end), (line, key, text[start:end], new))
+            if previous[3] != new:
+                replacements[(start, end)] = (line, key, text[start:end], "conflict: " + previous[3] + " / " + new)
+    changes = []
+    for (start, end), (line, key, old, new) in sorted(replacements.items(), reverse=True):
+        changes.append((line, key, old, new))
+        if not new.startswith("conflict"):
+            text = text[:start] + new + text[end:]
+    return text, sorted(changes)
 
 
 def markers(text):
@@ -610,3 +681,17 @@ def check_pages(root, pages=PAGES):
         with open(os.path.join(root, page)) as src:
             problems += check_text(src.read(), data, page)
     return problems
+
+
+def update_pages(root, pages=PAGES):
+    """Rewrite the disagreeing numbers of the pages from the data; [(page, line, key, old, new)]."""
+    data = Data(root)
+    changes = []
+    for page in pages:
+        path = os.path.join(root, page)
+        with open(path) as src:
+            text, page_changes = update_text(src.read(), data)
+        with open(path, "w") as dst:
+            dst.write(text)
+        changes += [(page,) + change for change in page_changes]
+    return changes

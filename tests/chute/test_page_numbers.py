@@ -9,7 +9,9 @@ reads the numbers before it) is recomputed from the committed runs and series fi
 estimators the tables use, and each printed number must be its value rounded as printed. A run
 re-analysed or re-run changes those files: the sentence that quotes it then fails here, named by
 its page, line and key. Besides, on a synthetic page: a stale number, a wrong sign, too few
-numbers and an unknown family each fail; the estimators on hand-computed cases. The signs of the
+numbers and an unknown family each fail, and the update rewrites a stale number as printed
+(decimals, sign, exponent form) and leaves a number two markers disagree on; the estimators on
+hand-computed cases. The signs of the
 committed comparison tables on mu and on L (f on mu and A on mu in both readings, f on L) are each
 the one weighted slope the prose quotes: the table's 'weighted: slope ± error, chi2/dof' is the
 estimator's own (page_numbers.f_mu, A_mu, f_L, cdpost's fit_weighted_slope). Standard library
@@ -59,6 +61,25 @@ def synthetic_cases():
     check(page_numbers.agrees(0.13, 2, 0.1349) and not page_numbers.agrees(0.13, 2, 0.1351), "rounding")
 
 
+def update_cases():
+    """--update rewrites a disagreeing number in the decimals and sign style it was printed in,
+    leaves agreeing ones and everything else as written, and the text then checks clean."""
+    data = Synthetic({"a": (0.12345, 0.0312), "b": (-0.5, None), "p": (0.00204, None), "c": (0.25, None),
+                      "d": (0.7, None)})
+    stale = ("A rises, 0.109 ± 0.031<!-- check: fit:s:a -->; b is +0.50<!-- check: fit:s:b -->, "
+             "p = 1e-06<!-- check: fit:s:p -->, c 0.25<!-- check: fit:s:c -->.")
+    text, changes = page_numbers.update_text(stale, data)
+    expected = ("A rises, 0.123 ± 0.031<!-- check: fit:s:a -->; b is −0.50<!-- check: fit:s:b -->, "
+                "p = 2e-03<!-- check: fit:s:p -->, c 0.25<!-- check: fit:s:c -->.")
+    check(text == expected, f"updated text: {text}")
+    check([(old, new) for _, _, old, new in changes] == [("0.109", "0.123"), ("+0.50", "−0.50"), ("1e-06", "2e-03")],
+          f"changes listed: {changes}")
+    check(page_numbers.check_text(text, data) == [], "the updated text checks clean")
+    twice = "x 0.3<!-- check: fit:s:b --><!-- check: fit:s:d -->"
+    text, changes = page_numbers.update_text(twice, data)
+    check(text == twice and changes[0][3].startswith("conflict"), f"two markers on one number: {changes}")
+
+
 def estimator_cases():
     # y = 1 + 2 x exactly: slope 2, chi2 0, error sqrt(S/det) unscaled
     xs, ys, sigmas = [0.0, 1.0, 2.0, 3.0], [1.0, 3.0, 5.0, 7.0], [1.0, 1.0, 1.0, 1.0]
@@ -106,6 +127,7 @@ def committed_pages():
 
 def main():
     synthetic_cases()
+    update_cases()
     estimator_cases()
     one_estimator()
     committed_pages()

@@ -839,5 +839,6 @@ def report_stale_numbers(destination):
     for page, line, key, problem in stale:
         print(f"{page}:{line}: {key}: {problem}", flush=True)
     if stale:
-        print(f"{len(stale)} marked numbers of the pages' prose disagree with the new tables: edit those "
-              "sentences (ctest chute.page_numbers fails until then)", flush=True)
+        print(f"{len(stale)} marked numbers of the pages' prose disagree with the new tables: "
+              "studies/page_numbers.py --update rewrites them; then read those sentences again (ctest "
+              "chute.page_numbers fails until then)", flush=True)
