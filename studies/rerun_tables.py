@@ -3,7 +3,10 @@
 (cost.json's `solver`: unconverged steps, largest final norm, sweeps median / p99, steps rescued by
 block solves, legs without an end-of-run line) and, where results/runs holds a published run of the
 same name, what moved: U, phi, h, f and A of the re-run against the published run's, each
-difference in units of the two errors combined (U, phi, h, f; A has no error).
+difference in units of the two errors combined (U, phi, h, f; A has no error). Before a report
+publishes the re-runs in the published runs' place, --supersede keeps the published runs as they
+were in the set (NAME/superseded/: their small files and their row of the series' runs.csv), and
+the table and studies/two_packings.py read them from there.
 
 The table sits in the README between the lines `<!-- rerun_tables: begin -->` and
 `<!-- rerun_tables: end -->`; the tool rewrites that block, and --check fails (exit 1, naming the
@@ -13,6 +16,7 @@ README) where the committed block differs from what the folders make.
     studies/rerun_tables.py --check          # compare only (ctest chute.rerun_tables)
     studies/rerun_tables.py --add SET RUNS/runs/NAME ...   # a finished campaign run's small files into
                                              # results/rerun/SET/NAME first (cost.json, params.json, post/ tables)
+    studies/rerun_tables.py --supersede SET  # keep the published runs the set re-runs (once, before the report)
 
 Standard library only.
 """
@@ -32,6 +36,10 @@ from packing_against_plane_shear import read_rows
 
 RERUN = os.path.join(TOP, "results", "rerun")
 PUBLISHED = os.path.join(TOP, "results", "runs")
+SERIES = os.path.join(TOP, "results", "series")
+SUPERSEDED = "superseded"  # SET/NAME/superseded: the published run NAME as it was before the re-run
+SUPERSEDED_FILES = ("cost.json", "params.json", "profile.csv", "results.csv", "results.json")
+SERIES_ROW = "series_row.csv"  # its row of the series' runs.csv (cdpost series' I_local, phi_local, ...)
 BEGIN, END = "<!-- rerun_tables: begin -->", "<!-- rerun_tables: end -->"
 MOVED = (("U", 2), ("phi", 4), ("h", 2), ("f", 1), ("A", 3))
 # What a finished campaign run leaves here: its cost and parameters, and cdpost run's tables.
@@ -52,6 +60,52 @@ def add_run(run_folder, destination):
     for source in sources:
         shutil.copy2(source, target)
     return target
+
+
+def supersede(set_folder):
+    """Copy each published run that a finished re-run of set_folder replaces into NAME/superseded,
+    with its row of the series' runs.csv; a run already kept is left. [names kept now]."""
+    kept = []
+    for name in sorted(os.listdir(set_folder)):
+        target = os.path.join(set_folder, name, SUPERSEDED)
+        source = os.path.join(PUBLISHED, name)
+        if not os.path.exists(os.path.join(set_folder, name, "results.csv")) or os.path.exists(target):
+            continue
+        if not os.path.isdir(source):
+            continue
+        row = series_row(name)
+        if row is None:
+            raise FileNotFoundError(f"{name}: in no runs.csv of {os.path.relpath(SERIES, TOP)}")
+        os.makedirs(target)
+        for f in SUPERSEDED_FILES:
+            shutil.copy2(os.path.join(source, f), target)
+        with open(os.path.join(target, SERIES_ROW), "w") as out:
+            out.write(row[0] + row[1])
+        kept.append(name)
+    return kept
+
+
+def series_row(name):
+    """(header line, row line) of run name in a series' runs.csv, or None."""
+    for series in sorted(os.listdir(SERIES)):
+        path = os.path.join(SERIES, series, "runs.csv")
+        if not os.path.exists(path):
+            continue
+        with open(path) as src:
+            lines = src.readlines()
+        header = next((i for i, line in enumerate(lines) if not line.startswith("#")), None)
+        for line in lines[header + 1:] if header is not None else []:
+            if os.path.basename(line.split(",")[0]) == name:
+                return lines[header], line
+    return None
+
+
+def published_folder(set_folder, name):
+    """Where the published run a re-run replaces is read: kept in the set, else results/runs; None."""
+    for folder in (os.path.join(set_folder, name, SUPERSEDED), os.path.join(PUBLISHED, name)):
+        if os.path.isdir(folder):
+            return folder
+    return None
 
 
 def estimates(folder):
@@ -94,7 +148,7 @@ def table(folder):
     names = sorted(n for n in os.listdir(folder)
                    if os.path.exists(os.path.join(folder, n, "cost.json"))
                    and os.path.exists(os.path.join(folder, n, "results.csv")))
-    published = [n for n in names if os.path.isdir(os.path.join(PUBLISHED, n))]
+    published = {n: published_folder(folder, n) for n in names if published_folder(folder, n)}
     headings = ["run", "flow with health recorded", "unconverged steps", "largest final norm", "sweeps median / p99",
                 "rescued steps"]
     if published:
@@ -105,7 +159,7 @@ def table(folder):
             row = [name] + health_cells(json.load(src))
         if published:
             new = estimates(os.path.join(folder, name))
-            old = estimates(os.path.join(PUBLISHED, name)) if name in published else None
+            old = estimates(published[name]) if name in published else None
             row += [moved_cell(new, old, q, d) if old else "no published run" for q, d in MOVED]
         rows.append(row)
     return markdown_table(headings, rows)
@@ -125,7 +179,17 @@ def main(argv=None):
     parser.add_argument("--check", action="store_true", help="compare the committed tables, write nothing")
     parser.add_argument("--add", nargs="+", metavar=("SET", "RUN"),
                         help="copy finished campaign runs into results/rerun/SET first")
+    parser.add_argument("--supersede", metavar="SET",
+                        help="keep the published runs that results/rerun/SET re-runs in SET/NAME/superseded first")
     args = parser.parse_args(argv)
+    if args.supersede:
+        if not os.path.isdir(os.path.join(RERUN, args.supersede)):
+            parser.error(f"--supersede {args.supersede}: not a folder of {os.path.relpath(RERUN, TOP)}")
+        try:
+            for name in supersede(os.path.join(RERUN, args.supersede)):
+                print(f"kept {name}'s published run in results/rerun/{args.supersede}/{name}/{SUPERSEDED}")
+        except FileNotFoundError as error:
+            parser.error(str(error))
     if args.add:
         if len(args.add) < 2 or not os.path.isdir(os.path.join(RERUN, args.add[0])):
             parser.error(f"--add SET RUN...: SET must name a folder of {os.path.relpath(RERUN, TOP)} "

@@ -109,11 +109,10 @@ def rows(table, fits):
                        "phi_local_from_counts": counts})
 
     for reading, path in local_rheology.READINGS:
-        for r in read_rows(path):
+        for r, profile in first_published(reading, path):
             if not (r.get("I_local") and r.get("phi_local") and r.get("phi_bulk")):
                 continue
             run = os.path.basename(r["run"])
-            profile = os.path.join(os.path.dirname(path), r["run"], "profile.csv")
             with open(profile) as src:
                 measure = "area" if "phi" in src.readline().strip().split(",") else "counts"
             add(reading, "published", run, float(r["mu"]), float(r["theta_deg"]), float(r["I_local"]),
@@ -124,6 +123,22 @@ def rows(table, fits):
             add("count", "today", name, float(r["mu"]), float(r["theta_deg"]), float(r["I_local"]),
                 float(r["phi_local"]), "area", _results(folders[name])["phi_bulk"],
                 float(r["phi_local_from_counts"]))
+    return result
+
+
+def first_published(reading, path):
+    """[(row of the series' runs.csv, its profile.csv)] of a reading's published runs as first
+    published: a run a re-run has replaced since is read from the copy the re-run set kept
+    (studies/rerun_tables.py --supersede), so that 'published' stays the runs the study explains."""
+    kept = local_rheology.RERUNS.get(reading)
+    result = []
+    for r in read_rows(path):
+        superseded = os.path.join(kept, os.path.basename(r["run"]), "superseded") if kept else None
+        if superseded and os.path.isdir(superseded):
+            result.append((read_rows(os.path.join(superseded, "series_row.csv"))[0],
+                           os.path.join(superseded, "profile.csv")))
+        else:
+            result.append((r, os.path.join(os.path.dirname(path), r["run"], "profile.csv")))
     return result
 
 

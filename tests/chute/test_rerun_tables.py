@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Checks of studies/rerun_tables.py, run by ctest: a synthetic re-run against its published run
 (health cells, each quantity's difference in combined errors by hand, A without one), a run added
-with its small files and refused without them, a README
+with its small files and refused without them, the published run kept by --supersede (with its
+series row) and read by the table once the re-run is published in its place, a README
 without the block refused naming it, and the committed tables of results/rerun/*/README.md made
 again from their folders (a run added or changed without `studies/rerun_tables.py` fails here).
 
@@ -12,6 +13,7 @@ Standard library only.
 
 import json
 import os
+import shutil
 import tempfile
 
 from study_test import check, load_study
@@ -57,11 +59,35 @@ def synthetic(tool):
             open(os.path.join(run, "post", name), "w").close()
         added = tool.add_run(run, os.path.join(scratch, "rerun"))
         check(sorted(os.listdir(added)) == sorted(tool.RUN_FILES + tool.POST_FILES), f"added {os.listdir(added)}")
+        superseded_kept_and_read(tool, scratch, row)
     try:
         tool.rewritten("no block here", "", "README.md")
         check(False, "a README without the block was rewritten")
     except ValueError as error:
         check("README.md" in str(error), f"error says {error}")
+
+
+def superseded_kept_and_read(tool, scratch, row):
+    """--supersede keeps the published run with its series row; once the published folder holds the
+    re-run itself, the table still compares against the kept run."""
+    published = os.path.join(tool.PUBLISHED, "mu2_theta28_L45")
+    for name in tool.SUPERSEDED_FILES:
+        if not os.path.exists(os.path.join(published, name)):
+            open(os.path.join(published, name), "w").close()
+    tool.SERIES = os.path.join(scratch, "series")
+    os.makedirs(os.path.join(tool.SERIES, "flow_rules"))
+    with open(os.path.join(tool.SERIES, "flow_rules", "runs.csv"), "w") as out:
+        out.write("# provenance\nrun,mu,I_local\n../../runs/mu2_theta29_L45,2,0.1\n../../runs/mu2_theta28_L45,2,0.2\n")
+    rerun = os.path.join(scratch, "rerun")
+    check(tool.supersede(rerun) == ["mu2_theta28_L45"], "only the re-run with a published run is kept")
+    with open(os.path.join(rerun, "mu2_theta28_L45", "superseded", tool.SERIES_ROW)) as src:
+        kept_row = src.read()
+    check(kept_row == "run,mu,I_local\n../../runs/mu2_theta28_L45,2,0.2\n", f"series row kept: {kept_row!r}")
+    check(tool.supersede(rerun) == [], "a kept run is kept once")
+    shutil.rmtree(published)  # the report publishes the re-run in its place
+    shutil.copytree(os.path.join(rerun, "mu2_theta28_L45"), published, ignore=shutil.ignore_patterns("superseded"))
+    again = tool.table(rerun).splitlines()[2]
+    check(again == row, f"after the report the table still reads the kept run: {again}")
 
 
 def main():
