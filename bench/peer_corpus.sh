@@ -18,7 +18,7 @@
 # 6. bench/peer_profiles.py: OUT/profiles.png and OUT/profiles.md (ours, the fix's default),
 #    OUT/profiles_newton.* (ours_newton, the Newton polish on, in ours' place).
 # Environment: LMP (build/lmp_cd), PEER_TOOLS (build/bench/peers), PEER_SOLVERS (the screened
-# solvers, peer_bench's --solvers; default: every one, peer_bench --list).
+# solvers, peer_bench's --solvers; default: every one, Siconos's variants included, peer_bench --list).
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)

@@ -1,9 +1,11 @@
 // Every solver on every problem, one machine, one run (doc/peers.md):
 //
-//   peer_bench --list   (the solvers' names)
+//   peer_bench --list   (the solvers' names: ours, Siconos's at their defaults, the variants studied)
 //   peer_bench --out CSV [--time-limit 2] [--targets 1e-3,1e-4,1e-6] [--starts cold,warm]
-//              [--solvers ours,fc2d_nsgs,...] PROBLEM.hdf5 ...
+//              [--solvers ours,fc2d_nsgs,fc3d_nsn_fb[ls=armijo],...] PROBLEM.hdf5 ...
 //
+// A Siconos solver may be named with options (bench/peers/siconos_variants.h); an unknown name,
+// option or value is refused in one line before any solve.
 // Each PROBLEM.hdf5 (an FCLIB local problem, bench/peers/local_problem.h) has its saved step
 // beside it (PROBLEM.cdp), which ours solves; the two must be the same problem bit for bit. Its
 // class is the name of its folder. For each solver, start (cold: r = 0; warm: the step's warm
@@ -21,6 +23,7 @@
 // solves again from the same start with its tolerance ten times lower (up to three times), the
 // times summed.
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -38,6 +41,7 @@
 #include "cd/gauss_seidel.h"
 #include "local_problem.h"
 #include "siconos_solvers.h"
+#include "siconos_variants.h"
 
 namespace {
 
@@ -64,12 +68,20 @@ std::vector<std::string> split(const std::string& text)
   return items;
 }
 
+// Siconos's solvers at their defaults, then the variants studied (bench/peers/siconos_variants.h).
+std::vector<std::string> siconos_names()
+{
+  std::vector<std::string> names = peers::siconos_solver_names();
+  for (const std::string& name : peers::siconos_variant_names()) names.push_back(name);
+  return names;
+}
+
 Options parse_options(int argc, char** argv)
 {
   Options o;
   o.solvers.push_back("ours");
   o.solvers.push_back("ours_newton");
-  for (const std::string& name : peers::siconos_solver_names()) o.solvers.push_back(name);
+  for (const std::string& name : siconos_names()) o.solvers.push_back(name);
   for (int i = 1; i < argc; i++) {
     const std::string arg = argv[i];
     const auto value = [&] {
@@ -85,7 +97,7 @@ Options parse_options(int argc, char** argv)
     else if (arg == "--solvers") o.solvers = split(value());
     else if (arg == "--list") {
       std::cout << "ours,ours_newton";
-      for (const std::string& name : peers::siconos_solver_names()) std::cout << ',' << name;
+      for (const std::string& name : siconos_names()) std::cout << ',' << name;
       std::cout << '\n';
       std::exit(0);
     } else if (arg.rfind("--", 0) == 0) refuse("unknown option " + arg);
@@ -94,6 +106,8 @@ Options parse_options(int argc, char** argv)
   if (o.out.empty() || o.problems.empty()) refuse("usage: peer_bench --out CSV [options] PROBLEM.hdf5 ...");
   for (const std::string& s : o.starts)
     if (s != "cold" && s != "warm") refuse("a start is cold or warm, got '" + s + "'");
+  for (const std::string& s : o.solvers)
+    if (s != "ours" && s != "ours_newton") peers::siconos_options(s);  // an unknown name or option: refused here
   return o;
 }
 
@@ -202,7 +216,9 @@ Outcome solve_siconos(const peers::LocalProblem& local, const std::string& solve
 
 // Runs `solve` in a child process; the status says how it ended: solved within the time limit
 // (CPU seconds), time_limit (over it, or the child still running at `wall_limit` seconds of wall
-// clock), not_solved (ended without the target), crashed, refused.
+// clock with more CPU time than the limit), starved (ended at the wall limit short of the CPU
+// limit: other jobs took the cores; to be run again), not_solved (ended without the target),
+// crashed, refused.
 template <class Solve>
 Outcome in_child(Solve solve, double time_limit, double wall_limit, std::string& status)
 {
@@ -229,8 +245,13 @@ Outcome in_child(Solve solve, double time_limit, double wall_limit, std::string&
   const bool sent = read(pipe_ends[0], &outcome, sizeof(outcome)) == static_cast<ssize_t>(sizeof(outcome));
   close(pipe_ends[0]);
   int how = 0;
-  waitpid(child, &how, 0);
-  if (WIFSIGNALED(how)) status = WTERMSIG(how) == SIGALRM ? "time_limit" : "crashed";
+  rusage used{};
+  wait4(child, &how, 0, &used);
+  const double child_cpu = static_cast<double>(used.ru_utime.tv_sec + used.ru_stime.tv_sec) +
+                           1e-6 * static_cast<double>(used.ru_utime.tv_usec + used.ru_stime.tv_usec);
+  if (WIFSIGNALED(how) && WTERMSIG(how) == SIGALRM)  // under the CPU limit at the wall limit: the machine starved it
+    status = child_cpu < time_limit ? "starved" : "time_limit";
+  else if (WIFSIGNALED(how)) status = "crashed";
   else if (WEXITSTATUS(how) == 3) status = "refused";
   else if (!sent) status = "crashed";
   else if (outcome.solved && outcome.seconds <= time_limit) status = "solved";
