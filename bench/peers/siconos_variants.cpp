@@ -101,6 +101,10 @@ std::map<std::string, Setter> nsgs_keys()
                          {{"adaptive", SICONOS_FRICTION_3D_INTERNAL_ERROR_STRATEGY_ADAPTIVE},
                           {"given", SICONOS_FRICTION_3D_INTERNAL_ERROR_STRATEGY_GIVEN_VALUE},
                           {"adaptive_n", SICONOS_FRICTION_3D_INTERNAL_ERROR_STRATEGY_ADAPTIVE_N_CONTACT}})},
+      {"local_tolerance",
+       [](SolverOptions& o, const std::string& value) {
+         o.internalSolvers[0]->dparam[SICONOS_DPARAM_TOL] = number(value);
+       }},
       {"shuffle", pick(SICONOS_FRICTION_3D_NSGS_SHUFFLE, {{"no", SICONOS_FRICTION_3D_NSGS_SHUFFLE_FALSE},
                                                           {"once", SICONOS_FRICTION_3D_NSGS_SHUFFLE_TRUE},
                                                           {"each", SICONOS_FRICTION_3D_NSGS_SHUFFLE_TRUE_EACH_LOOP}})},
@@ -150,6 +154,13 @@ std::map<std::string, Setter> prox_keys()
   };
 }
 
+std::map<std::string, Setter> tfp_keys()
+{
+  return {{"inner", internal_solver({{"nsgs", SICONOS_FRICTION_3D_NSGS},
+                                     {"pg_cylinder", SICONOS_FRICTION_3D_CONVEXQP_PG_CYLINDER},
+                                     {"vi_fpp_cylinder", SICONOS_FRICTION_3D_VI_FPP_Cylinder}})}};
+}
+
 std::map<std::string, Setter> keys_of(const std::string& solver)
 {
   if (solver == "fc3d_nsn_ac") return nsn_keys(true);
@@ -157,6 +168,7 @@ std::map<std::string, Setter> keys_of(const std::string& solver)
   if (solver == "fc3d_nsgs") return nsgs_keys();
   if (solver == "fc3d_admm") return admm_keys();
   if (solver == "fc3d_prox") return prox_keys();
+  if (solver == "fc3d_tfp") return tfp_keys();
   return {};
 }
 
@@ -220,7 +232,10 @@ const std::vector<std::string>& siconos_variant_names()
       "fc3d_admm[accel=yes]",
       // the proximal point method's internal solver and alpha
       "fc3d_prox[inner=nsn_fb]", "fc3d_prox[inner=nsgs]", "fc3d_prox[alpha=-1e4]", "fc3d_prox[alpha=1e3]",
-      "fc3d_prox[strategy=regularization+alpha=1e4]"};
+      "fc3d_prox[strategy=regularization+alpha=1e4]",
+      // later: the local tolerance's value, Tresca's fixed point's internal solver
+      "fc3d_nsgs[local_tolerance=1e-6]", "fc3d_nsgs[local_tolerance=1e-10]", "fc3d_tfp[inner=pg_cylinder]",
+      "fc3d_tfp[inner=vi_fpp_cylinder]"};
   return names;
 }
 

@@ -6,11 +6,14 @@
 //   fc3d_nsn_ac, fc3d_nsn_fb, fc3d_nsn_nm: ls (gp, armijo, none), hybrid (no, pli_nsn, nsn_pli, vi_eg_nsn);
 //     fc3d_nsn_ac also form (ac, jm, ac_gen, jm_gen), rho (constant, spectral, split_cond, split, adaptive)
 //   fc3d_nsgs: local (nsn, nsn_gp, nsn_gp_hybrid, pli, p, quartic), local_form (ac, jm),
-//     local_hybrid (no, pli_nsn, nsn_pli), local_tol (adaptive, given, adaptive_n), shuffle (no, once, each),
-//     omega (a relaxation factor), error (full, light, light_full_final, adaptive)
+//     local_hybrid (no, pli_nsn, nsn_pli), local_tol (its strategy: adaptive, given, adaptive_n),
+//     local_tolerance (its value), shuffle (no, once, each), omega (a relaxation factor),
+//     error (full, light, light_full_final, adaptive)
 //   fc3d_admm: rho (constant, residual_balancing, scaled_residual_balancing),
 //     initial_rho (given, norm_inf, eigenvalues), accel (no, yes, restart)
 //   fc3d_prox: inner (nsn_ac, nsn_fb, nsgs), strategy (prox, regularization), alpha, sigma, nu
+//   fc3d_tfp: inner (nsgs, pg_cylinder, vi_fpp_cylinder)
+// Values are names or numbers (write 1e4, not 1e+4: '+' separates options).
 #pragma once
 
 #include <memory>
