@@ -1,11 +1,13 @@
 // Every solver on every problem, one machine, one run (doc/peers.md):
 //
 //   peer_bench --list   (the solvers' names: ours, Siconos's at their defaults, the variants studied)
-//   peer_bench --out CSV [--time-limit 2] [--targets 1e-3,1e-4,1e-6] [--starts cold,warm]
+//   peer_bench --out CSV [--time-limit 2] [--wall-limit S] [--targets 1e-3,1e-4,1e-6] [--starts cold,warm]
 //              [--solvers ours,fc2d_nsgs,fc3d_nsn_fb[ls=armijo],...] PROBLEM.hdf5 ...
 //
 // A Siconos solver may be named with options (bench/peers/siconos_variants.h); an unknown name,
-// option or value is refused in one line before any solve.
+// option or value is refused in one line before any solve. --wall-limit: a Siconos child is ended
+// after S s of wall clock (default 3x the time limit plus 1 s; ours' children get at least their
+// own); longer on a loaded machine, where a child ended short of its CPU limit is "starved".
 // Each PROBLEM.hdf5 (an FCLIB local problem, bench/peers/local_problem.h) has its saved step
 // beside it (PROBLEM.cdp), which ours solves; the two must be the same problem bit for bit. Its
 // class is the name of its folder. For each solver, start (cold: r = 0; warm: the step's warm
@@ -27,6 +29,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -48,6 +51,7 @@ namespace {
 struct Options {
   std::string out;
   double time_limit = 2.0;  // s per solve
+  double wall_limit = 0.0;  // s of wall clock before a child is ended (0: 3x the time limit plus 1 s)
   std::vector<double> targets{1e-3, 1e-4, 1e-6};
   std::vector<std::string> starts{"cold", "warm"};
   std::vector<std::string> solvers;
@@ -90,6 +94,7 @@ Options parse_options(int argc, char** argv)
     };
     if (arg == "--out") o.out = value();
     else if (arg == "--time-limit") o.time_limit = std::stod(value());
+    else if (arg == "--wall-limit") o.wall_limit = std::stod(value());
     else if (arg == "--targets") {
       o.targets.clear();
       for (const std::string& t : split(value())) o.targets.push_back(std::stod(t));
@@ -307,10 +312,10 @@ int run(const Options& o)
             if (solver == "ours" || solver == "ours_newton")
               outcome = in_child(
                   [&] { return solve_ours(problem, local, warm, target, o.time_limit, solver == "ours_newton"); },
-                  o.time_limit, ours_wall_limit(o.time_limit), status);
+                  o.time_limit, std::max(o.wall_limit, ours_wall_limit(o.time_limit)), status);
             else
               outcome = in_child([&] { return solve_siconos(local, solver, warm, target); }, o.time_limit,
-                                 3.0 * o.time_limit + 1.0, status);
+                                 o.wall_limit > 0.0 ? o.wall_limit : 3.0 * o.time_limit + 1.0, status);
           }
           gave_up = status != "solved" && status != "not_solved";
           csv << base_name(path) << ',' << folder_name(path) << ',' << local.contacts << ',' << solver << ',' << start
