@@ -1,6 +1,7 @@
 // Siconos's solvers at documented options other than their defaults (bench/peers/siconos_variants.h).
 #include "siconos_variants.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <functional>
 #include <map>
