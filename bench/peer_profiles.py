@@ -2,7 +2,7 @@
 """Performance profiles (Dolan and Moré 2002) of the solvers of bench/peers/peer_bench.
 
     bench/peer_profiles.py --out PREFIX [--screen SCREEN.csv] [--time-limit S] [--ours NAME]
-                           [--leave-out NAME,...] SOLVES.csv...
+                           [--leave-out NAME,...] [--best-variant] SOLVES.csv...
 
 An instance is one problem, one start (cold or warm) and one target error; a solver's cost on it
 is its CPU time if it reached the target within the time limit, else infinite. rho_s(tau) is
@@ -12,6 +12,9 @@ profiles: a panel per group and target). Groups: ordinary (chute_*, pile_*), har
 saved_hard). --time-limit: a solve over S CPU seconds counts as not solved (the screening's
 limit may be longer). --ours: the solver the per-class table and the hard check are about (ours;
 ours_newton for the Newton polish); --leave-out: solvers dropped from the rows (e.g. one of the two).
+A Siconos variant (SOLVER[KEY=VALUE+...]) is a solver of its own; --best-variant keeps of each
+family (its SOLVER) the default and the variant that solves the most instances (ties: the least
+time summed over those it solves), and drops the other variants.
 Several SOLVES.csv are read as one run. Standard library and gnuplot.
 """
 
@@ -123,6 +126,28 @@ def hard_check(rows):
     return len(by), lost
 
 
+def family(solver):
+    return solver.split("[", 1)[0]
+
+
+def best_variants(rows):
+    """The rows of each family's default and of its variant solving the most instances."""
+    solved = collections.Counter()
+    spent = collections.Counter()
+    for r in rows:
+        if r["status"] == "solved":
+            solved[r["solver"]] += 1
+            spent[r["solver"]] += float(r["seconds"])
+    best = {}
+    for s in dict.fromkeys(r["solver"] for r in rows):
+        if "[" in s:
+            key = (solved[s], -spent[s])
+            if family(s) not in best or key > best[family(s)][0]:
+                best[family(s)] = (key, s)
+    kept = {s for _, s in best.values()}
+    return [r for r in rows if "[" not in r["solver"] or r["solver"] in kept]
+
+
 def screen_table(rows):
     lines = ["| solver | screening problems solved at 1e-3 (cold, warm) | outcomes |", "|---|---|---|"]
     by = collections.defaultdict(list)
@@ -163,6 +188,7 @@ def main():
     parser.add_argument("--time-limit", type=float, default=math.inf)
     parser.add_argument("--ours", default="ours")
     parser.add_argument("--leave-out", default="")
+    parser.add_argument("--best-variant", action="store_true")
     parser.add_argument("solves", nargs="+")
     args = parser.parse_args()
     global OURS
@@ -172,6 +198,8 @@ def main():
     for r in rows:
         if r["status"] == "solved" and float(r["seconds"]) > args.time_limit:
             r["status"] = "time_limit"
+    if args.best_variant:
+        rows = best_variants(rows)
     solvers = list(dict.fromkeys(r["solver"] for r in rows))
     table, _ = costs(rows)
     profile, counts = profile_tables(table, solvers)

@@ -1,9 +1,13 @@
 // Every solver on every problem, one machine, one run (doc/peers.md):
 //
-//   peer_bench --list   (the solvers' names)
-//   peer_bench --out CSV [--time-limit 2] [--targets 1e-3,1e-4,1e-6] [--starts cold,warm]
-//              [--solvers ours,fc2d_nsgs,...] PROBLEM.hdf5 ...
+//   peer_bench --list   (the solvers' names: ours, Siconos's at their defaults, the variants studied)
+//   peer_bench --out CSV [--time-limit 2] [--wall-limit S] [--targets 1e-3,1e-4,1e-6] [--starts cold,warm]
+//              [--solvers ours,fc2d_nsgs,fc3d_nsn_fb[ls=armijo],...] PROBLEM.hdf5 ...
 //
+// A Siconos solver may be named with options (bench/peers/siconos_variants.h); an unknown name,
+// option or value is refused in one line before any solve. --wall-limit: a Siconos child is ended
+// after S s of wall clock (default 3x the time limit plus 1 s; ours' children get at least their
+// own); longer on a loaded machine, where a child ended short of its CPU limit is "starved".
 // Each PROBLEM.hdf5 (an FCLIB local problem, bench/peers/local_problem.h) has its saved step
 // beside it (PROBLEM.cdp), which ours solves; the two must be the same problem bit for bit. Its
 // class is the name of its folder. For each solver, start (cold: r = 0; warm: the step's warm
@@ -21,9 +25,11 @@
 // solves again from the same start with its tolerance ten times lower (up to three times), the
 // times summed.
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -38,12 +44,14 @@
 #include "cd/gauss_seidel.h"
 #include "local_problem.h"
 #include "siconos_solvers.h"
+#include "siconos_variants.h"
 
 namespace {
 
 struct Options {
   std::string out;
   double time_limit = 2.0;  // s per solve
+  double wall_limit = 0.0;  // s of wall clock before a child is ended (0: 3x the time limit plus 1 s)
   std::vector<double> targets{1e-3, 1e-4, 1e-6};
   std::vector<std::string> starts{"cold", "warm"};
   std::vector<std::string> solvers;
@@ -64,12 +72,20 @@ std::vector<std::string> split(const std::string& text)
   return items;
 }
 
+// Siconos's solvers at their defaults, then the variants studied (bench/peers/siconos_variants.h).
+std::vector<std::string> siconos_names()
+{
+  std::vector<std::string> names = peers::siconos_solver_names();
+  for (const std::string& name : peers::siconos_variant_names()) names.push_back(name);
+  return names;
+}
+
 Options parse_options(int argc, char** argv)
 {
   Options o;
   o.solvers.push_back("ours");
   o.solvers.push_back("ours_newton");
-  for (const std::string& name : peers::siconos_solver_names()) o.solvers.push_back(name);
+  for (const std::string& name : siconos_names()) o.solvers.push_back(name);
   for (int i = 1; i < argc; i++) {
     const std::string arg = argv[i];
     const auto value = [&] {
@@ -78,6 +94,7 @@ Options parse_options(int argc, char** argv)
     };
     if (arg == "--out") o.out = value();
     else if (arg == "--time-limit") o.time_limit = std::stod(value());
+    else if (arg == "--wall-limit") o.wall_limit = std::stod(value());
     else if (arg == "--targets") {
       o.targets.clear();
       for (const std::string& t : split(value())) o.targets.push_back(std::stod(t));
@@ -85,7 +102,7 @@ Options parse_options(int argc, char** argv)
     else if (arg == "--solvers") o.solvers = split(value());
     else if (arg == "--list") {
       std::cout << "ours,ours_newton";
-      for (const std::string& name : peers::siconos_solver_names()) std::cout << ',' << name;
+      for (const std::string& name : siconos_names()) std::cout << ',' << name;
       std::cout << '\n';
       std::exit(0);
     } else if (arg.rfind("--", 0) == 0) refuse("unknown option " + arg);
@@ -94,6 +111,8 @@ Options parse_options(int argc, char** argv)
   if (o.out.empty() || o.problems.empty()) refuse("usage: peer_bench --out CSV [options] PROBLEM.hdf5 ...");
   for (const std::string& s : o.starts)
     if (s != "cold" && s != "warm") refuse("a start is cold or warm, got '" + s + "'");
+  for (const std::string& s : o.solvers)
+    if (s != "ours" && s != "ours_newton") peers::siconos_options(s);  // an unknown name or option: refused here
   return o;
 }
 
@@ -202,7 +221,9 @@ Outcome solve_siconos(const peers::LocalProblem& local, const std::string& solve
 
 // Runs `solve` in a child process; the status says how it ended: solved within the time limit
 // (CPU seconds), time_limit (over it, or the child still running at `wall_limit` seconds of wall
-// clock), not_solved (ended without the target), crashed, refused.
+// clock with more CPU time than the limit), starved (ended at the wall limit short of the CPU
+// limit: other jobs took the cores; to be run again), not_solved (ended without the target),
+// crashed, refused.
 template <class Solve>
 Outcome in_child(Solve solve, double time_limit, double wall_limit, std::string& status)
 {
@@ -229,8 +250,13 @@ Outcome in_child(Solve solve, double time_limit, double wall_limit, std::string&
   const bool sent = read(pipe_ends[0], &outcome, sizeof(outcome)) == static_cast<ssize_t>(sizeof(outcome));
   close(pipe_ends[0]);
   int how = 0;
-  waitpid(child, &how, 0);
-  if (WIFSIGNALED(how)) status = WTERMSIG(how) == SIGALRM ? "time_limit" : "crashed";
+  rusage used{};
+  wait4(child, &how, 0, &used);
+  const double child_cpu = static_cast<double>(used.ru_utime.tv_sec + used.ru_stime.tv_sec) +
+                           1e-6 * static_cast<double>(used.ru_utime.tv_usec + used.ru_stime.tv_usec);
+  if (WIFSIGNALED(how) && WTERMSIG(how) == SIGALRM)  // under the CPU limit at the wall limit: the machine starved it
+    status = child_cpu < time_limit ? "starved" : "time_limit";
+  else if (WIFSIGNALED(how)) status = "crashed";
   else if (WEXITSTATUS(how) == 3) status = "refused";
   else if (!sent) status = "crashed";
   else if (outcome.solved && outcome.seconds <= time_limit) status = "solved";
@@ -286,10 +312,10 @@ int run(const Options& o)
             if (solver == "ours" || solver == "ours_newton")
               outcome = in_child(
                   [&] { return solve_ours(problem, local, warm, target, o.time_limit, solver == "ours_newton"); },
-                  o.time_limit, ours_wall_limit(o.time_limit), status);
+                  o.time_limit, std::max(o.wall_limit, ours_wall_limit(o.time_limit)), status);
             else
               outcome = in_child([&] { return solve_siconos(local, solver, warm, target); }, o.time_limit,
-                                 3.0 * o.time_limit + 1.0, status);
+                                 o.wall_limit > 0.0 ? o.wall_limit : 3.0 * o.time_limit + 1.0, status);
           }
           gave_up = status != "solved" && status != "not_solved";
           csv << base_name(path) << ',' << folder_name(path) << ',' << local.contacts << ',' << solver << ',' << start

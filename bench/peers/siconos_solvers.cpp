@@ -19,6 +19,7 @@
 #include "SparseBlockMatrix.h"
 #include "fc2d_compute_error.h"
 #undef restrict
+#include "siconos_variants.h"
 
 namespace peers {
 
@@ -60,11 +61,13 @@ const std::vector<Method>& methods()
   return all;
 }
 
+// The solver of a name or of a variant's name ("fc3d_nsn_fb[ls=armijo]").
 const Method& method(const std::string& name)
 {
+  const std::string solver = parse_variant(name).solver;
   for (const Method& m : methods())
-    if (m.name == name) return m;
-  throw std::invalid_argument("siconos_solvers: no solver '" + name + "'");
+    if (m.name == solver) return m;
+  throw std::invalid_argument("siconos_solvers: no solver '" + solver + "'");
 }
 
 // A Siconos matrix from triplets (row, column, value), dense or by blocks of `block` rows.
@@ -164,6 +167,13 @@ const std::vector<std::string>& siconos_solver_names()
   return names;
 }
 
+OptionsPointer siconos_options(const std::string& solver)
+{
+  OptionsPointer options(solver_options_create(method(solver).id), solver_options_delete);
+  apply_variant(parse_variant(solver), *options);
+  return options;
+}
+
 SiconosResult solve_with_siconos(const LocalProblem& problem, const std::string& solver,
                                  const SiconosSettings& settings, const std::vector<double>& start)
 {
@@ -172,7 +182,7 @@ SiconosResult solve_with_siconos(const LocalProblem& problem, const std::string&
     throw std::invalid_argument("siconos_solvers: " + solver + " takes W dense: " + std::to_string(problem.contacts) +
                                 " contacts is over the limit");
   SiconosProblem siconos(problem, m.planar ? 2 : 3, m.dense);
-  std::unique_ptr<SolverOptions, void (*)(SolverOptions*)> options(solver_options_create(m.id), solver_options_delete);
+  OptionsPointer options = siconos_options(solver);
   options->dparam[SICONOS_DPARAM_TOL] = settings.tolerance;
   options->iparam[SICONOS_IPARAM_MAX_ITER] = settings.max_iterations;
   std::vector<double> reaction = m.planar ? start : embedded(start);

@@ -12,6 +12,8 @@
 
 #include "local_problem.h"
 
+struct SolverOptions;  // Siconos numerics' (SolverOptions.h)
+
 namespace peers {
 
 struct SiconosSettings {
@@ -35,8 +37,14 @@ double cpu_seconds();
 // doc/peers.md. Throws std::invalid_argument for another name.
 const std::vector<std::string>& siconos_solver_names();
 
-// Solves from `start` (r, 2 per contact). Throws std::invalid_argument for an unknown name or
-// a dense solver over the limit.
+// The options a solve uses: Siconos's defaults for the solver, then a variant's options
+// (bench/peers/siconos_variants.h). Throws std::invalid_argument, in one line, for an unknown
+// solver, key or value.
+using OptionsPointer = std::unique_ptr<SolverOptions, void (*)(SolverOptions*)>;
+OptionsPointer siconos_options(const std::string& solver);
+
+// Solves from `start` (r, 2 per contact) with `solver`, a name or a variant's name. Throws
+// std::invalid_argument for an unknown name or a dense solver over the limit.
 SiconosResult solve_with_siconos(const LocalProblem& problem, const std::string& solver,
                                  const SiconosSettings& settings, const std::vector<double>& start);
 

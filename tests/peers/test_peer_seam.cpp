@@ -1,4 +1,4 @@
-// The seam proven by a peer (doc/peers.md, "The seam proven"): Siconos's solvers, registered by
+// The seam proven by a peer (doc/peer_seam.md): Siconos's solvers, registered by
 // name from outside the core (bench/peers/siconos_contact_solver.cpp), step a small chute through
 // cd::MoreauJeanStep (the testbed's bed, tilted) to the trajectory of ours.
 //

@@ -14,6 +14,10 @@
 #include "cd/newton_polish.h"
 #include "local_problem.h"
 #include "siconos_solvers.h"
+#include "siconos_variants.h"
+
+#include "Friction_cst.h"
+#include "SolverOptions.h"
 
 namespace {
 
@@ -209,6 +213,68 @@ TEST(SiconosSolvers, UnknownNamesAndOversizedDenseSolversAreRefused)
   EXPECT_THROW(peers::solve_with_siconos(local, "fc2d_newton", settings, local.warm_start), std::invalid_argument);
   settings.dense_rows_limit = 10;
   EXPECT_THROW(peers::solve_with_siconos(local, "fc2d_lemke", settings, local.warm_start), std::invalid_argument);
+}
+
+// The message of the refusal `call` throws ("" if none).
+template <class Call>
+std::string refusal(Call call)
+{
+  try {
+    call();
+  } catch (const std::invalid_argument& refused) {
+    return refused.what();
+  }
+  return "";
+}
+
+TEST(SiconosVariants, ANamedVariantSetsItsOptionsOverTheDefaults)
+{
+  const peers::OptionsPointer plain = peers::siconos_options("fc3d_nsn_ac");
+  const peers::OptionsPointer armijo = peers::siconos_options("fc3d_nsn_ac[ls=armijo+form=jm+rho=split]");
+  EXPECT_EQ(plain->iparam[SICONOS_FRICTION_3D_NSN_LINESEARCH], SICONOS_FRICTION_3D_NSN_LINESEARCH_GOLDSTEINPRICE);
+  EXPECT_EQ(armijo->iparam[SICONOS_FRICTION_3D_NSN_LINESEARCH], SICONOS_FRICTION_3D_NSN_LINESEARCH_ARMIJO);
+  EXPECT_EQ(armijo->iparam[SICONOS_FRICTION_3D_NSN_FORMULATION], SICONOS_FRICTION_3D_NSN_FORMULATION_JEANMOREAU_STD);
+  EXPECT_EQ(armijo->iparam[SICONOS_FRICTION_3D_NSN_RHO_STRATEGY],
+            SICONOS_FRICTION_3D_NSN_FORMULATION_RHO_STRATEGY_SPLIT_SPECTRAL_NORM);
+  // the internal solver is replaced first, whatever the order, then its own option set
+  const peers::OptionsPointer nsgs = peers::siconos_options("fc3d_nsgs[local_form=jm+local=nsn+shuffle=each]");
+  EXPECT_EQ(nsgs->internalSolvers[0]->solverId, SICONOS_FRICTION_3D_ONECONTACT_NSN);
+  EXPECT_EQ(nsgs->internalSolvers[0]->iparam[SICONOS_FRICTION_3D_NSN_FORMULATION],
+            SICONOS_FRICTION_3D_NSN_FORMULATION_JEANMOREAU_STD);
+  EXPECT_EQ(nsgs->iparam[SICONOS_FRICTION_3D_NSGS_SHUFFLE], SICONOS_FRICTION_3D_NSGS_SHUFFLE_TRUE_EACH_LOOP);
+  const peers::OptionsPointer prox = peers::siconos_options("fc3d_prox[alpha=-1e4]");
+  EXPECT_EQ(prox->dparam[SICONOS_FRICTION_3D_PROXIMAL_DPARAM_ALPHA], -1e4);
+  for (const std::string& name : peers::siconos_variant_names()) EXPECT_NO_THROW(peers::siconos_options(name)) << name;
+}
+
+TEST(SiconosVariants, AVariantMeetsTheTargetAsItsSolverDoes)
+{
+  const peers::LocalProblem local = peers::read_fclib(data + "chute_mu2_step.hdf5");
+  peers::SiconosSettings settings;
+  settings.tolerance = 1e-4;
+  settings.max_iterations = 20000;
+  const peers::SiconosResult result =
+      peers::solve_with_siconos(local, "fc3d_nsgs[shuffle=once]", settings, local.warm_start);
+  EXPECT_EQ(result.info, 0);
+  EXPECT_LE(result.error, 1e-4);
+}
+
+TEST(SiconosVariants, UnknownVariantsAreRefusedInOneLine)
+{
+  const std::string cases[][2] = {
+      {"fc3d_nsn_fb[ls=wolfe]", "siconos_variants: fc3d_nsn_fb option ls: no value 'wolfe'"},
+      {"fc3d_nsn_fb[form=jm]", "siconos_variants: fc3d_nsn_fb has no option 'form'"},
+      {"fc2d_nsgs[shuffle=once]", "siconos_variants: fc2d_nsgs has no option 'shuffle'"},
+      {"fc3d_nsgs[omega=fast]", "siconos_variants: fc3d_nsgs option omega: no value 'fast'"},
+      {"fc3d_nsgs[shuffle]", "siconos_variants: 'fc3d_nsgs[shuffle]': option 'shuffle' is not KEY=VALUE"},
+      {"fc3d_nsgs[shuffle=once", "siconos_variants: 'fc3d_nsgs[shuffle=once' is not SOLVER[KEY=VALUE+...]"},
+      {"fc3d_newton[ls=none]", "siconos_solvers: no solver 'fc3d_newton'"},
+  };
+  for (const auto& [name, message] : cases) {
+    const std::string what = refusal([&] { peers::siconos_options(name); });
+    EXPECT_EQ(what, message);
+    EXPECT_EQ(what.find('\n'), std::string::npos);
+  }
 }
 
 }  // namespace
