@@ -22,6 +22,7 @@ Standard library only.
 """
 
 import argparse
+import filecmp
 import json
 import math
 import os
@@ -101,10 +102,15 @@ def series_row(name):
 
 
 def published_folder(set_folder, name):
-    """Where the published run a re-run replaces is read: kept in the set, else results/runs; None."""
-    for folder in (os.path.join(set_folder, name, SUPERSEDED), os.path.join(PUBLISHED, name)):
-        if os.path.isdir(folder):
-            return folder
+    """Where the published run a re-run replaces is read: kept in the set, else results/runs unless
+    that is the run itself (a report published it: the same results.csv); None."""
+    kept = os.path.join(set_folder, name, SUPERSEDED)
+    if os.path.isdir(kept):
+        return kept
+    published = os.path.join(PUBLISHED, name)
+    if os.path.isdir(published) and not filecmp.cmp(os.path.join(published, "results.csv"),
+                                                    os.path.join(set_folder, name, "results.csv"), shallow=False):
+        return published
     return None
 
 

@@ -2,7 +2,8 @@
 """Checks of studies/rerun_tables.py, run by ctest: a synthetic re-run against its published run
 (health cells, each quantity's difference in combined errors by hand, A without one), a run added
 with its small files and refused without them, the published run kept by --supersede (with its
-series row) and read by the table once the re-run is published in its place, a README
+series row) and read by the table once the re-run is published in its place, a run a report
+published as itself not compared with itself, a README
 without the block refused naming it, and the committed tables of results/rerun/*/README.md made
 again from their folders (a run added or changed without `studies/rerun_tables.py` fails here).
 
@@ -88,6 +89,9 @@ def superseded_kept_and_read(tool, scratch, row):
     shutil.copytree(os.path.join(rerun, "mu2_theta28_L45"), published, ignore=shutil.ignore_patterns("superseded"))
     again = tool.table(rerun).splitlines()[2]
     check(again == row, f"after the report the table still reads the kept run: {again}")
+    shutil.copytree(os.path.join(rerun, "mu2_theta29_L45"), os.path.join(tool.PUBLISHED, "mu2_theta29_L45"))
+    itself = tool.table(rerun).splitlines()[3]
+    check(itself.rstrip(" |").endswith("no published run"), f"a run published as itself is not compared: {itself}")
 
 
 def main():

@@ -646,8 +646,11 @@ def solver_caveat(key, reading_name, records):
     """What a comparison row of one reading rests on, if not every run of its friction (all
     frictions for a row of none) recorded at most 0.1 % of its steps unconverged: '' or a caveat."""
     friction = re.search(r"_mu([0-9.]+?)(?:_|$)", key)
-    runs = [r for r in records if counted(r) and reading(r.vars) == reading_name and r.vars.get("L") == "45"
-            and (friction is None or same_value(r.vars["mu"], friction.group(1)))]
+    if key in LENGTH_KEYS:  # the cell length's rows rest on the L series' runs
+        runs = [r for r in records if counted(r) and ANALYSES["L_series"](r) and reading(r.vars) == reading_name]
+    else:
+        runs = [r for r in records if counted(r) and reading(r.vars) == reading_name and r.vars.get("L") == "45"
+                and (friction is None or same_value(r.vars["mu"], friction.group(1)))]
     shares = [unconverged_share(r.cost) for r in runs]
     flagged = sum(1 for share in shares if share is not None and share > UNCONVERGED_LIMIT)
     inferred = sum(1 for r, share in zip(runs, shares) if share is None and getattr(r, "inferred", None))
