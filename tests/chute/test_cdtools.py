@@ -331,6 +331,10 @@ def check_solver_health(work):
           f"a mu 2 row's caveat: {caveat}")
     check(report.solver_caveat("pouliquen_curve_angle_mu0.5", "layer", records) == "", "a mu 0.5 row's caveat")
     check("1 of 3 runs" in report.solver_caveat("phi_law_k", "layer", records), "a row of every friction")
+    lengths = [argparse.Namespace(name=f"mu0.5_theta22_L{L}", series="L", results={"U": 1}, cost={},
+                                  vars=dict(mu="0.5", L=L, reading="count", theta="22")) for L in ("12", "102")]
+    caveat = report.solver_caveat("sign_f_vs_L", "count", records + lengths)
+    check(caveat == " (solver health not recorded for 2 of 2 runs)", f"the cell length's rows count its runs: {caveat}")
     check_health_rule(run, first, second)
 
 
