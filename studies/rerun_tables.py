@@ -65,7 +65,8 @@ def add_run(run_folder, destination):
 
 def supersede(set_folder):
     """Copy each published run that a finished re-run of set_folder replaces into NAME/superseded,
-    with its row of the series' runs.csv; a run already kept is left. [names kept now]."""
+    with its row of the series' runs.csv if a series has it; a run already kept is left. [names
+    kept now]."""
     kept = []
     for name in sorted(os.listdir(set_folder)):
         target = os.path.join(set_folder, name, SUPERSEDED)
@@ -74,14 +75,13 @@ def supersede(set_folder):
             continue
         if not os.path.isdir(source):
             continue
-        row = series_row(name)
-        if row is None:
-            raise FileNotFoundError(f"{name}: in no runs.csv of {os.path.relpath(SERIES, TOP)}")
         os.makedirs(target)
         for f in SUPERSEDED_FILES:
             shutil.copy2(os.path.join(source, f), target)
-        with open(os.path.join(target, SERIES_ROW), "w") as out:
-            out.write(row[0] + row[1])
+        row = series_row(name)
+        if row:  # a replica belongs to no series
+            with open(os.path.join(target, SERIES_ROW), "w") as out:
+                out.write(row[0] + row[1])
         kept.append(name)
     return kept
 
@@ -191,11 +191,8 @@ def main(argv=None):
     if args.supersede:
         if not os.path.isdir(os.path.join(RERUN, args.supersede)):
             parser.error(f"--supersede {args.supersede}: not a folder of {os.path.relpath(RERUN, TOP)}")
-        try:
-            for name in supersede(os.path.join(RERUN, args.supersede)):
-                print(f"kept {name}'s published run in results/rerun/{args.supersede}/{name}/{SUPERSEDED}")
-        except FileNotFoundError as error:
-            parser.error(str(error))
+        for name in supersede(os.path.join(RERUN, args.supersede)):
+            print(f"kept {name}'s published run in results/rerun/{args.supersede}/{name}/{SUPERSEDED}")
     if args.add:
         if len(args.add) < 2 or not os.path.isdir(os.path.join(RERUN, args.add[0])):
             parser.error(f"--add SET RUN...: SET must name a folder of {os.path.relpath(RERUN, TOP)} "

@@ -67,7 +67,8 @@ def committed_reruns(tool):
                        "studies/local_rheology.py --out results/series/local_rheology --cdpost build/postproc/cdpost")
     fits, rows = tool.load()
     reruns = [r["run"] for r in rows if r["used"] == "rerun"]
-    folders = [n for folder in tool.RERUNS.values() for n in tool.rerun_folders(folder)]
+    in_series = {r["run"] for r in rows}  # a replica's re-run replaces no series run
+    folders = [n for folder in tool.RERUNS.values() for n in tool.rerun_folders(folder) if n in in_series]
     check(sorted(reruns) == sorted(folders), f"re-runs read {reruns}, folders {folders}")
     return len(reruns)
 
