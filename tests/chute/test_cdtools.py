@@ -353,6 +353,7 @@ def check_health_rule(run, first, second):
     proof = run("2", dict(solver=clean), "health_evidence", "health_mu2_theta28_L45", "count")
     inferred = report.health_refusal([old, replica, proof], untold) is None
     check(inferred and old.inferred == ("health_mu2_theta28_L45", 0.5e-4), f"health inferred: {old.inferred}")
+    check(replica.inferred == old.inferred, f"a replica's health is inferred too: {replica.inferred}")
     check(report.solver_cells({}, old.inferred)[0] == "inferred: ≤ 0.01 % (health_mu2_theta28_L45)",
           "the runs table shows the inferred health with its evidence")
     check(report.solver_caveat("phi_c_mu2", "count", [old, proof]) == " (solver health inferred for 1 of 1 runs)",

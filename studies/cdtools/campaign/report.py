@@ -200,20 +200,20 @@ def counted(record):
 
 
 def infer_health(records):
-    """Marks every counted run without recorded health whose friction and reading have evidence at
-    most INFERRED_LIMIT unconverged: record.inferred = (evidence name, its unconverged fraction).
-    Returns the runs left without health, each with why: [(name, why)]."""
+    """Marks every published run without recorded health (a replica too) whose friction and reading
+    have evidence at most INFERRED_LIMIT unconverged: record.inferred = (evidence name, its
+    unconverged fraction). Returns the counted runs left without health, each with why: [(name, why)]."""
     evidence = health_evidence(records)
     missing = []
     for r in records:
         r.inferred = None
-        if not counted(r) or unconverged_share(r.cost) is not None:
+        if not r.results or unconverged_share(r.cost) is not None:
             continue
         proof = evidence.get((float(r.vars["mu"]), reading(r.vars)))
         share = unconverged_share(proof.cost) if proof else None
         if proof and share <= INFERRED_LIMIT:
             r.inferred = (proof.name, share)
-        else:
+        elif counted(r):
             missing.append((r.name, f"{proof.name} {100 * share:.3g} % unconverged" if proof
                             else "no evidence run of their friction and reading"))
     return missing
