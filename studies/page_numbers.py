@@ -22,6 +22,9 @@ def main(argv):
     parser.add_argument("--update", action="store_true", help="rewrite the disagreeing numbers from the data")
     parser.add_argument("--root", default=TOP, help="the repository (default: this one)")
     args = parser.parse_args(argv)
+    missing = [page for page in page_numbers.PAGES if not os.path.exists(os.path.join(args.root, page))]
+    if missing:
+        parser.error(f"--root {args.root}: no {', '.join(missing)} (not this project's repository)")
     if args.update:
         for page, line, key, old, new in page_numbers.update_pages(args.root):
             print(f"{page}:{line}: {key}: {old} -> {new}")

@@ -22,7 +22,9 @@ Standard library only.
 """
 
 import argparse
+import csv
 import filecmp
+import glob
 import json
 import math
 import os
@@ -71,33 +73,28 @@ def supersede(set_folder):
     for name in sorted(os.listdir(set_folder)):
         target = os.path.join(set_folder, name, SUPERSEDED)
         source = os.path.join(PUBLISHED, name)
-        if not os.path.exists(os.path.join(set_folder, name, "results.csv")) or os.path.exists(target):
-            continue
-        if not os.path.isdir(source):
+        if (not os.path.exists(os.path.join(set_folder, name, "results.csv")) or os.path.exists(target)
+                or not os.path.isdir(source)):
             continue
         os.makedirs(target)
         for f in SUPERSEDED_FILES:
             shutil.copy2(os.path.join(source, f), target)
         row = series_row(name)
         if row:  # a replica belongs to no series
-            with open(os.path.join(target, SERIES_ROW), "w") as out:
-                out.write(row[0] + row[1])
+            with open(os.path.join(target, SERIES_ROW), "w", newline="") as out:
+                writer = csv.DictWriter(out, fieldnames=list(row), lineterminator="\n")
+                writer.writeheader()
+                writer.writerow(row)
         kept.append(name)
     return kept
 
 
 def series_row(name):
-    """(header line, row line) of run name in a series' runs.csv, or None."""
-    for series in sorted(os.listdir(SERIES)):
-        path = os.path.join(SERIES, series, "runs.csv")
-        if not os.path.exists(path):
-            continue
-        with open(path) as src:
-            lines = src.readlines()
-        header = next((i for i, line in enumerate(lines) if not line.startswith("#")), None)
-        for line in lines[header + 1:] if header is not None else []:
-            if os.path.basename(line.split(",")[0]) == name:
-                return lines[header], line
+    """The row of run name in a series' runs.csv, or None."""
+    for path in sorted(glob.glob(os.path.join(SERIES, "*", "runs.csv"))):
+        for row in read_rows(path):
+            if os.path.basename(row["run"]) == name:
+                return row
     return None
 
 
@@ -154,7 +151,7 @@ def table(folder):
     names = sorted(n for n in os.listdir(folder)
                    if os.path.exists(os.path.join(folder, n, "cost.json"))
                    and os.path.exists(os.path.join(folder, n, "results.csv")))
-    published = {n: published_folder(folder, n) for n in names if published_folder(folder, n)}
+    published = {n: f for n, f in ((n, published_folder(folder, n)) for n in names) if f}
     headings = ["run", "flow with health recorded", "unconverged steps", "largest final norm", "sweeps median / p99",
                 "rescued steps"]
     if published:
@@ -191,7 +188,11 @@ def main(argv=None):
     if args.supersede:
         if not os.path.isdir(os.path.join(RERUN, args.supersede)):
             parser.error(f"--supersede {args.supersede}: not a folder of {os.path.relpath(RERUN, TOP)}")
-        for name in supersede(os.path.join(RERUN, args.supersede)):
+        try:
+            kept = supersede(os.path.join(RERUN, args.supersede))
+        except OSError as error:
+            parser.error(f"--supersede {args.supersede}: {error}")
+        for name in kept:
             print(f"kept {name}'s published run in results/rerun/{args.supersede}/{name}/{SUPERSEDED}")
     if args.add:
         if len(args.add) < 2 or not os.path.isdir(os.path.join(RERUN, args.add[0])):

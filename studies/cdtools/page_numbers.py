@@ -691,7 +691,8 @@ def update_pages(root, pages=PAGES):
         path = os.path.join(root, page)
         with open(path) as src:
             text, page_changes = update_text(src.read(), data)
-        with open(path, "w") as dst:
-            dst.write(text)
+        if any(not new.startswith("conflict") for *_, new in page_changes):
+            with open(path, "w") as dst:
+                dst.write(text)
         changes += [(page,) + change for change in page_changes]
     return changes

@@ -10,7 +10,8 @@ estimators the tables use, and each printed number must be its value rounded as 
 re-analysed or re-run changes those files: the sentence that quotes it then fails here, named by
 its page, line and key. Besides, on a synthetic page: a stale number, a wrong sign, too few
 numbers and an unknown family each fail, and the update rewrites a stale number as printed
-(decimals, sign, exponent form) and leaves a number two markers disagree on; the estimators on
+(decimals, sign, exponent form) and leaves a number two markers disagree on; the command refuses
+a folder without the pages in one line; the estimators on
 hand-computed cases. The signs of the
 committed comparison tables on mu and on L (f on mu and A on mu in both readings, f on L) are each
 the one weighted slope the prose quotes: the table's 'weighted: slope ± error, chi2/dof' is the
@@ -18,16 +19,19 @@ estimator's own (page_numbers.f_mu, A_mu, f_L, cdpost's fit_weighted_slope). Sta
 only.
 """
 
+import contextlib
+import io
 import math
 import os
 import sys
+import tempfile
 
 TOP = os.path.join(os.path.dirname(os.path.realpath(__file__)), os.pardir, os.pardir)
 sys.path.insert(0, os.path.join(TOP, "studies"))
 
 from cdtools import page_numbers  # noqa: E402
 from cdtools.text import with_error  # noqa: E402
-from study_test import check  # noqa: E402
+from study_test import check, load_study  # noqa: E402
 
 
 class Synthetic:
@@ -125,8 +129,23 @@ def committed_pages():
     print(f"{counted} marked numbers agree with the committed data")
 
 
+def command_refuses_another_folder():
+    """studies/page_numbers.py --root on a folder without the pages: one line naming them, status 2."""
+    tool = load_study("page_numbers")
+    error = io.StringIO()
+    with tempfile.TemporaryDirectory() as scratch, contextlib.redirect_stderr(error):
+        try:
+            tool.main(["--root", scratch])
+            status = 0
+        except SystemExit as stop:
+            status = stop.code
+    last = error.getvalue().strip().splitlines()[-1]
+    check(status == 2 and "no results/README.md" in last, f"status {status}, said {last!r}")
+
+
 def main():
     synthetic_cases()
+    command_refuses_another_folder()
     update_cases()
     estimator_cases()
     one_estimator()

@@ -8,7 +8,8 @@ The size mix of a synthetic dump whose mid-layer grains are larger than the rest
 mean area over the cell's and the cell's over the size law's, by hand, the early snapshots (which
 differ) left out; the tolerance shift of two plane-shear tables by hand; a truncated snapshot
 refused in one error naming the file; the pairing of today's runs with the published runs of
-the same friction and angle (and not a replica's); the committed today/runs.csv holds every
+the same friction and angle (and not a replica's); a series run a re-run set kept read from the
+kept copy; the committed today/runs.csv holds every
 count run of the folders it reads, so a run committed without
 `studies/two_packings.py --cdpost ...` fails here. Standard library only.
 """
@@ -94,6 +95,32 @@ def tolerance_by_hand(tool):
     check(abs(shifts[0][3]) < 1e-12 and abs(shifts[1][3] - 0.003) < 1e-12, f"shifts {shifts}")
 
 
+def first_published_by_hand(tool):
+    """A series run that a re-run set kept (superseded/) is read from the kept row and profile, the
+    others from the series' runs.csv and their own folder."""
+    with tempfile.TemporaryDirectory() as scratch:
+        series = os.path.join(scratch, "series", "flow_rules")
+        kept = os.path.join(scratch, "rerun", "count_mu2", "mu2_theta24_L45", "superseded")
+        os.makedirs(series)
+        os.makedirs(kept)
+        path = os.path.join(series, "runs.csv")
+        with open(path, "w") as out:
+            out.write("# provenance\nrun,mu,I_local\n"
+                      "../../runs/mu2_theta24_L45,2,0.30\n../../runs/mu2_theta25_L45,2,0.40\n")
+        with open(os.path.join(kept, "series_row.csv"), "w") as out:
+            out.write("run,mu,I_local\n../../runs/mu2_theta24_L45,2,0.10\n")
+        saved = dict(tool.local_rheology.RERUNS)
+        tool.local_rheology.RERUNS["count"] = os.path.dirname(os.path.dirname(kept))
+        try:
+            read = tool.first_published("count", path)
+        finally:
+            tool.local_rheology.RERUNS.clear()
+            tool.local_rheology.RERUNS.update(saved)
+    check([r["I_local"] for r, _ in read] == ["0.10", "0.40"], f"rows read: {read}")
+    check(read[0][1] == os.path.join(kept, "profile.csv")
+          and read[1][1] == os.path.join(series, "../../runs/mu2_theta25_L45", "profile.csv"), f"profiles: {read}")
+
+
 def committed(tool):
     held = tool.local_rheology.rerun_rows(os.path.join(tool.OUT, tool.TODAY_TABLE))
     runs = tool.today_runs()
@@ -106,6 +133,7 @@ def main():
     size_mix_by_hand(tool)
     pairing(tool)
     tolerance_by_hand(tool)
+    first_published_by_hand(tool)
     count = committed(tool)
     print(f"two_packings: every check passed ({count} of today's count runs in the committed table)")
 
