@@ -376,22 +376,36 @@ def family_two_packings(data, reading, solver="", mu="", quantity="dphi_bulk", p
     return {"mean": (mean, se), "mean_only": (mean,)}[part]
 
 
-def family_replica(data, quantity, reading="both"):
-    """Scatter of one run from the replica pairs (runs of a replicas series, named *_seed*):
-    sqrt(sum d^2 / 2n), as the runs page's table; reading 'count' or 'layer': that reading's pairs
-    alone."""
-    differences = []
+def _replica_pairs(data, quantity, reading):
+    """[(replica, published)] values (value, error) of a quantity over the replica pairs (runs of a
+    replicas series, named *_seed*, and the run of their name without the seed)."""
+    pairs = []
     for name in sorted(os.listdir(data.path("results", "runs"))):
         if "_seed" not in name or (reading != "both" and name.endswith("_layer") != (reading == "layer")):
             continue
         with open(data.path("results", "runs", name, "params.json")) as src:
             if not json.load(src).get("series", "").endswith("replicas"):
                 continue  # another rain of another study (the creep series' seeds)
-        base = re.sub(r"_seed\d+", "", name)
-        a, b = data.run(name).get(quantity), data.run(base).get(quantity)
+        a, b = data.run(name).get(quantity), data.run(re.sub(r"_seed\d+", "", name)).get(quantity)
         if a and b:
-            differences.append(a[0] - b[0])
-    return (math.sqrt(sum(d * d for d in differences) / (2 * len(differences))),)
+            pairs.append((a, b))
+    return pairs
+
+
+def family_replica(data, quantity, reading="both", part="scatter"):
+    """Scatter of one run from the replica pairs: sqrt(sum d^2 / 2n), as the runs page's table;
+    reading 'count' or 'layer': that reading's pairs alone. Part 'blocks': smallest and largest
+    scatter over the block error of each run of the pairs; 'percent': of 100 scatter / value."""
+    pairs = _replica_pairs(data, quantity, reading)
+    scatter = math.sqrt(sum((a[0] - b[0]) ** 2 for a, b in pairs) / (2 * len(pairs)))
+    if part == "scatter":
+        return (scatter,)
+    runs = [run for pair in pairs for run in pair]
+    ratios = {"blocks": [scatter / run[1] for run in runs if run[1]],
+              "percent": [100 * scatter / abs(run[0]) for run in runs]}[part]
+    if not ratios:
+        raise ValueError(f"replica:{quantity}: no block errors in its runs")
+    return min(ratios), max(ratios)
 
 
 def family_fits_range(data, series, names):
