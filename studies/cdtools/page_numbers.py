@@ -209,6 +209,17 @@ def family_run(data, name, quantity, part="value"):
     return (value, error) if part == "both" else (value,)
 
 
+def family_run_as(data, name, quantity, unit):
+    """A run's quantity in another unit: 's' a time in sqrt(d/g) in seconds (the run's d and g,
+    params.json), '%' a fraction in per cent."""
+    value = data.run(name)[quantity][0]
+    if unit == "%":
+        return (100 * value,)
+    with open(data.path("results", "runs", name, "params.json")) as src:
+        settings = json.load(src)["vars"]
+    return (value * math.sqrt(float(settings["d"]) / float(settings["g"])),)
+
+
 def _series_values(data, series, quantity, mu=None):
     values = []
     runs = data.series_runs(series)
@@ -555,7 +566,7 @@ def family_fit_diff(data, series, names, references):
     return tuple(fits[a][0] - fits[b][0] for a, b in zip(names.split(","), references.split(",")))
 
 
-FAMILIES = {"fit": family_fit, "run": family_run, "range": family_range, "median": family_median,
+FAMILIES = {"fit": family_fit, "run": family_run, "run_as": family_run_as, "range": family_range, "median": family_median,
             "f_mu": family_f_mu, "A_mu": family_A_mu, "f_L": family_f_L, "scaled_range": family_scaled_range,
             "list": family_list, "counts": family_counts, "packing": family_packing, "replica": family_replica,
             "fits_range": family_fits_range, "below_source": family_below_source, "readings": family_readings,
