@@ -566,7 +566,8 @@ def family_fit_diff(data, series, names, references):
     return tuple(fits[a][0] - fits[b][0] for a, b in zip(names.split(","), references.split(",")))
 
 
-FAMILIES = {"fit": family_fit, "run": family_run, "run_as": family_run_as, "range": family_range, "median": family_median,
+FAMILIES = {"fit": family_fit, "run": family_run, "run_as": family_run_as, "range": family_range,
+            "median": family_median,
             "f_mu": family_f_mu, "A_mu": family_A_mu, "f_L": family_f_L, "scaled_range": family_scaled_range,
             "list": family_list, "counts": family_counts, "packing": family_packing, "replica": family_replica,
             "fits_range": family_fits_range, "below_source": family_below_source, "readings": family_readings,
