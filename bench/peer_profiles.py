@@ -2,7 +2,8 @@
 """Performance profiles (Dolan and Moré 2002) of the solvers of bench/peers/peer_bench.
 
     bench/peer_profiles.py --out PREFIX [--screen SCREEN.csv] [--time-limit S] [--ours NAME]
-                           [--leave-out NAME,...] [--best-variant] SOLVES.csv...
+                           [--leave-out NAME,...] [--best-variant] [--within F [--answers ANSWERS.csv]]
+                           SOLVES.csv...
 
 An instance is one problem, one start (cold or warm) and one target error; a solver's cost on it
 is its CPU time if it reached the target within the time limit, else infinite. rho_s(tau) is
@@ -15,6 +16,13 @@ ours_newton for the Newton polish); --leave-out: solvers dropped from the rows (
 A Siconos variant (SOLVER[KEY=VALUE+...]) is a solver of its own; --best-variant keeps of each
 family (its SOLVER) the default and the variant that solves the most instances (ties: the least
 time summed over those it solves), and drops the other variants.
+--within F: the second reading. Siconos's error divides |F(r)| by the answer's own size, so an
+answer whose |r| grows along W's null space (a self-stress of sticking contacts) meets it without
+meeting the law; a solved answer whose error at the problem's scale (|F| over max(|q|, |r0|,
+|W r0 + q|), r0 the warm start: peer_bench's error_at_problem_scale) is over F times the target
+counts as not solved ('inflated'). The scales are read from SOLVES.csv, or from ANSWERS.csv: the
+same solves run again with them recorded (each solve is deterministic; a solve solved in one run
+and not in the other counts as not solved, 'not_reproduced'). The answers' reading is listed.
 Several SOLVES.csv are read as one run. Standard library and gnuplot.
 """
 
@@ -126,6 +134,38 @@ def hard_check(rows):
     return len(by), lost
 
 
+def instance_key(r):
+    return (r["class"], r["problem"], r["solver"], r["start"], float(r["target"]))
+
+
+def at_problem_scale(rows, answers, within):
+    """Marks each solved row whose answer is over `within` times its target at the problem's scale
+    'inflated' (and one whose solve in `answers` did not solve 'not_reproduced'); returns
+    {solver: Counter of the marks}."""
+    scales = {instance_key(a): a for a in answers}
+    marks = collections.defaultdict(collections.Counter)
+    for r in rows:
+        if r["status"] != "solved":
+            continue
+        again = scales.get(instance_key(r))
+        if again is None:
+            raise SystemExit(f"peer_profiles: no answer in --answers for {' '.join(map(str, instance_key(r)))}")
+        if again["status"] != "solved":
+            r["status"] = "not_reproduced"
+        elif float(again["error_at_problem_scale"]) > within * float(r["target"]):
+            r["status"] = "inflated"
+        marks[r["solver"]][r["status"]] += 1
+    return marks
+
+
+def answers_table(marks, within):
+    lines = [f"Solved answers read at the problem's scale (over {within:g} x the target: inflated):", "",
+             "| solver | solved | inflated | not reproduced |", "|---|---|---|---|"]
+    for s, m in marks.items():
+        lines.append(f"| {s} | {m['solved']} | {m['inflated']} | {m['not_reproduced']} |")
+    return lines
+
+
 def family(solver):
     return solver.split("[", 1)[0]
 
@@ -189,6 +229,9 @@ def main():
     parser.add_argument("--ours", default="ours")
     parser.add_argument("--leave-out", default="")
     parser.add_argument("--best-variant", action="store_true")
+    parser.add_argument("--within", type=float, help="the second reading: answers within F x the target "
+                        "at the problem's scale")
+    parser.add_argument("--answers", help="the solves run again with their scales (default: SOLVES.csv's own)")
     parser.add_argument("solves", nargs="+")
     args = parser.parse_args()
     global OURS
@@ -198,6 +241,12 @@ def main():
     for r in rows:
         if r["status"] == "solved" and float(r["seconds"]) > args.time_limit:
             r["status"] = "time_limit"
+    marks = None
+    if args.within is not None:
+        answers = read(args.answers) if args.answers else rows
+        if answers and "error_at_problem_scale" not in answers[0]:
+            parser.error(f"{args.answers or args.solves[0]}: no error_at_problem_scale column (peer_bench's)")
+        marks = at_problem_scale(rows, answers, args.within)
     if args.best_variant:
         rows = best_variants(rows)
     solvers = list(dict.fromkeys(r["solver"] for r in rows))
@@ -209,6 +258,8 @@ def main():
              f"Hard instances (problem x start x target) where another solver reached the target faster than {OURS}: "
              f"{len(lost)} of {total}.", ""]
     lines += [f"- {line}" for line in lost]
+    if marks is not None:
+        lines += ["", *answers_table(marks, args.within)]
     if args.screen:
         lines += ["", "Screening:", "", *screen_table(read(args.screen))]
     with open(args.out + ".md", "w") as f:

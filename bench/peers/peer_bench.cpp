@@ -125,7 +125,28 @@ struct Outcome {
   int attempts = 0;    // ours: tolerances used; Siconos: solves
   int info = 0;        // Siconos's last info
   bool solved = false;
+  double reaction_norm = NAN;  // |r| of the answer
+  // |F| of the answer over the problem's own scale, max(|q|, |r0|, |W r0 + q|) with r0 the warm
+  // start, where Siconos's error divides by the answer's: an answer cannot lower it by growing |r|.
+  double error_at_problem_scale = NAN;
 };
+
+double norm(const std::vector<double>& x)
+{
+  double sum = 0.0;
+  for (const double v : x) sum += v * v;
+  return std::sqrt(sum);
+}
+
+// reaction_norm and error_at_problem_scale of the answer, from its (relative) error.
+void record_scales(const peers::LocalProblem& local, const std::vector<double>& reaction, Outcome& outcome)
+{
+  const double q = norm(local.q);
+  const double answer_scale = std::max({norm(reaction), norm(local.velocity(reaction)), q});
+  const double problem_scale = std::max({norm(local.warm_start), norm(local.velocity(local.warm_start)), q});
+  outcome.reaction_norm = norm(reaction);
+  outcome.error_at_problem_scale = outcome.error * answer_scale / problem_scale;
+}
 
 // Ours stops here when the iterate meets the target or the time is up.
 struct Stop {
@@ -198,6 +219,7 @@ Outcome solve_ours(const cd::ContactProblem& problem, const peers::LocalProblem&
     outcome.solved = stop.solved;
   }
   outcome.seconds = peers::cpu_seconds() - cpu_begin - outcome.check_seconds;
+  record_scales(local, peers::reaction_of(local, contacts), outcome);
   return outcome;
 }
 
@@ -215,6 +237,7 @@ Outcome solve_siconos(const peers::LocalProblem& local, const std::string& solve
     outcome.error = result.error;
     outcome.info = result.info;
     outcome.solved = std::isfinite(result.error) && result.error <= target;
+    record_scales(local, result.reaction, outcome);
   }
   return outcome;
 }
@@ -294,7 +317,8 @@ int run(const Options& o)
 {
   std::ofstream csv(o.out);
   if (!csv) refuse("cannot write " + o.out);
-  csv << "problem,class,contacts,solver,start,target,status,seconds,iterations,error,check_seconds,attempts,info\n";
+  csv << "problem,class,contacts,solver,start,target,status,seconds,iterations,error,check_seconds,attempts,info,"
+         "reaction_norm,error_at_problem_scale\n";
   for (const std::string& path : o.problems) {
     const peers::LocalProblem local = peers::read_fclib(path);
     const std::string saved = path.substr(0, path.rfind(".hdf5")) + ".cdp";
@@ -321,7 +345,7 @@ int run(const Options& o)
           csv << base_name(path) << ',' << folder_name(path) << ',' << local.contacts << ',' << solver << ',' << start
               << ',' << target << ',' << status << ',' << outcome.seconds << ',' << outcome.iterations << ','
               << outcome.error << ',' << outcome.check_seconds << ',' << outcome.attempts << ',' << outcome.info
-              << '\n';
+              << ',' << outcome.reaction_norm << ',' << outcome.error_at_problem_scale << '\n';
           csv.flush();
           std::cerr << "  " << solver << ' ' << start << ' ' << target << ": " << status << ", " << outcome.seconds
                     << " s, error " << outcome.error << "\n";
