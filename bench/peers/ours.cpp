@@ -23,7 +23,7 @@ void solve_down_the_ladder(std::vector<cd::Contact>& contacts, std::vector<cd::B
     cd::GaussSeidel solver(settings);
     solver.observe(&observer);
     ladder.solves++;
-    ladder.sweeps_before += solver.solve(contacts, velocity).iterations;
+    ladder.finished.add(solver.solve(contacts, velocity));
     if (settings.tolerance < 1e-15) break;
   }
 }

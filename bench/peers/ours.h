@@ -12,10 +12,16 @@ namespace peers {
 // The fix's defaults, then inputs/in.chute's solver variables.
 cd::SolverSettings deck_settings();
 
-// The solves so far: the observer adds sweeps_before to a solve's own count.
+// The solves so far: an observer adds the finished ones to the report of the solve under way.
 struct Ladder {
   int solves = 0;
-  int sweeps_before = 0;
+  cd::SolveReport finished;  // iterations: the sweeps before the solve under way
+  cd::SolveReport so_far(const cd::SolveReport& current) const
+  {
+    cd::SolveReport total = finished;
+    total.add(current);
+    return total;
+  }
 };
 
 // Solves from the contacts' impulses (already applied to `velocity`) down the ladder of

@@ -146,7 +146,7 @@ class TargetWatch : public cd::SweepObserver {
     const double begin = peers::cpu_seconds();
     outcome_.error = meter_(peers::reaction_of(local_, contacts_));
     outcome_.check_seconds += peers::cpu_seconds() - begin;
-    outcome_.iterations = ladder.sweeps_before + so_far.iterations;
+    outcome_.iterations = ladder.so_far(so_far).iterations;
     if (outcome_.error <= target_) throw Stop{true};
     if (peers::cpu_seconds() - cpu_begin_ - outcome_.check_seconds > time_limit_) throw Stop{false};
   }

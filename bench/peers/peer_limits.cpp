@@ -87,7 +87,9 @@ class Recorder : public cd::SweepObserver {
     std::vector<double> reaction = peers::reaction_of(local_, contacts_);
     const double error = meter_(reaction);
     const double seconds = check_begin - begin_ - checks_;
-    trace.push_back({ladder.sweeps_before + so_far.iterations, seconds, error});
+    const cd::SolveReport run = ladder.so_far(so_far);
+    trace.push_back({run.iterations, seconds, error, run.contact_updates, run.block_solves + run.kept_block_solves,
+                     run.cold_restarts});
     if (!(error >= best_error)) {
       best_error = error;
       best = std::move(reaction);
@@ -125,8 +127,8 @@ Run run_ours(const cd::ContactProblem& problem, const peers::LocalProblem& local
   recorder.start();
   cd::apply_impulses(contacts, velocity);
   try {  // down the ladder, and down again from its iterate while the run has time
-    for (int before = -1; recorder.ladder.sweeps_before > before;) {
-      before = recorder.ladder.sweeps_before;
+    for (int before = -1; recorder.ladder.finished.iterations > before;) {
+      before = recorder.ladder.finished.iterations;
       peers::solve_down_the_ladder(contacts, velocity, recorder, false, recorder.ladder);
     }
   } catch (const RunOver&) {
@@ -187,15 +189,15 @@ int run(const Options& o)
 {
   std::ofstream csv(o.out);
   if (!csv) refuse("cannot write " + o.out);
-  csv << "problem,class,start,target,contacts,unknowns,grains,dof,w_rank,w_null,w_largest,w_smallest_nonzero,"
-         "w_largest_zero,w_range_condition,sticking,sliding,active_rank,active_null,faces,indeterminate,"
-         "faces_smallest_nonzero,faces_largest_zero,predicted_rate,predicted_sweeps_per_decade,answer_error,spread_r,"
-         "spread_u,"
-         "error_at_limit,last_error_at_limit,sweeps_at_limit,sweep_seconds,tail_rate,tail_sweeps_per_decade,tail_"
-         "decades_per_second,"
-         "sweeps_to_target,seconds_to_target,measured_sweeps_per_decade,predicted_sweeps_to_target,predicted_seconds_"
-         "to_target,run_sweeps,"
-         "run_seconds,run_error\n";
+  csv << "problem,class,start,target,contacts,unknowns,grains,dof,"
+         "w_rank,w_null,w_largest,w_smallest_nonzero,w_largest_zero,w_range_condition,"
+         "sticking,sliding,active_rank,active_null,faces,indeterminate,faces_smallest_nonzero,faces_largest_zero,"
+         "predicted_rate,predicted_sweeps_per_decade,answer_error,spread_r,spread_u,"
+         "error_at_limit,last_error_at_limit,sweeps_at_limit,updates_at_limit,block_solves_at_limit,"
+         "cold_restarts_at_limit,sweep_seconds,update_seconds,"
+         "tail_rate,tail_sweeps_per_decade,tail_decades_per_second,"
+         "sweeps_to_target,seconds_to_target,measured_sweeps_per_decade,"
+         "predicted_sweeps_to_target,predicted_seconds_to_target,run_sweeps,run_seconds,run_error\n";
   csv.precision(6);
   for (const std::string& path : o.problems) {
     const peers::LocalProblem local = peers::read_fclib(path);
@@ -215,13 +217,9 @@ int run(const Options& o)
       if (r.trace.empty()) refuse(path + ": a run ended before its first full sweep");
       const peers::TailFit tail = peers::fit_tail(r.trace, o.limit);
       const double at_limit = peers::best_error_within(r.trace, o.limit);
-      int sweeps_at_limit = 0;
-      double last_at_limit = NAN;  // the iterate's own error there, not the best so far
+      peers::TracePoint limit_sweep{0, 0.0, NAN};  // the last full sweep within the limit: its own error
       for (const peers::TracePoint& p : r.trace)
-        if (p.seconds <= o.limit) {
-          sweeps_at_limit = p.sweeps;
-          last_at_limit = p.error;
-        }
+        if (p.seconds <= o.limit) limit_sweep = p;
       const peers::TracePoint& last = r.trace.back();
       for (const double target : o.targets) {
         const peers::TracePoint* reached = peers::first_reaching(r.trace, target);
@@ -232,7 +230,7 @@ int run(const Options& o)
         // From where the run stands at the limit, at the pace of its tail.
         const double decades_left = std::max(0.0, std::log10(at_limit / target));
         const double sweeps_per_decade = std::log(0.1) / std::log(tail.rate_per_sweep);
-        const double forecast_sweeps = decades_left > 0.0 ? sweeps_at_limit + decades_left * sweeps_per_decade : NAN;
+        const double forecast_sweeps = decades_left > 0.0 ? limit_sweep.sweeps + decades_left * sweeps_per_decade : NAN;
         const double forecast_seconds = decades_left == 0.0 ? NAN
                                         : tail.decades_per_second > 0.0
                                             ? o.limit + decades_left / tail.decades_per_second
@@ -244,9 +242,11 @@ int run(const Options& o)
             << s.sticking << ',' << s.sliding << ',' << s.active.rank << ',' << s.active.null_dimension << ','
             << s.faces.rows << ',' << s.faces.null_dimension << ',' << s.faces.smallest_nonzero << ','
             << s.faces.largest_zero << ',' << predicted << ',' << std::log(0.1) / std::log(predicted) << ','
-            << s.answer_error << ',' << s.spread_r << ',' << s.spread_u << ',' << at_limit << ',' << last_at_limit
-            << ',' << sweeps_at_limit << ',' << last.seconds / last.sweeps << ',' << tail.rate_per_sweep << ','
-            << sweeps_per_decade << ',' << tail.decades_per_second << ',' << (reached ? reached->sweeps : -1) << ','
+            << s.answer_error << ',' << s.spread_r << ',' << s.spread_u << ',' << at_limit << ',' << limit_sweep.error
+            << ',' << limit_sweep.sweeps << ',' << limit_sweep.contact_updates << ',' << limit_sweep.block_solves << ','
+            << limit_sweep.cold_restarts << ',' << last.seconds / last.sweeps << ','
+            << last.seconds / last.contact_updates << ',' << tail.rate_per_sweep << ',' << sweeps_per_decade << ','
+            << tail.decades_per_second << ',' << (reached ? reached->sweeps : -1) << ','
             << (reached ? reached->seconds : NAN) << ',' << measured_pace << ',' << forecast_sweeps << ','
             << forecast_seconds << ',' << last.sweeps << ',' << last.seconds << ',' << r.best_error << '\n';
       }

@@ -81,6 +81,9 @@ struct TracePoint {
   int sweeps = 0;
   double seconds = 0.0;  // solver time (error checks left out)
   double error = 0.0;
+  double contact_updates = 0.0;  // local solves so far (cd::SolveReport)
+  int block_solves = 0;          // the stall rescue's so far, kept blocks' included
+  int cold_restarts = 0;         // the stall rescue's so far
 };
 struct TailFit {
   double rate_per_sweep = 1.0;      // best error's factor per sweep (1: no progress)
