@@ -136,25 +136,16 @@ Run run_ours(const cd::ContactProblem& problem, const peers::LocalProblem& local
   return {recorder.trace, recorder.best, recorder.best_error};
 }
 
-double norm(const std::vector<double>& x)
+Eigen::Map<const Eigen::VectorXd> as_vector(const std::vector<double>& x)
 {
-  double sum = 0.0;
-  for (const double v : x) sum += v * v;
-  return std::sqrt(sum);
-}
-
-double distance(const std::vector<double>& a, const std::vector<double>& b)
-{
-  double sum = 0.0;
-  for (std::size_t i = 0; i < a.size(); i++) sum += (a[i] - b[i]) * (a[i] - b[i]);
-  return std::sqrt(sum);
+  return {x.data(), static_cast<Eigen::Index>(x.size())};
 }
 
 // One problem's structure at its answer.
 struct Structure {
   int grains = 0;
   double mismatch = 0.0;
-  peers::Spectrum w, active, faces;  // faces: B P with unit diagonal
+  peers::Spectrum w, active, faces;  // faces: P^T W P scaled to unit diagonal
   int sticking = 0, sliding = 0;
   double answer_error = NAN;
   double spread_r = NAN, spread_u = NAN;  // cold and warm answers apart, relative
@@ -180,8 +171,9 @@ Structure structure(const cd::ContactProblem& problem, const peers::LocalProblem
   const peers::SparseMatrix faces =  // B^T P: (B^T P)^T B^T P = P^T W P
       peers::SparseMatrix(b.factor.transpose()) * peers::free_directions(local, answer.best, states);
   s.faces = peers::gram_spectrum(peers::SparseMatrix(peers::unit_diagonal(faces).transpose()), o.dense_limit);
-  s.spread_r = distance(cold.best, warm.best) / norm(answer.best);
-  s.spread_u = distance(local.velocity(cold.best), local.velocity(warm.best)) / norm(local.velocity(answer.best));
+  s.spread_r = (as_vector(cold.best) - as_vector(warm.best)).norm() / as_vector(answer.best).norm();
+  s.spread_u = (as_vector(local.velocity(cold.best)) - as_vector(local.velocity(warm.best))).norm() /
+               as_vector(local.velocity(answer.best)).norm();
   return s;
 }
 
