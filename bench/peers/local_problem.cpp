@@ -114,6 +114,12 @@ void check_matrix(const std::string& path, const fclib_matrix* w, int size)
 
 }  // namespace
 
+bool same_problem(const LocalProblem& a, const LocalProblem& b)
+{
+  return a.contacts == b.contacts && a.column_start == b.column_start && a.row == b.row && a.value == b.value &&
+         a.q == b.q && a.mu == b.mu && a.warm_start == b.warm_start;
+}
+
 std::vector<double> LocalProblem::velocity(const std::vector<double>& reaction) const
 {
   std::vector<double> u = q;

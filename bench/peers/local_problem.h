@@ -35,6 +35,9 @@ struct LocalProblem {
 // operator the core's sweep applies), q the law velocity at the free velocities (bias included).
 LocalProblem local_problem(const cd::ContactProblem& problem);
 
+// The same W, q, mu and warm start, bit for bit (a FCLIB file against the saved step beside it).
+bool same_problem(const LocalProblem& a, const LocalProblem& b);
+
 // The core's impulses p (N s) of its contacts as r (m/s), and back.
 std::vector<double> reaction_of(const LocalProblem& local, const std::vector<cd::Contact>& contacts);
 

@@ -43,6 +43,7 @@
 
 #include "cd/gauss_seidel.h"
 #include "local_problem.h"
+#include "ours.h"
 #include "siconos_solvers.h"
 #include "siconos_variants.h"
 
@@ -166,11 +167,11 @@ class TargetWatch : public cd::SweepObserver {
     const double begin = peers::cpu_seconds();
     outcome_.error = meter_(peers::reaction_of(local_, contacts_));
     outcome_.check_seconds += peers::cpu_seconds() - begin;
-    outcome_.iterations = sweeps_before + so_far.iterations;
+    outcome_.iterations = ladder.so_far(so_far).iterations;
     if (outcome_.error <= target_) throw Stop{true};
     if (peers::cpu_seconds() - cpu_begin_ - outcome_.check_seconds > time_limit_) throw Stop{false};
   }
-  int sweeps_before = 0;
+  peers::Ladder ladder;
 
  private:
   const peers::LocalProblem& local_;
@@ -181,17 +182,6 @@ class TargetWatch : public cd::SweepObserver {
   double time_limit_;
   Outcome& outcome_;
 };
-
-cd::SolverSettings deck_settings()
-{
-  cd::SolverSettings s;  // the fix's defaults, then inputs/in.chute's solver variables
-  s.tolerance = 1e-3;
-  s.max_iterations = 10000;
-  s.gauss_seidel.acceleration = cd::Acceleration::conjugate;
-  s.gauss_seidel.full_sweep_every = 8;
-  s.gauss_seidel.stall_window = 100;
-  return s;
-}
 
 Outcome solve_ours(const cd::ContactProblem& problem, const peers::LocalProblem& local, bool warm, double target,
                    double time_limit, bool newton_polish)
@@ -205,19 +195,12 @@ Outcome solve_ours(const cd::ContactProblem& problem, const peers::LocalProblem&
   const double cpu_begin = peers::cpu_seconds();
   watch.start(cpu_begin);
   cd::apply_impulses(contacts, velocity);
-  cd::SolverSettings settings = deck_settings();
-  settings.gauss_seidel.newton_polish = newton_polish;
   try {
-    for (;; settings.tolerance /= 10.0) {
-      cd::GaussSeidel solver(settings);
-      solver.observe(&watch);
-      outcome.attempts++;
-      watch.sweeps_before += solver.solve(contacts, velocity).iterations;
-      if (settings.tolerance < 1e-15) break;
-    }
+    peers::solve_down_the_ladder(contacts, velocity, watch, newton_polish, watch.ladder);
   } catch (const Stop& stop) {
     outcome.solved = stop.solved;
   }
+  outcome.attempts = watch.ladder.solves;
   outcome.seconds = peers::cpu_seconds() - cpu_begin - outcome.check_seconds;
   record_scales(local, peers::reaction_of(local, contacts), outcome);
   return outcome;
@@ -307,12 +290,6 @@ std::string base_name(const std::string& path)
   return path.substr(path.find_last_of('/') + 1);
 }
 
-bool same(const peers::LocalProblem& a, const peers::LocalProblem& b)
-{
-  return a.contacts == b.contacts && a.column_start == b.column_start && a.row == b.row && a.value == b.value &&
-         a.q == b.q && a.mu == b.mu && a.warm_start == b.warm_start;
-}
-
 int run(const Options& o)
 {
   std::ofstream csv(o.out);
@@ -323,7 +300,8 @@ int run(const Options& o)
     const peers::LocalProblem local = peers::read_fclib(path);
     const std::string saved = path.substr(0, path.rfind(".hdf5")) + ".cdp";
     const cd::ContactProblem problem = cd::read_problem(saved);
-    if (!same(local, peers::local_problem(problem))) refuse(path + " and " + saved + " are not the same problem");
+    if (!peers::same_problem(local, peers::local_problem(problem)))
+      refuse(path + " and " + saved + " are not the same problem");
     std::cerr << base_name(path) << ": " << local.contacts << " contacts\n";
     for (const std::string& solver : o.solvers)
       for (const std::string& start : o.starts) {
