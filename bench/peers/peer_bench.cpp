@@ -322,8 +322,8 @@ int run(const Options& o)
           gave_up = status != "solved" && status != "not_solved";
           csv << base_name(path) << ',' << folder_name(path) << ',' << local.contacts << ',' << solver << ',' << start
               << ',' << target << ',' << status << ',' << outcome.seconds << ',' << outcome.iterations << ','
-              << outcome.error << ',' << outcome.check_seconds << ',' << outcome.attempts << ',' << outcome.info
-              << ',' << outcome.reaction_norm << ',' << outcome.error_at_problem_scale << '\n';
+              << outcome.error << ',' << outcome.check_seconds << ',' << outcome.attempts << ',' << outcome.info << ','
+              << outcome.reaction_norm << ',' << outcome.error_at_problem_scale << '\n';
           csv.flush();
           std::cerr << "  " << solver << ' ' << start << ' ' << target << ": " << status << ", " << outcome.seconds
                     << " s, error " << outcome.error << "\n";
