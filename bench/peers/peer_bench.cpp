@@ -36,6 +36,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -132,21 +133,11 @@ struct Outcome {
   double error_at_problem_scale = NAN;
 };
 
-double norm(const std::vector<double>& x)
-{
-  double sum = 0.0;
-  for (const double v : x) sum += v * v;
-  return std::sqrt(sum);
-}
-
-// reaction_norm and error_at_problem_scale of the answer, from its (relative) error.
+// reaction_norm and error_at_problem_scale of the answer (measured after the clock).
 void record_scales(const peers::LocalProblem& local, const std::vector<double>& reaction, Outcome& outcome)
 {
-  const double q = norm(local.q);
-  const double answer_scale = std::max({norm(reaction), norm(local.velocity(reaction)), q});
-  const double problem_scale = std::max({norm(local.warm_start), norm(local.velocity(local.warm_start)), q});
-  outcome.reaction_norm = norm(reaction);
-  outcome.error_at_problem_scale = outcome.error * answer_scale / problem_scale;
+  outcome.reaction_norm = std::sqrt(std::inner_product(reaction.begin(), reaction.end(), reaction.begin(), 0.0));
+  outcome.error_at_problem_scale = peers::error_at_problem_scale(local, reaction);
 }
 
 // Ours stops here when the iterate meets the target or the time is up.

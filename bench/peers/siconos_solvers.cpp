@@ -3,6 +3,7 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -219,6 +220,14 @@ double ErrorMeter::operator()(const std::vector<double>& reaction)
 double error(const LocalProblem& problem, const std::vector<double>& reaction)
 {
   return ErrorMeter(problem)(reaction);
+}
+
+double error_at_problem_scale(const LocalProblem& problem, const std::vector<double>& reaction)
+{
+  const auto scale = [&](const std::vector<double>& r) {
+    return std::max({norm(r), norm(problem.velocity(r)), norm(problem.q)});
+  };
+  return error(problem, reaction) * scale(reaction) / scale(problem.warm_start);
 }
 
 }  // namespace peers

@@ -52,6 +52,11 @@ SiconosResult solve_with_siconos(const LocalProblem& problem, const std::string&
 // norm |q| (doc/peers.md).
 double error(const LocalProblem& problem, const std::vector<double>& reaction);
 
+// |F(r)| over the problem's own scale, max(|q|, |r0|, |W r0 + q|) with r0 the warm start, where
+// error() divides by the answer's, max(|r|, |W r + q|, |q|): an answer cannot lower it by growing
+// r along W's null space (doc/peers.md, *Results*).
+double error_at_problem_scale(const LocalProblem& problem, const std::vector<double>& reaction);
+
 // The same error, measured again and again on one problem (the problem held once).
 class ErrorMeter {
  public:

@@ -190,6 +190,30 @@ TEST(SiconosSolvers, TheNewtonMethodMeetsTheTargetOnTheStallStep)
   EXPECT_LT(peers::error(local, peers::reaction_of(local, contacts)), 1e-6);
 }
 
+// A free body between two contacts on one line: W's normal block [[1, -1], [-1, 1]] is singular
+// (r_n1 = r_n2 = s is a self-stress), tangents W = 1, mu 0.5, warm start 0. Moving at delta toward
+// contact 1, q_n = (-delta, +delta): the answers are r_n1 - r_n2 = delta, r_n >= 0, r_t = 0, with
+// |F| = 0 at any s. r_n = (s, s) leaves contact 1 closing and contact 2 opening at delta under
+// load: De Saxce's u_hat is (-delta, 0), (delta, 0), r - u_hat inside the cone, so |F| = |q| =
+// delta sqrt 2 and its error at the problem's scale is 1, while Siconos's, delta / s, falls as s
+// grows. Tolerance: s / delta = 1e9 times the rounding of doubles.
+TEST(SiconosSolvers, AnAnswerGrownAlongTheNullSpaceKeepsItsErrorAtTheProblemsScale)
+{
+  const double delta = 1e-3, s = 1e6;
+  peers::LocalProblem body;
+  body.contacts = 2;
+  body.column_start = {0, 2, 3, 5, 6};  // rows [n1, t1, n2, t2], columns in order
+  body.row = {0, 2, 1, 0, 2, 3};
+  body.value = {1.0, -1.0, 1.0, -1.0, 1.0, 1.0};
+  body.q = {-delta, 0.0, delta, 0.0};
+  body.mu = {0.5, 0.5};
+  body.warm_start = {0.0, 0.0, 0.0, 0.0};
+  const std::vector<double> grown = {s, 0.0, s, 0.0}, answer = {s + delta, 0.0, s, 0.0};
+  EXPECT_NEAR(peers::error(body, grown), delta / s, 1e-6 * delta / s);
+  EXPECT_NEAR(peers::error_at_problem_scale(body, grown), 1.0, 1e-6);
+  EXPECT_LT(peers::error_at_problem_scale(body, answer), 1e-6);
+}
+
 TEST(SiconosSolvers, TwoAndThreeDimensionalNsgsMeetTheTargetFromTheWarmStart)
 {
   const peers::LocalProblem local = peers::read_fclib(data + "chute_mu2_step.hdf5");
