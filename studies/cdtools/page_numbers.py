@@ -215,6 +215,8 @@ def family_run_as(data, name, quantity, unit):
     value = data.run(name)[quantity][0]
     if unit == "%":
         return (100 * value,)
+    if unit != "s":
+        raise ValueError(f"run_as: unit '{unit}' is neither 's' nor '%'")
     with open(data.path("results", "runs", name, "params.json")) as src:
         settings = json.load(src)["vars"]
     return (value * math.sqrt(float(settings["d"]) / float(settings["g"])),)

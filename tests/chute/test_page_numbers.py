@@ -63,6 +63,9 @@ def synthetic_cases():
     check(numbers == [(-0.102, 3), (0.046, 3), (12.5, 1), (35.8, 1), (0.004, 3), (-0.01, 2)],
           f"numbers read: {numbers}")
     check(page_numbers.agrees(0.13, 2, 0.1349) and not page_numbers.agrees(0.13, 2, 0.1351), "rounding")
+    wrong_unit = "6.3<!-- check: run_as:mu0.5_theta22_L152:t_start:h -->"
+    problem = page_numbers.check_text(wrong_unit, page_numbers.Data(TOP))[0][3]
+    check("unit 'h' is neither 's' nor '%'" in problem, f"an unknown unit: {problem}")
 
 
 def update_cases():
