@@ -14,10 +14,12 @@
 # 4. each kept step as FCLIB (bench/peers/cdp_to_fclib) in OUT/corpus/<class>/, beside its .cdp;
 # 5. bench/peers/peer_bench: every solver and variant at 1e-3 on three problems (OUT/screen.csv,
 #    kept if there), then those that solved one on the first PEER_PER_CLASS problems of every class
-#    (OUT/solves.csv), time limit PEER_TIME_LIMIT CPU s (0.5);
+#    (OUT/solves.csv), time limit PEER_TIME_LIMIT CPU s (0.5), a short solve's time the median of
+#    PEER_REPEAT runs (5; peer_bench --repeat);
 # 6. bench/peer_profiles.py: OUT/profiles.png and OUT/profiles.md (ours, the fix's default; of
 #    Siconos's variants the best of each solver), OUT/profiles_newton.* (ours_newton, the Newton
-#    polish on, in ours' place), OUT/profiles_variants.* (every variant).
+#    polish on, in ours' place), OUT/profiles_variants.* (every variant), OUT/profiles_at_scale.*
+#    (the answers read at the problem's scale, peer_profiles.py --within 10).
 # Environment: LMP (build/lmp_cd), PEER_TOOLS (build/bench/peers), PEER_SOLVERS (the screened
 # solvers, peer_bench's --solvers; default: every one, Siconos's variants included, peer_bench --list).
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
@@ -96,11 +98,13 @@ for folder in "$out/corpus"/*/; do
   mapfile -t some < <(ls "$folder"*.hdf5 | head -"${PEER_PER_CLASS:-100}")
   problems+=("${some[@]}")
 done
-"$tools/peer_bench" --out "$out/solves.csv" --time-limit "$limit" --solvers "$solvers" "${problems[@]}" \
-  2> "$out/peer_bench.log"
+"$tools/peer_bench" --out "$out/solves.csv" --time-limit "$limit" --repeat "${PEER_REPEAT:-5}" --solvers "$solvers" \
+  "${problems[@]}" 2> "$out/peer_bench.log"
 python3 "$here/peer_profiles.py" --out "$out/profiles" --screen "$out/screen.csv" --time-limit "$limit" \
   --leave-out ours_newton --best-variant "$out/solves.csv"
 python3 "$here/peer_profiles.py" --out "$out/profiles_newton" --time-limit "$limit" --ours ours_newton \
   --leave-out ours --best-variant "$out/solves.csv"
 python3 "$here/peer_profiles.py" --out "$out/profiles_variants" --time-limit "$limit" --leave-out ours_newton \
   "$out/solves.csv"
+python3 "$here/peer_profiles.py" --out "$out/profiles_at_scale" --time-limit "$limit" --leave-out ours_newton \
+  --within 10 "$out/solves.csv"

@@ -31,6 +31,7 @@ import collections
 import csv
 import math
 import os
+import statistics
 import subprocess
 import tempfile
 
@@ -132,6 +133,38 @@ def hard_check(rows):
             lost.append(f"{key[0]}/{key[1]} {key[2]} {key[3]:g}: ours "
                         f"{ours:.3g} s, " + ", ".join(f"{s} {t:.3g} s" for t, s in faster[:3]))
     return len(by), lost
+
+
+def targets_summary(rows):
+    """Ours against the field over every instance: solved, fastest (a tie counts), and where ours and
+    another solver both solve, the median of the fastest other's time over ours per target, for
+    every other solver and for Siconos's defaults alone (names without options)."""
+    by = collections.defaultdict(dict)
+    for r in rows:
+        seconds = float(r["seconds"]) if r["status"] == "solved" else math.inf
+        by[(r["class"], r["problem"], r["start"], float(r["target"]))][r["solver"]] = seconds
+    solved = fastest = anyone = 0
+    slower = {"every other solver": collections.defaultdict(list), "Siconos's defaults": collections.defaultdict(list)}
+    for key, per in by.items():
+        ours = per.get(OURS, math.inf)
+        best = min(per.values())
+        solved += math.isfinite(ours)
+        anyone += math.isfinite(best)
+        fastest += math.isfinite(ours) and ours == best
+        others = {s: t for s, t in per.items() if s != OURS}
+        defaults = {s: t for s, t in others.items() if "[" not in s and not s.startswith("ours")}
+        for name, group in (("every other solver", others), ("Siconos's defaults", defaults)):
+            best_other = min(group.values(), default=math.inf)
+            if math.isfinite(ours) and math.isfinite(best_other):
+                slower[name][key[3]].append(best_other / max(ours, 1e-9))
+    n = len(by)
+    lines = [f"Targets: {OURS} solves {solved} of {n}; it is the fastest on {fastest} of {n} "
+             f"({100 * fastest / n:.1f} %) and on {fastest} of the {anyone} that any solver solves." if n else
+             "Targets: no instance.", ""]
+    for name, per_target in slower.items():
+        cells = [f"{t:g}: {statistics.median(v):.2f} ({len(v)})" for t, v in sorted(per_target.items(), reverse=True)]
+        lines.append(f"- where both solve, the fastest of {name} over {OURS}, median (instances): " + " · ".join(cells))
+    return lines
 
 
 def instance_key(r):
@@ -254,7 +287,7 @@ def main():
     profile, counts = profile_tables(table, solvers)
     total, lost = hard_check(rows)
     lines = ["Solved / fastest, % of instances (performance profile at tau = infinity and tau = 1):", "",
-             *profile, "", counts, "", *class_table(rows, solvers), "",
+             *profile, "", counts, "", *targets_summary(rows), "", *class_table(rows, solvers), "",
              f"Hard instances (problem x start x target) where another solver reached the target faster than {OURS}: "
              f"{len(lost)} of {total}.", ""]
     lines += [f"- {line}" for line in lost]

@@ -2,7 +2,7 @@
 //
 //   peer_bench --list   (the solvers' names: ours, Siconos's at their defaults, the variants studied)
 //   peer_bench --out CSV [--time-limit 2] [--wall-limit S] [--targets 1e-3,1e-4,1e-6] [--starts cold,warm]
-//              [--solvers ours,fc2d_nsgs,fc3d_nsn_fb[ls=armijo],...] PROBLEM.hdf5 ...
+//              [--repeat N] [--solvers ours,fc2d_nsgs,fc3d_nsn_fb[ls=armijo],...] PROBLEM.hdf5 ...
 //
 // A Siconos solver may be named with options (bench/peers/siconos_variants.h); an unknown name,
 // option or value is refused in one line before any solve. --wall-limit: a Siconos child is ended
@@ -14,7 +14,10 @@
 // start) and target error (peers::error, Siconos's fc2d_compute_error) it records the time to
 // reach the target, the work, the error reached and how it ended, each solve in a child process
 // that the time limit ends (a solver that crashes or hangs costs that problem only). Times are
-// CPU seconds of the child (peers::cpu_seconds); the limit is wall-clock.
+// CPU seconds of the child (peers::cpu_seconds); the limit is wall-clock. --repeat N: a solve is
+// run again in its child from the same start, up to N times while its runs add up to under
+// repeat_budget, and its time is the runs' median; a solve of a millisecond is otherwise mostly
+// the child's first touches of its memory (copy-on-write faults), not the method.
 //
 // Ours: Gauss–Seidel at the deck's settings (inputs/in.chute: tolerance 1e-3, conjugate
 // acceleration, full sweep every 8, stall rescue on); ours_newton: the same with the Newton
@@ -45,6 +48,7 @@
 #include "cd/gauss_seidel.h"
 #include "local_problem.h"
 #include "ours.h"
+#include "repeated_runs.h"
 #include "siconos_solvers.h"
 #include "siconos_variants.h"
 
@@ -56,6 +60,7 @@ struct Options {
   double wall_limit = 0.0;  // s of wall clock before a child is ended (0: 3x the time limit plus 1 s)
   std::vector<double> targets{1e-3, 1e-4, 1e-6};
   std::vector<std::string> starts{"cold", "warm"};
+  int repeat = 1;  // runs of a short solve (above)
   std::vector<std::string> solvers;
   std::vector<std::string> problems;
 };
@@ -102,7 +107,10 @@ Options parse_options(int argc, char** argv)
       for (const std::string& t : split(value())) o.targets.push_back(std::stod(t));
     } else if (arg == "--starts") o.starts = split(value());
     else if (arg == "--solvers") o.solvers = split(value());
-    else if (arg == "--list") {
+    else if (arg == "--repeat") {
+      o.repeat = std::stoi(value());
+      if (o.repeat < 1) refuse("--repeat must be >= 1, got " + std::to_string(o.repeat));
+    } else if (arg == "--list") {
       std::cout << "ours,ours_newton";
       for (const std::string& name : siconos_names()) std::cout << ',' << name;
       std::cout << '\n';
@@ -131,6 +139,7 @@ struct Outcome {
   // |F| of the answer over the problem's own scale, max(|q|, |r0|, |W r0 + q|) with r0 the warm
   // start, where Siconos's error divides by the answer's: an answer cannot lower it by growing |r|.
   double error_at_problem_scale = NAN;
+  int runs = 1;  // --repeat: the runs whose median is `seconds`
 };
 
 // reaction_norm and error_at_problem_scale of the answer (measured after the clock).
@@ -216,6 +225,8 @@ Outcome solve_siconos(const peers::LocalProblem& local, const std::string& solve
   return outcome;
 }
 
+constexpr double repeat_budget = 0.05;  // CPU s: the runs of --repeat stop once they add up to this
+
 // Runs `solve` in a child process; the status says how it ended: solved within the time limit
 // (CPU seconds), time_limit (over it, or the child still running at `wall_limit` seconds of wall
 // clock with more CPU time than the limit), starved (ended at the wall limit short of the CPU
@@ -286,7 +297,7 @@ int run(const Options& o)
   std::ofstream csv(o.out);
   if (!csv) refuse("cannot write " + o.out);
   csv << "problem,class,contacts,solver,start,target,status,seconds,iterations,error,check_seconds,attempts,info,"
-         "reaction_norm,error_at_problem_scale\n";
+         "reaction_norm,error_at_problem_scale,runs\n";
   for (const std::string& path : o.problems) {
     const peers::LocalProblem local = peers::read_fclib(path);
     const std::string saved = path.substr(0, path.rfind(".hdf5")) + ".cdp";
@@ -304,17 +315,25 @@ int run(const Options& o)
           if (!gave_up) {
             if (solver == "ours" || solver == "ours_newton")
               outcome = in_child(
-                  [&] { return solve_ours(problem, local, warm, target, o.time_limit, solver == "ours_newton"); },
+                  [&] {
+                    return peers::repeated<Outcome>(
+                        [&] { return solve_ours(problem, local, warm, target, o.time_limit, solver == "ours_newton"); },
+                        o.repeat, repeat_budget);
+                  },
                   o.time_limit, std::max(o.wall_limit, ours_wall_limit(o.time_limit)), status);
             else
-              outcome = in_child([&] { return solve_siconos(local, solver, warm, target); }, o.time_limit,
-                                 o.wall_limit > 0.0 ? o.wall_limit : 3.0 * o.time_limit + 1.0, status);
+              outcome = in_child(
+                  [&] {
+                    return peers::repeated<Outcome>([&] { return solve_siconos(local, solver, warm, target); },
+                                                    o.repeat, repeat_budget);
+                  },
+                  o.time_limit, o.wall_limit > 0.0 ? o.wall_limit : 3.0 * o.time_limit + 1.0, status);
           }
           gave_up = status != "solved" && status != "not_solved";
           csv << base_name(path) << ',' << folder_name(path) << ',' << local.contacts << ',' << solver << ',' << start
               << ',' << target << ',' << status << ',' << outcome.seconds << ',' << outcome.iterations << ','
               << outcome.error << ',' << outcome.check_seconds << ',' << outcome.attempts << ',' << outcome.info << ','
-              << outcome.reaction_norm << ',' << outcome.error_at_problem_scale << '\n';
+              << outcome.reaction_norm << ',' << outcome.error_at_problem_scale << ',' << outcome.runs << '\n';
           csv.flush();
           std::cerr << "  " << solver << ' ' << start << ' ' << target << ": " << status << ", " << outcome.seconds
                     << " s, error " << outcome.error << "\n";
