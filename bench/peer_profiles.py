@@ -118,13 +118,18 @@ def median(values):
     return f"{finite[len(finite) // 2]:.3g}" if finite else "-"
 
 
-def hard_check(rows):
-    """Hard instances where a Siconos solver reached the target faster than ours (or ours failed)."""
+def seconds_by_instance(rows):
+    """{(class, problem, start, target): {solver: seconds, inf if not solved}}."""
     by = collections.defaultdict(dict)
     for r in rows:
-        if group_of(r["class"]) == "hard":
-            seconds = float(r["seconds"]) if r["status"] == "solved" else math.inf
-            by[(r["class"], r["problem"], r["start"], float(r["target"]))][r["solver"]] = seconds
+        seconds = float(r["seconds"]) if r["status"] == "solved" else math.inf
+        by[(r["class"], r["problem"], r["start"], float(r["target"]))][r["solver"]] = seconds
+    return by
+
+
+def hard_check(rows):
+    """Hard instances where a Siconos solver reached the target faster than ours (or ours failed)."""
+    by = seconds_by_instance(r for r in rows if group_of(r["class"]) == "hard")
     lost = []
     for key, per in sorted(by.items()):
         ours = per.get(OURS, math.inf)
@@ -139,10 +144,7 @@ def targets_summary(rows):
     """Ours against the field over every instance: solved, fastest (a tie counts), and where ours and
     another solver both solve, the median of the fastest other's time over ours per target, for
     every other solver and for Siconos's defaults alone (names without options)."""
-    by = collections.defaultdict(dict)
-    for r in rows:
-        seconds = float(r["seconds"]) if r["status"] == "solved" else math.inf
-        by[(r["class"], r["problem"], r["start"], float(r["target"]))][r["solver"]] = seconds
+    by = seconds_by_instance(rows)
     solved = fastest = anyone = 0
     slower = {"every other solver": collections.defaultdict(list), "Siconos's defaults": collections.defaultdict(list)}
     for key, per in by.items():

@@ -47,6 +47,7 @@
 
 #include "cd/gauss_seidel.h"
 #include "local_problem.h"
+#include "option_number.h"
 #include "ours.h"
 #include "repeated_runs.h"
 #include "siconos_solvers.h"
@@ -68,6 +69,12 @@ struct Options {
 [[noreturn]] void refuse(const std::string& what)
 {
   throw std::invalid_argument("peer_bench: " + what);
+}
+
+template <class Number>
+Number number(const std::string& option, const std::string& text)
+{
+  return peers::option_number<Number>("peer_bench", option, text);
 }
 
 std::vector<std::string> split(const std::string& text)
@@ -100,15 +107,15 @@ Options parse_options(int argc, char** argv)
       return std::string(argv[++i]);
     };
     if (arg == "--out") o.out = value();
-    else if (arg == "--time-limit") o.time_limit = std::stod(value());
-    else if (arg == "--wall-limit") o.wall_limit = std::stod(value());
+    else if (arg == "--time-limit") o.time_limit = number<double>(arg, value());
+    else if (arg == "--wall-limit") o.wall_limit = number<double>(arg, value());
     else if (arg == "--targets") {
       o.targets.clear();
-      for (const std::string& t : split(value())) o.targets.push_back(std::stod(t));
+      for (const std::string& t : split(value())) o.targets.push_back(number<double>(arg, t));
     } else if (arg == "--starts") o.starts = split(value());
     else if (arg == "--solvers") o.solvers = split(value());
     else if (arg == "--repeat") {
-      o.repeat = std::stoi(value());
+      o.repeat = number<int>(arg, value());
       if (o.repeat < 1) refuse("--repeat must be >= 1, got " + std::to_string(o.repeat));
     } else if (arg == "--list") {
       std::cout << "ours,ours_newton";

@@ -23,6 +23,7 @@
 
 #include "solve_limits.h"
 #include "local_problem.h"
+#include "option_number.h"
 #include "ours.h"
 #include "siconos_solvers.h"
 
@@ -39,6 +40,12 @@ struct Options {
   std::vector<std::string> problems;
 };
 
+template <class Number>
+Number number(const std::string& option, const std::string& text)
+{
+  return peers::option_number<Number>("peer_limits", option, text);
+}
+
 [[noreturn]] void refuse(const std::string& what)
 {
   throw std::invalid_argument("peer_limits: " + what);
@@ -54,15 +61,15 @@ Options parse_options(int argc, char** argv)
       return std::string(argv[++i]);
     };
     if (arg == "--out") o.out = value();
-    else if (arg == "--run-limit") o.run_limit = std::stod(value());
-    else if (arg == "--limit") o.limit = std::stod(value());
-    else if (arg == "--floor") o.floor = std::stod(value());
-    else if (arg == "--state-tolerance") o.state_tolerance = std::stod(value());
-    else if (arg == "--dense-limit") o.dense_limit = std::stoi(value());
+    else if (arg == "--run-limit") o.run_limit = number<double>(arg, value());
+    else if (arg == "--limit") o.limit = number<double>(arg, value());
+    else if (arg == "--floor") o.floor = number<double>(arg, value());
+    else if (arg == "--state-tolerance") o.state_tolerance = number<double>(arg, value());
+    else if (arg == "--dense-limit") o.dense_limit = number<int>(arg, value());
     else if (arg == "--targets") {
       o.targets.clear();
       std::stringstream list(value());
-      for (std::string t; std::getline(list, t, ',');) o.targets.push_back(std::stod(t));
+      for (std::string t; std::getline(list, t, ',');) o.targets.push_back(number<double>(arg, t));
     } else if (arg.rfind("--", 0) == 0) refuse("unknown option " + arg);
     else o.problems.push_back(arg);
   }
