@@ -18,7 +18,8 @@
 #    PEER_REPEAT runs (5; peer_bench --repeat);
 # 6. bench/peer_profiles.py: OUT/profiles.png and OUT/profiles.md (ours, the fix's default; of
 #    Siconos's variants the best of each solver), OUT/profiles_newton.* (ours_newton, the Newton
-#    polish on, in ours' place), OUT/profiles_variants.* (every variant), OUT/profiles_at_scale.*
+#    polish on, in ours' place), OUT/profiles_over_relaxed.* (ours_over_relaxed, over_relaxation
+#    1.8, in ours' place), OUT/profiles_variants.* (every variant), OUT/profiles_at_scale.*
 #    (the answers read at the problem's scale, peer_profiles.py --within 10).
 # Environment: LMP (build/lmp_cd), PEER_TOOLS (build/bench/peers), PEER_SOLVERS (the screened
 # solvers, peer_bench's --solvers; default: every one, Siconos's variants included, peer_bench --list).
@@ -92,7 +93,9 @@ screen=("$(first "$out/corpus/chute_mu0.5"/*.hdf5)" "$(first "$out/corpus/stall_
 [ -f "$out/screen.csv" ] || "$tools/peer_bench" --out "$out/screen.csv" --time-limit "$limit" --targets 1e-3 \
   --solvers "${PEER_SOLVERS:-$("$tools/peer_bench" --list)}" "${screen[@]}" 2> "$out/screen.log"
 solvers=$(awk -F, 'NR > 1 && $7 == "solved" && !seen[$4]++ { printf "%s%s", sep, $4; sep = "," }' "$out/screen.csv")
-case ",$solvers," in *,ours_newton,*) ;; *) solvers="$solvers,ours_newton" ;; esac  # a screening made before it
+for ours in ours_newton ours_over_relaxed; do  # ours' variants, also after a screening made before them
+  case ",$solvers," in *,$ours,*) ;; *) solvers="$solvers,$ours" ;; esac
+done
 problems=()
 for folder in "$out/corpus"/*/; do
   mapfile -t some < <(ls "$folder"*.hdf5 | head -"${PEER_PER_CLASS:-100}")
@@ -101,10 +104,12 @@ done
 "$tools/peer_bench" --out "$out/solves.csv" --time-limit "$limit" --repeat "${PEER_REPEAT:-5}" --solvers "$solvers" \
   "${problems[@]}" 2> "$out/peer_bench.log"
 python3 "$here/peer_profiles.py" --out "$out/profiles" --screen "$out/screen.csv" --time-limit "$limit" \
-  --leave-out ours_newton --best-variant "$out/solves.csv"
+  --leave-out ours_newton,ours_over_relaxed --best-variant "$out/solves.csv"
 python3 "$here/peer_profiles.py" --out "$out/profiles_newton" --time-limit "$limit" --ours ours_newton \
-  --leave-out ours --best-variant "$out/solves.csv"
-python3 "$here/peer_profiles.py" --out "$out/profiles_variants" --time-limit "$limit" --leave-out ours_newton \
-  "$out/solves.csv"
-python3 "$here/peer_profiles.py" --out "$out/profiles_at_scale" --time-limit "$limit" --leave-out ours_newton \
-  --within 10 "$out/solves.csv"
+  --leave-out ours,ours_over_relaxed --best-variant "$out/solves.csv"
+python3 "$here/peer_profiles.py" --out "$out/profiles_over_relaxed" --time-limit "$limit" --ours ours_over_relaxed \
+  --leave-out ours,ours_newton --best-variant "$out/solves.csv"
+python3 "$here/peer_profiles.py" --out "$out/profiles_variants" --time-limit "$limit" \
+  --leave-out ours_newton,ours_over_relaxed "$out/solves.csv"
+python3 "$here/peer_profiles.py" --out "$out/profiles_at_scale" --time-limit "$limit" \
+  --leave-out ours_newton,ours_over_relaxed --within 10 "$out/solves.csv"

@@ -21,8 +21,8 @@ void RankExchange::sum_over_ranks(double* values, int count)
 void RankExchange::after_sweep(cd::SweepChange& change)
 {
   share_velocities();
-  double sums[4] = {change.sum_change_sq, change.sum_scale_sq, change.sum_scale, change.contacts};
-  MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, world);
+  double sums[5] = {change.sum_change_sq, change.sum_scale_sq, change.sum_scale, change.contacts, change.face_changes};
+  MPI_Allreduce(MPI_IN_PLACE, sums, 5, MPI_DOUBLE, MPI_SUM, world);
   // The largest change matters to the maximum norm only: spare the quadratic one a reduction.
   if (norm_ == cd::ConvergenceNorm::maximum)
     MPI_Allreduce(MPI_IN_PLACE, &change.max_change, 1, MPI_DOUBLE, MPI_MAX, world);
@@ -30,6 +30,7 @@ void RankExchange::after_sweep(cd::SweepChange& change)
   change.sum_scale_sq = sums[1];
   change.sum_scale = sums[2];
   change.contacts = sums[3];
+  change.face_changes = sums[4];
 }
 
 bool RankExchange::on_any_rank(bool here)

@@ -3,6 +3,7 @@
 // solve, down to 1e-16. Shared by peer_bench and peer_limits.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "cd/gauss_seidel.h"
@@ -11,6 +12,13 @@ namespace peers {
 
 // The fix's defaults, then inputs/in.chute's solver variables.
 cd::SolverSettings deck_settings();
+
+// Ours' names in the comparison: ours (deck_settings), ours_newton (with the Newton polish,
+// cd/newton_polish.h), ours_over_relaxed (over_relaxation 1.8, cd/gauss_seidel_settings.h).
+const std::vector<std::string>& ours_names();
+bool is_ours(const std::string& name);
+// The settings of one of ours_names(); throws std::invalid_argument for another name.
+cd::SolverSettings ours_settings(const std::string& name);
 
 // The solves so far: an observer adds the finished ones to the report of the solve under way.
 struct Ladder {
@@ -24,9 +32,9 @@ struct Ladder {
   }
 };
 
-// Solves from the contacts' impulses (already applied to `velocity`) down the ladder of
-// tolerances; `observer` sees every full sweep and may end the run by throwing.
+// Solves from the contacts' impulses (already applied to `velocity`) with `settings` down the
+// ladder of tolerances, from theirs; `observer` sees every full sweep and may end the run by throwing.
 void solve_down_the_ladder(std::vector<cd::Contact>& contacts, std::vector<cd::BodyVelocity>& velocity,
-                           cd::SweepObserver& observer, bool newton_polish, Ladder& ladder);
+                           cd::SweepObserver& observer, const cd::SolverSettings& settings, Ladder& ladder);
 
 }  // namespace peers

@@ -21,7 +21,7 @@
 //
 // Ours: Gauss–Seidel at the deck's settings (inputs/in.chute: tolerance 1e-3, conjugate
 // acceleration, full sweep every 8, stall rescue on); ours_newton: the same with the Newton
-// polish (newton_polish yes, cd/newton_polish.h). Each is stopped at the first full sweep whose
+// polish (newton_polish yes, cd/newton_polish.h); ours_over_relaxed: with over_relaxation 1.8. Each is stopped at the first full sweep whose
 // iterate meets the target; if it ends on its own norm first, it goes on from its iterate with
 // its tolerance ten times lower. The error checks are timed apart and left out of its time.
 // Siconos: the solver at tolerance = target; if its answer misses the target by our measure, it
@@ -97,8 +97,7 @@ std::vector<std::string> siconos_names()
 Options parse_options(int argc, char** argv)
 {
   Options o;
-  o.solvers.push_back("ours");
-  o.solvers.push_back("ours_newton");
+  o.solvers = peers::ours_names();
   for (const std::string& name : siconos_names()) o.solvers.push_back(name);
   for (int i = 1; i < argc; i++) {
     const std::string arg = argv[i];
@@ -118,8 +117,8 @@ Options parse_options(int argc, char** argv)
       o.repeat = number<int>(arg, value());
       if (o.repeat < 1) refuse("--repeat must be >= 1, got " + std::to_string(o.repeat));
     } else if (arg == "--list") {
-      std::cout << "ours,ours_newton";
-      for (const std::string& name : siconos_names()) std::cout << ',' << name;
+      for (const std::string& name : peers::ours_names()) std::cout << name << ',';
+      for (const std::string& name : siconos_names()) std::cout << name << (name == siconos_names().back() ? "" : ",");
       std::cout << '\n';
       std::exit(0);
     } else if (arg.rfind("--", 0) == 0) refuse("unknown option " + arg);
@@ -129,7 +128,7 @@ Options parse_options(int argc, char** argv)
   for (const std::string& s : o.starts)
     if (s != "cold" && s != "warm") refuse("a start is cold or warm, got '" + s + "'");
   for (const std::string& s : o.solvers)
-    if (s != "ours" && s != "ours_newton") peers::siconos_options(s);  // an unknown name or option: refused here
+    if (!peers::is_ours(s)) peers::siconos_options(s);  // an unknown name or option: refused here
   return o;
 }
 
@@ -191,7 +190,7 @@ class TargetWatch : public cd::SweepObserver {
 };
 
 Outcome solve_ours(const cd::ContactProblem& problem, const peers::LocalProblem& local, bool warm, double target,
-                   double time_limit, bool newton_polish)
+                   double time_limit, const cd::SolverSettings& settings)
 {
   Outcome outcome;
   std::vector<cd::Contact> contacts = problem.contacts;
@@ -203,7 +202,7 @@ Outcome solve_ours(const cd::ContactProblem& problem, const peers::LocalProblem&
   watch.start(cpu_begin);
   cd::apply_impulses(contacts, velocity);
   try {
-    peers::solve_down_the_ladder(contacts, velocity, watch, newton_polish, watch.ladder);
+    peers::solve_down_the_ladder(contacts, velocity, watch, settings, watch.ladder);
   } catch (const Stop& stop) {
     outcome.solved = stop.solved;
   }
@@ -320,11 +319,13 @@ int run(const Options& o)
           std::string status = "skipped";
           Outcome outcome;
           if (!gave_up) {
-            if (solver == "ours" || solver == "ours_newton")
+            if (peers::is_ours(solver))
               outcome = in_child(
                   [&] {
                     return peers::repeated<Outcome>(
-                        [&] { return solve_ours(problem, local, warm, target, o.time_limit, solver == "ours_newton"); },
+                        [&] {
+                          return solve_ours(problem, local, warm, target, o.time_limit, peers::ours_settings(solver));
+                        },
                         o.repeat, repeat_budget);
                   },
                   o.time_limit, std::max(o.wall_limit, ours_wall_limit(o.time_limit)), status);

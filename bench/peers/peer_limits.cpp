@@ -136,7 +136,7 @@ Run run_ours(const cd::ContactProblem& problem, const peers::LocalProblem& local
   try {  // down the ladder, and down again from its iterate while the run has time
     for (int before = -1; recorder.ladder.finished.iterations > before;) {
       before = recorder.ladder.finished.iterations;
-      peers::solve_down_the_ladder(contacts, velocity, recorder, false, recorder.ladder);
+      peers::solve_down_the_ladder(contacts, velocity, recorder, peers::deck_settings(), recorder.ladder);
     }
   } catch (const RunOver&) {
   }

@@ -24,6 +24,7 @@ struct SweepChange {
   double max_change = 0.0;     // max |W dp|
   double sum_scale = 0.0;      // sum |W p|
   double contacts = 0.0;       // number of contacts visited
+  double face_changes = 0.0;   // contacts whose law face changed (counted under over_relaxation only)
 
   // One contact's W dp and W p, for the quadratic norm only: no square root, which is what
   // its sweeps accumulate (called once per contact update).
@@ -51,6 +52,7 @@ struct SweepChange {
     max_change = std::max(max_change, other.max_change);
     sum_scale += other.sum_scale;
     contacts += other.contacts;
+    face_changes += other.face_changes;
   }
 
   // The chosen norm; 0 when nothing changed, infinite when impulses changed but all vanished.

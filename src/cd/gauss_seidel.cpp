@@ -37,11 +37,34 @@ inline void record_change(SweepChange& change, Local2 velocity_change, Local2 ve
   else change.add(velocity_change, velocity_scale);
 }
 
-// The impulse p (every other impulse frozen) or, under relaxation w, w p + (1 - w) p_previous.
-inline Local2 relaxed(Local2 p, Local2 previous, double relaxation)
+// The impulse p (every other impulse frozen) or, under relaxation w, w p + (1 - w) p_previous;
+// over-relaxed (w > 1, only in the sweeps of over_relaxation), the mix may leave the cone and is
+// put back on it.
+template <bool over_relaxes>
+inline Local2 relaxed(Local2 p, Local2 previous, double relaxation, double mu)
 {
   if (relaxation == 1.0) return p;
-  return {relaxation * p.n + (1.0 - relaxation) * previous.n, relaxation * p.t + (1.0 - relaxation) * previous.t};
+  const Local2 mixed{relaxation * p.n + (1.0 - relaxation) * previous.n,
+                     relaxation * p.t + (1.0 - relaxation) * previous.t};
+  if constexpr (over_relaxes) return relaxation > 1.0 ? solve_coulomb_disk(mixed, mu) : mixed;
+  return mixed;
+}
+
+// The face of the Coulomb law an impulse lies on: 0 open, 1 and 2 sliding forward and backward,
+// 3 sticking.
+inline int law_face(Local2 p, double mu)
+{
+  if (p.n <= 0.0) return 0;
+  if (p.t >= mu * p.n) return 1;
+  if (p.t <= -mu * p.n) return 2;
+  return 3;
+}
+
+// Counts a local solve that moves the contact's impulse to another face of its law.
+template <bool over_relaxes>
+inline void record_face(SweepChange& change, Local2 previous, Local2 local, double mu)
+{
+  if constexpr (over_relaxes) change.face_changes += law_face(local, mu) != law_face(previous, mu);
 }
 
 // Conjugate acceleration of one contact's new impulse p: p + beta d back on the cone, and that
@@ -70,7 +93,7 @@ inline Local2 swept_law_velocity(const Contact& c, const BodyVelocity& a, const 
 // form: the impulse that would stop the contact is the current one minus W^-1 (u + b), with u
 // the relative velocity that already includes the contact's own impulse. The norm records the
 // local solve's change, before any acceleration.
-template <ConvergenceNorm norm, bool conjugate, bool sliding_images>
+template <ConvergenceNorm norm, bool conjugate, bool sliding_images, bool over_relaxes>
 [[gnu::always_inline]] inline double update_frictional(Contact& c, BodyVelocity* velocity, double relaxation,
                                                        double beta, SweepChange& change)
 {
@@ -79,7 +102,8 @@ template <ConvergenceNorm norm, bool conjugate, bool sliding_images>
   const Local2 u = swept_law_velocity<sliding_images>(c, a, b);
   const Local2 stick{c.impulse.n - c.delassus.inverse_nn * u.n, c.impulse.t - c.delassus.inverse_tt * u.t};
   const Local2 local = solve_coulomb_disk(stick, c.mu);
-  const Local2 solved = relaxed(local, c.impulse, relaxation);
+  const Local2 solved = relaxed<over_relaxes>(local, c.impulse, relaxation, c.mu);
+  record_face<over_relaxes>(change, c.impulse, local, c.mu);
   // The norm takes the plain local solve's change, which relaxation would shrink by w: a relaxed
   // solve then stops where a plain sweep would change no more than the tolerance allows.
   const Local2 velocity_change = c.delassus.times({local.n - c.impulse.n, local.t - c.impulse.t});
@@ -93,7 +117,7 @@ template <ConvergenceNorm norm, bool conjugate, bool sliding_images>
 
 // update_frictional for mu = 0, where p_t stays 0 (warm_start drops a carried one): the
 // normal velocity and the normal impulse; no tangential solve, no spin.
-template <ConvergenceNorm norm, bool conjugate>
+template <ConvergenceNorm norm, bool conjugate, bool over_relaxes>
 [[gnu::always_inline]] inline double update_frictionless(Contact& c, BodyVelocity* velocity, double relaxation,
                                                          double beta, SweepChange& change)
 {
@@ -101,7 +125,8 @@ template <ConvergenceNorm norm, bool conjugate>
   BodyVelocity& b = velocity[c.body_b];
   const double stick_n = c.impulse.n - c.delassus.inverse_nn * law_velocity(c, a, b).n;
   const double local_n = std::max(stick_n, 0.0);
-  const double solved_n = relaxed({local_n, 0.0}, c.impulse, relaxation).n;
+  const double solved_n = relaxed<over_relaxes>({local_n, 0.0}, c.impulse, relaxation, 0.0).n;
+  record_face<over_relaxes>(change, c.impulse, {local_n, 0.0}, 0.0);
   const double velocity_change = c.delassus.nn * (local_n - c.impulse.n);
   record_change<norm>(change, {velocity_change, 0.0}, {c.delassus.nn * solved_n, 0.0});
   const double p_n = accelerated<conjugate>(c, {solved_n, 0.0}, beta).n;
@@ -119,41 +144,49 @@ template <class Kind>
                                                     double relaxation, double beta, SweepChange& change)
 {
   if (shortcut && c.mu == 0.0)
-    return update_frictionless<Kind::norm, Kind::conjugate>(c, velocity, relaxation, beta, change);
-  return update_frictional<Kind::norm, Kind::conjugate, Kind::sliding_images>(c, velocity, relaxation, beta, change);
+    return update_frictionless<Kind::norm, Kind::conjugate, Kind::over_relaxes>(c, velocity, relaxation, beta, change);
+  return update_frictional<Kind::norm, Kind::conjugate, Kind::sliding_images, Kind::over_relaxes>(
+      c, velocity, relaxation, beta, change);
 }
 
-template <ConvergenceNorm norm_, bool conjugate_, bool sliding_images_>
+template <ConvergenceNorm norm_, bool conjugate_, bool sliding_images_, bool over_relaxes_>
 struct SweepKind {
   static constexpr ConvergenceNorm norm = norm_;
   static constexpr bool conjugate = conjugate_;
   static constexpr bool sliding_images = sliding_images_;
+  static constexpr bool over_relaxes = over_relaxes_;
 };
 
-template <bool sliding_images, class Loop>
+template <bool sliding_images, bool over_relaxes, class Loop>
 SweepChange for_kind(ConvergenceNorm norm, const GaussSeidelSettings& settings, Loop loop)
 {
   const bool quadratic = norm == ConvergenceNorm::quadratic;
   if (settings.acceleration == Acceleration::conjugate)
-    return quadratic ? loop(SweepKind<ConvergenceNorm::quadratic, true, sliding_images>{})
-                     : loop(SweepKind<ConvergenceNorm::maximum, true, sliding_images>{});
-  return quadratic ? loop(SweepKind<ConvergenceNorm::quadratic, false, sliding_images>{})
-                   : loop(SweepKind<ConvergenceNorm::maximum, false, sliding_images>{});
+    return quadratic ? loop(SweepKind<ConvergenceNorm::quadratic, true, sliding_images, over_relaxes>{})
+                     : loop(SweepKind<ConvergenceNorm::maximum, true, sliding_images, over_relaxes>{});
+  return quadratic ? loop(SweepKind<ConvergenceNorm::quadratic, false, sliding_images, over_relaxes>{})
+                   : loop(SweepKind<ConvergenceNorm::maximum, false, sliding_images, over_relaxes>{});
 }
 
-// Calls loop(SweepKind<norm, conjugate, sliding_images>{}) for the norm and the settings'
-// acceleration and the contacts' images, so that the sweep loops are compiled once per kind.
-// The loops copy the settings they read into locals: a store to a velocity could otherwise
-// alias them and force a reload per contact.
+// Calls loop(SweepKind<norm, conjugate, sliding_images, over_relaxes>{}) for the norm, the
+// settings' acceleration, the contacts' images and whether over_relaxation is on (its faces
+// counted, its impulses put back on their cones), so that the sweep loops are compiled once per
+// kind and the default's are the plain ones. The loops copy the settings they read into locals:
+// a store to a velocity could otherwise alias them and force a reload per contact.
 template <class Loop>
 SweepChange for_kind(ConvergenceNorm norm, const GaussSeidelSettings& settings, bool sliding_images, Loop loop)
 {
-  return sliding_images ? for_kind<true>(norm, settings, loop) : for_kind<false>(norm, settings, loop);
+  if (settings.over_relaxation != 1.0)
+    return sliding_images ? for_kind<true, true>(norm, settings, loop) : for_kind<false, true>(norm, settings, loop);
+  return sliding_images ? for_kind<true, false>(norm, settings, loop) : for_kind<false, false>(norm, settings, loop);
 }
 
-// A sweep over [first, last); with `change_sq`, each contact's |W dp|^2 lands in it.
-SweepChange sweep_measuring(Contact* first, Contact* last, BodyVelocity* velocity, ConvergenceNorm norm,
-                            const GaussSeidelSettings& settings, bool sliding_images, double beta, double* change_sq)
+// A sweep over [first, last); with `change_sq`, each contact's |W dp|^2 lands in it. This sweep
+// and sweep_listed are kept out of their callers: inlined or not by the compiler's weighing of
+// every kind's loop, they made the default sweeps' instructions move by 1 % with code those never run.
+[[gnu::noinline]] SweepChange sweep_measuring(Contact* first, Contact* last, BodyVelocity* velocity,
+                                              ConvergenceNorm norm, const GaussSeidelSettings& settings,
+                                              bool sliding_images, double beta, double* change_sq)
 {
   return for_kind(norm, settings, sliding_images, [&](auto kind) {
     using Kind = decltype(kind);
@@ -169,8 +202,9 @@ SweepChange sweep_measuring(Contact* first, Contact* last, BodyVelocity* velocit
 }
 
 // A sweep over the listed contacts, in the list's order.
-SweepChange sweep_listed(Contact* contacts, const std::vector<int>& listed, BodyVelocity* velocity,
-                         ConvergenceNorm norm, const GaussSeidelSettings& settings, bool sliding_images, double beta)
+[[gnu::noinline]] SweepChange sweep_listed(Contact* contacts, const std::vector<int>& listed, BodyVelocity* velocity,
+                                           ConvergenceNorm norm, const GaussSeidelSettings& settings,
+                                           bool sliding_images, double beta)
 {
   return for_kind(norm, settings, sliding_images, [&](auto kind) {
     using Kind = decltype(kind);
@@ -262,6 +296,15 @@ bool count_sweep(SolveReport& report, const SweepChange& change, std::size_t upd
   return report.residual <= settings.tolerance;
 }
 
+// The next sweep's knobs: over-relaxed once the sweeps since the last full one changed no law face,
+// unless the stall rescue relaxes them.
+GaussSeidelSettings next_sweep(const GaussSeidelSettings& rescue_sweeping, bool faces_settled)
+{
+  GaussSeidelSettings settings = rescue_sweeping;
+  if (faces_settled && settings.relaxation == 1.0) settings.relaxation = settings.over_relaxation;
+  return settings;
+}
+
 // The contacts a cycle's full sweep left changing, by their place in the contact list (in
 // sweep order). The quiet ones keep their impulses until the next full sweep, so their share of
 // the norm's scale is summed once.
@@ -301,11 +344,14 @@ SolveReport GaussSeidel::solve_in_full_sweeps(std::vector<Contact>& contacts, st
   StallRescue rescue(settings_.gauss_seidel, stall_, exchange, contacts);
   NewtonPolish polish(settings_, exchange);
   bool sliding_images = has_sliding_images(contacts);
+  bool faces_settled = false;
   double beta = 0.0;
   while (report.iterations < settings_.max_iterations) {
-    SweepChange change = sweep_measuring(contacts.data(), contacts.data() + contacts.size(), velocity.data(),
-                                         settings_.norm, rescue.sweeping(), sliding_images, beta, nullptr);
+    SweepChange change =
+        sweep_measuring(contacts.data(), contacts.data() + contacts.size(), velocity.data(), settings_.norm,
+                        next_sweep(rescue.sweeping(), faces_settled), sliding_images, beta, nullptr);
     if (exchange) exchange->after_sweep(change);
+    faces_settled = change.face_changes == 0.0;
     const bool converged = count_sweep(report, change, contacts.size(), settings_);
     rescue.add_sweep(change, report);
     if (observer_) observer_->after_full_sweep(report);
@@ -334,13 +380,15 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
   NewtonPolish polish(settings_, exchange);
   bool sliding_images = has_sliding_images(contacts);
   double previous_full_residual = std::numeric_limits<double>::infinity();
+  bool faces_settled = false;
   for (int full_sweeps = 1; report.iterations < settings_.max_iterations; full_sweeps++) {
     // The full sweep records no conjugate direction: the first active sweep, unpushed, does.
-    GaussSeidelSettings full_sweep = rescue.sweeping();
+    GaussSeidelSettings full_sweep = next_sweep(rescue.sweeping(), faces_settled);
     full_sweep.acceleration = Acceleration::none;
     SweepChange change = sweep_measuring(contacts.data(), contacts.data() + contacts.size(), velocity.data(),
                                          settings_.norm, full_sweep, sliding_images, 0.0, work.change_sq.data());
     if (exchange) exchange->after_sweep(change);
+    faces_settled = change.face_changes == 0.0;
     const bool converged = count_sweep(report, change, contacts.size(), settings_);
     rescue.add_sweep(change, report);
     if (observer_) observer_->after_full_sweep(report);
@@ -367,9 +415,10 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
     previous_full_residual = report.residual;
     double beta = 0.0;
     for (int k = 1; k < settings_.gauss_seidel.full_sweep_every && report.iterations < settings_.max_iterations; k++) {
-      SweepChange active_change =
-          sweep_active(work, contacts, velocity.data(), settings_.norm, rescue.sweeping(), sliding_images, beta);
+      SweepChange active_change = sweep_active(work, contacts, velocity.data(), settings_.norm,
+                                               next_sweep(rescue.sweeping(), faces_settled), sliding_images, beta);
       if (exchange) exchange->after_sweep(active_change);
+      faces_settled = faces_settled && active_change.face_changes == 0.0;
       const bool active_converged = count_sweep(report, active_change, work.active.size(), settings_);
       rescue.add_sweep(active_change, report);
       if (active_converged) break;
@@ -381,12 +430,15 @@ SolveReport GaussSeidel::solve_in_cycles(std::vector<Contact>& contacts, std::ve
   return report;
 }
 
-// Written so that NaN fails every test. Relaxation above 1 is not offered (over-relaxation
-// gained nothing in time: doc/benchmarks.md).
+// Written so that NaN fails every test. relaxation stays at most 1: over-relaxing every sweep,
+// faces changing or not, gained nothing in time (doc/benchmarks.md); over_relaxation waits for
+// the faces to settle.
 std::string check(const GaussSeidelSettings& settings)
 {
   if (!(settings.relaxation > 0.0 && settings.relaxation <= 1.0))
     return refusal("relaxation", "in (0,1]", settings.relaxation);
+  if (!(settings.over_relaxation >= 1.0 && settings.over_relaxation < 2.0))
+    return refusal("over_relaxation", "in [1,2)", settings.over_relaxation);
   if (settings.full_sweep_every < 1) return refusal("full_sweep_every", ">= 1", settings.full_sweep_every);
   if (settings.stall_window < 0) return refusal("stall_window", ">= 0", settings.stall_window);
   if (!(settings.stall_coherence > 0.0 && settings.stall_coherence < 1.0))

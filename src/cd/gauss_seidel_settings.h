@@ -16,6 +16,12 @@ enum class Acceleration { none, conjugate };
 
 struct GaussSeidelSettings {
   double relaxation = 1.0;  // p <- w p_local + (1 - w) p_previous
+  // Over-relaxation w in [1, 2) of the sweeps once a full sweep changed no contact's law face
+  // (open, sliding either way, sticking): p <- w p_local + (1 - w) p_previous put back on its
+  // cone, until a sweep changes a face again; never while the stall rescue relaxes. On the faces
+  // the local solves are linear and successive over-relaxation speeds Gauss–Seidel where they are
+  // ill-conditioned (the resting pile at 1e-6: doc/peers.md). 1: off, the faces not even counted.
+  double over_relaxation = 1.0;
   // mu = 0 contacts solve only their normal impulse and touch no spin (solve_frictionless_local's closed form),
   // the same result as the Coulomb solver to round-off at about half the cost. false sends them
   // through the Coulomb solver: the reference the shortcut is tested and measured against.

@@ -101,6 +101,7 @@ std::optional<std::string> read_solver_keyword(SolverSettings& settings, const s
     return read_choice(keyword, value, "quadratic", ConvergenceNorm::quadratic, "maximum", ConvergenceNorm::maximum,
                        settings.norm);
   if (keyword == "relaxation") return read_number(keyword, value, gs.relaxation);
+  if (keyword == "over_relaxation") return read_number(keyword, value, gs.over_relaxation);
   if (keyword == "acceleration")
     return read_choice(keyword, value, "none", Acceleration::none, "conjugate", Acceleration::conjugate,
                        gs.acceleration);

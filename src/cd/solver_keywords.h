@@ -1,7 +1,7 @@
 // The solver's keywords read from text, once for every host: the fix's command line
 // (src/fix_contact_dynamics_settings.cpp) and the corpus bench's settings (bench/solver_corpus.cpp).
 //   solver NAME (cd::make_solver, cd/solver_registry.h), tolerance, max_iterations, norm (quadratic|maximum),
-//   and Gauss–Seidel's: relaxation, acceleration (none|conjugate), full_sweep_every,
+//   and Gauss–Seidel's: relaxation, over_relaxation, acceleration (none|conjugate), full_sweep_every,
 //   stall_window, stall_coherence, stall_relaxation, stall_block, stall_block_every, newton_polish.
 #pragma once
 

@@ -170,6 +170,10 @@ TEST(StepSettings, CheckNamesTheSettingOutOfRange)
             "relaxation must be in (0,1], got 1.5");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.gauss_seidel.relaxation = 0.0; }),
             "relaxation must be in (0,1], got 0");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.gauss_seidel.over_relaxation = 2.0; }),
+            "over_relaxation must be in [1,2), got 2");
+  EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.gauss_seidel.over_relaxation = 0.9; }),
+            "over_relaxation must be in [1,2), got 0.9");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.max_iterations = 0; }), "max_iterations must be >= 1, got 0");
   EXPECT_EQ(refused([](cd::StepSettings& s) { s.solver.gauss_seidel.full_sweep_every = 0; }),
             "full_sweep_every must be >= 1, got 0");

@@ -70,6 +70,7 @@ const BadCase bad_cases[] = {
      "max_iterations expects an integer, got '2.5'"},
     {"theta_out_of_range", with_fix("0.5 0.5 theta 0.3"), "theta must be in [0.5,1], got 0.3"},
     {"relaxation_out_of_range", with_fix("0.5 0.5 relaxation 1.5"), "relaxation must be in (0,1], got 1.5"},
+    {"over_relaxation_of_two", with_fix("0.5 0.5 over_relaxation 2"), "over_relaxation must be in [1,2), got 2"},
     {"negative_stall_window", with_fix("0.5 0.5 stall_window -1"), "stall_window must be >= 0, got -1"},
     {"stall_coherence_of_one", with_fix("0.5 0.5 stall_coherence 1"), "stall_coherence must be in (0,1), got 1"},
     {"stall_relaxation_zero", with_fix("0.5 0.5 stall_relaxation 0"), "stall_relaxation must be in (0,1], got 0"},
