@@ -15,7 +15,8 @@ struct LemkeResult {
 };
 
 // M is n x n, row-major; z (resized to n) receives the solution. Stops unsolved after
-// max_pivots pivots. The work is O(n^2) per pivot in a tableau of n x (2n + 2) doubles.
+// max_pivots pivots. The work is O(n^2) per pivot in a tableau of n x (n + 2) doubles (the nonbasic
+// variables' columns), kept from solve to solve by the calling thread.
 LemkeResult solve_lcp_lemke(const std::vector<double>& M, const std::vector<double>& q, std::vector<double>& z,
                             int max_pivots);
 

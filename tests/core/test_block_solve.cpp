@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "cd/block_solve.h"
@@ -64,6 +65,39 @@ TEST(Lemke, DegenerateProblemEndsAtASolution)
   ASSERT_TRUE(cd::solve_lcp_lemke(M, q, z, 100).solved);
   EXPECT_NEAR(z[0] + z[1], 1.0, 1e-14);
   expect_complementary(M, q, z);
+}
+
+// A positive definite M = B B^T / n + I/10 of size n (B's entries a fixed pseudo-random pattern)
+// with q of both signs: Lemke must solve it.
+std::pair<std::vector<double>, std::vector<double>> dense_problem(std::size_t n)
+{
+  std::vector<double> B(n * n), M(n * n), q(n);
+  for (std::size_t k = 0; k < n * n; k++) B[k] = std::sin(1.7 * static_cast<double>(k) + 0.3);
+  for (std::size_t i = 0; i < n; i++) {
+    for (std::size_t j = 0; j < n; j++)
+      for (std::size_t k = 0; k < n; k++) M[i * n + j] += B[i * n + k] * B[j * n + k] / static_cast<double>(n);
+    M[i * n + i] += 0.1;
+    q[i] = std::cos(2.3 * static_cast<double>(i));
+  }
+  return {M, q};
+}
+
+// Many pivots, variables leaving and entering again, and the tableau's memory reused by a later
+// solve of another size: each answer is complementary and the same as the first time.
+TEST(Lemke, DenseProblemsOfSeveralSizesEndAtTheSameSolutions)
+{
+  const auto [small_M, small_q] = dense_problem(12);
+  const auto [large_M, large_q] = dense_problem(40);
+  std::vector<double> first, large, again;
+  const cd::LemkeResult small = cd::solve_lcp_lemke(small_M, small_q, first, 1000);
+  ASSERT_TRUE(small.solved);
+  const cd::LemkeResult larger = cd::solve_lcp_lemke(large_M, large_q, large, 1000);
+  ASSERT_TRUE(larger.solved);
+  EXPECT_GT(larger.pivots, 20);
+  expect_complementary(small_M, small_q, first);
+  expect_complementary(large_M, large_q, large);
+  ASSERT_TRUE(cd::solve_lcp_lemke(small_M, small_q, again, 1000).solved);
+  EXPECT_EQ(again, first);
 }
 
 // w = -z - 1 >= 0 has no z >= 0: Lemke ends on a ray and says so.
