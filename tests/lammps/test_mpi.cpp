@@ -169,6 +169,14 @@ TEST_F(SeveralRanks, CyclesOfActiveSweepsGiveTheSameVelocities)
   expect_one_rank_velocities("acceleration conjugate full_sweep_every 8");
 }
 
+// Over-relaxation on several ranks: every rank over-relaxes after the same sweeps, those in which
+// no contact of any rank changed its law's face (the count summed over ranks), and the solve
+// reaches the 1-rank solution.
+TEST_F(SeveralRanks, OverRelaxationGivesTheSameVelocities)
+{
+  expect_one_rank_velocities("over_relaxation 1.8 full_sweep_every 8");
+}
+
 // The stall rescue made to act at the end of every window of two sweeps (a coherence that only
 // sweeps changing nothing would pass): each rank decides on the net change and path summed over
 // all ranks, solves the blocks around its own contacts' residual and shares the velocities they
