@@ -168,8 +168,7 @@ SweepChange for_kind(ConvergenceNorm norm, const GaussSeidelSettings& settings, 
 }
 
 // The kinds of over_relaxation (its faces counted, its impulses put back on their cones), kept
-// out of line: inlined beside the default kinds, they changed how the compiler laid out those,
-// which ran 1-3 % slower on the chute (bench/side_by_side.sh) with code they never execute.
+// out of line so that the compiler lays out the default kinds' loops as it would without them.
 template <class Loop>
 [[gnu::noinline]] SweepChange for_over_relaxing_kind(ConvergenceNorm norm, const GaussSeidelSettings& settings,
                                                      bool sliding_images, Loop loop)
